@@ -300,6 +300,30 @@ cartpole_accel(eomc_real t, const eomc_real *q, const eomc_real *v,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define cartpole_taylor_run_1 cartpole_taylor_run_1_ext
+#define cartpole_taylor_run_2 cartpole_taylor_run_2_ext
+#define cartpole_taylor_run_5 cartpole_taylor_run_5_ext
+#define cartpole_taylor_run_6 cartpole_taylor_run_6_ext
+#define cartpole_taylor_run_9 cartpole_taylor_run_9_ext
+#define cartpole_taylor_run_10 cartpole_taylor_run_10_ext
+#define cartpole_taylor_run_13 cartpole_taylor_run_13_ext
+#define cartpole_taylor_run_14 cartpole_taylor_run_14_ext
+#define cartpole_taylor_run_17 cartpole_taylor_run_17_ext
+#define cartpole_taylor_run_18 cartpole_taylor_run_18_ext
+#define cartpole_taylor_run_21 cartpole_taylor_run_21_ext
+#define cartpole_taylor_run_22 cartpole_taylor_run_22_ext
+#define cartpole_taylor_run_25 cartpole_taylor_run_25_ext
+#define cartpole_taylor_run_26 cartpole_taylor_run_26_ext
+#define cartpole_taylor_run_29 cartpole_taylor_run_29_ext
+#define cartpole_taylor_run_30 cartpole_taylor_run_30_ext
+#define cartpole_taylor_run_33 cartpole_taylor_run_33_ext
+#define cartpole_taylor_run_34 cartpole_taylor_run_34_ext
+#define cartpole_taylor_run_37 cartpole_taylor_run_37_ext
+#define cartpole_taylor_run_38 cartpole_taylor_run_38_ext
+#define cartpole_taylor_run_41 cartpole_taylor_run_41_ext
+#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED
@@ -423,67 +447,13 @@ cartpole_taylor(int k, int K, eomc_real t0, const eomc_real *p,
  * caller's hook (M_0 factored at k = 0), then / (k + 1).  Written out to
  * order 20, each recurrence's sum with its indices fixed (the same
  * arithmetic in the same order); above that 1, for the caller's loop. */
-/* Its terms are too many for the C compiler's optimizer, whose time grows
- * faster than they do; each is one statement on values in memory either
- * way (lowered.h, LOW_SERIES_OPTIMIZED_TERMS). */
-#if defined(__clang__)
-#define EOMC_UNOPTIMIZED __attribute__((optnone, noinline))
-#elif defined(__GNUC__)
-#define EOMC_UNOPTIMIZED __attribute__((optimize("O0"), noinline))
-#else
-#define EOMC_UNOPTIMIZED
-#endif
-static EOMC_UNOPTIMIZED int
-cartpole_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *T, eomc_real *X, eomc_tay_solve solve, void *ctx)
+/* Lines 40 .. 42 of taylor_run's order 0. */
+static EOMC_NOINLINE int
+cartpole_taylor_run_3(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
 {
-    const int S = K + 1;
-    if (K > 20)
-        return 1;
-    (void)S, (void)T, (void)t0, (void)p, (void)u;
-    eomc_real W[882]; /* slot s's coefficient j at W[j * 42 + s], but the
-                   * state's: X[j * 4 + i], q's then v's */
-    /* order 0 */
-    W[1] = p[2];
-    W[3] = sin(X[1]);
-    W[4] = cos(X[1]);
-    W[10] = X[3] * X[3];
-    W[11] = p[7];
-    W[12] = u[0];
-    W[13] = p[8];
-    W[14] = p[9];
-    W[26] = p[10];
-    W[27] = p[11];
-    W[31] = p[12];
-    W[23] = W[13] * W[4];
-    W[24] = W[11] * W[3];
-    W[6] = W[4] * X[3];
-    W[9] = X[3] * W[3];
-    W[15] = W[10] * W[3];
-    W[16] = W[4] * W[10];
-    W[7] = W[1] * W[6];
-    W[28] = W[13] * W[15];
-    W[17] = W[16] * W[3];
-    W[8] = X[2] + W[7];
-    W[18] = W[14] * W[17];
-    W[29] = W[12] + W[28];
-    W[32] = W[31] * W[17];
-    W[33] = W[1] * W[17];
-    W[30] = -W[29];
-    W[19] = X[3] * W[8];
-    W[25] = W[8] * W[9];
-    W[34] = W[25] + W[33];
-    W[20] = W[3] * W[19];
-    W[21] = W[13] * W[20];
-    W[35] = W[13] * W[34];
-    W[22] = W[18] - W[21];
-    W[36] = W[32] - W[35];
-    W[37] = W[36] - W[22];
-    W[38] = W[37] - W[24];
-    X[4] = X[2];
-    X[5] = X[3];
-    W[40] = W[30];
-    W[41] = W[38];
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     {
         const eomc_real M0[4] = {W[26], W[23], W[23], W[27]};
         if (solve(ctx, 0, M0, W + 40))
@@ -491,9 +461,16 @@ cartpole_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     }
     X[6] = W[40];
     X[7] = W[41];
-    if (K == 1)
-        goto out;
-    /* order 1 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 1. */
+static EOMC_NOINLINE int
+cartpole_taylor_run_4(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[45] = X[5] * W[4];
     W[46] = -X[5] * W[3];
     W[52] = X[3] * X[7] * 2.0;
@@ -514,45 +491,16 @@ cartpole_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[72] = -W[71];
     W[61] = X[3] * W[50] + X[7] * W[8];
     W[67] = W[8] * W[51] + W[50] * W[9];
-    W[76] = W[67] + W[75];
-    W[62] = W[3] * W[61] + W[45] * W[19];
-    W[63] = W[13] * W[62];
-    W[77] = W[13] * W[76];
-    W[64] = W[60] - W[63];
-    W[78] = W[74] - W[77];
-    W[79] = W[78] - W[64];
-    W[80] = W[79] - W[66];
-    X[8] = X[6] / 2.0;
-    X[9] = X[7] / 2.0;
-    W[82] = W[65] * W[41] + W[72];
-    W[83] = W[65] * W[40] + W[80];
-    if (solve(ctx, 1, NULL, W + 82))
-        return -1;
-    X[10] = W[82] / 2.0;
-    X[11] = W[83] / 2.0;
-    if (K == 2)
-        goto out;
-    /* order 2 */
-    W[87] = (X[5] * W[46] + 2.0 * X[9] * W[4]) / 2.0;
-    W[88] = -((X[5] * W[45] + 2.0 * X[9] * W[3])) / 2.0;
-    W[94] = X[3] * X[11] * 2.0 + X[7] * X[7];
-    W[107] = W[13] * W[88];
-    W[108] = W[11] * W[87];
-    W[90] = W[4] * X[11] + W[46] * X[7] + W[88] * X[3];
-    W[93] = X[3] * W[87] + X[7] * W[45] + X[11] * W[3];
-    W[99] = W[10] * W[87] + W[52] * W[45] + W[94] * W[3];
-    W[100] = W[4] * W[94] + W[46] * W[52] + W[88] * W[10];
-    W[91] = W[1] * W[90];
-    W[112] = W[13] * W[99];
-    W[101] = W[16] * W[87] + W[58] * W[45] + W[100] * W[3];
-    W[92] = X[10] + W[91];
-    W[102] = W[14] * W[101];
-    W[113] = W[112];
-    W[116] = W[31] * W[101];
-    W[117] = W[1] * W[101];
-    W[114] = -W[113];
-    W[103] = X[3] * W[92] + X[7] * W[50] + X[11] * W[8];
-    W[109] = W[8] * W[93] + W[50] * W[51] + W[92] * W[9];
+    return 0;
+}
+
+/* Lines 20 .. 34 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+cartpole_taylor_run_7(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[118] = W[109] + W[117];
     W[104] = W[3] * W[103] + W[45] * W[61] + W[87] * W[19];
     W[105] = W[13] * W[104];
@@ -569,9 +517,16 @@ cartpole_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
         return -1;
     X[14] = W[124] / 3.0;
     X[15] = W[125] / 3.0;
-    if (K == 3)
-        goto out;
-    /* order 3 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+cartpole_taylor_run_8(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[129] = (X[5] * W[88] + 2.0 * X[9] * W[46] + 3.0 * X[13] * W[4]) / 3.0;
     W[130] = -((X[5] * W[87] + 2.0 * X[9] * W[45] + 3.0 * X[13] * W[3])) / 3.0;
     W[136] = (X[3] * X[15] + X[7] * X[11]) * 2.0;
@@ -592,45 +547,16 @@ cartpole_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[156] = -W[155];
     W[145] = X[3] * W[134] + X[7] * W[92] + X[11] * W[50] + X[15] * W[8];
     W[151] = W[8] * W[135] + W[50] * W[93] + W[92] * W[51] + W[134] * W[9];
-    W[160] = W[151] + W[159];
-    W[146] = W[3] * W[145] + W[45] * W[103] + W[87] * W[61] + W[129] * W[19];
-    W[147] = W[13] * W[146];
-    W[161] = W[13] * W[160];
-    W[148] = W[144] - W[147];
-    W[162] = W[158] - W[161];
-    W[163] = W[162] - W[148];
-    W[164] = W[163] - W[150];
-    X[16] = X[14] / 4.0;
-    X[17] = X[15] / 4.0;
-    W[166] = W[65] * W[125] + W[107] * W[83] + W[149] * W[41] + W[156];
-    W[167] = W[65] * W[124] + W[107] * W[82] + W[149] * W[40] + W[164];
-    if (solve(ctx, 3, NULL, W + 166))
-        return -1;
-    X[18] = W[166] / 4.0;
-    X[19] = W[167] / 4.0;
-    if (K == 4)
-        goto out;
-    /* order 4 */
-    W[171] = (X[5] * W[130] + 2.0 * X[9] * W[88] + 3.0 * X[13] * W[46] + 4.0 * X[17] * W[4]) / 4.0;
-    W[172] = -((X[5] * W[129] + 2.0 * X[9] * W[87] + 3.0 * X[13] * W[45] + 4.0 * X[17] * W[3])) / 4.0;
-    W[178] = (X[3] * X[19] + X[7] * X[15]) * 2.0 + X[11] * X[11];
-    W[191] = W[13] * W[172];
-    W[192] = W[11] * W[171];
-    W[174] = W[4] * X[19] + W[46] * X[15] + W[88] * X[11] + W[130] * X[7] + W[172] * X[3];
-    W[177] = X[3] * W[171] + X[7] * W[129] + X[11] * W[87] + X[15] * W[45] + X[19] * W[3];
-    W[183] = W[10] * W[171] + W[52] * W[129] + W[94] * W[87] + W[136] * W[45] + W[178] * W[3];
-    W[184] = W[4] * W[178] + W[46] * W[136] + W[88] * W[94] + W[130] * W[52] + W[172] * W[10];
-    W[175] = W[1] * W[174];
-    W[196] = W[13] * W[183];
-    W[185] = W[16] * W[171] + W[58] * W[129] + W[100] * W[87] + W[142] * W[45] + W[184] * W[3];
-    W[176] = X[18] + W[175];
-    W[186] = W[14] * W[185];
-    W[197] = W[196];
-    W[200] = W[31] * W[185];
-    W[201] = W[1] * W[185];
-    W[198] = -W[197];
-    W[187] = X[3] * W[176] + X[7] * W[134] + X[11] * W[92] + X[15] * W[50] + X[19] * W[8];
-    W[193] = W[8] * W[177] + W[50] * W[135] + W[92] * W[93] + W[134] * W[51] + W[176] * W[9];
+    return 0;
+}
+
+/* Lines 20 .. 34 of taylor_run's order 4. */
+static EOMC_NOINLINE int
+cartpole_taylor_run_11(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[202] = W[193] + W[201];
     W[188] = W[3] * W[187] + W[45] * W[145] + W[87] * W[103] + W[129] * W[61] + W[171] * W[19];
     W[189] = W[13] * W[188];
@@ -647,9 +573,16 @@ cartpole_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
         return -1;
     X[22] = W[208] / 5.0;
     X[23] = W[209] / 5.0;
-    if (K == 5)
-        goto out;
-    /* order 5 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+cartpole_taylor_run_12(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[213] = (X[5] * W[172] + 2.0 * X[9] * W[130] + 3.0 * X[13] * W[88] + 4.0 * X[17] * W[46]
             + 5.0 * X[21] * W[4]) / 5.0;
     W[214] = -((X[5] * W[171] + 2.0 * X[9] * W[129] + 3.0 * X[13] * W[87] + 4.0 * X[17] * W[45]
@@ -676,57 +609,16 @@ cartpole_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[229] = X[3] * W[218] + X[7] * W[176] + X[11] * W[134] + X[15] * W[92] + X[19] * W[50] + X[23] * W[8];
     W[235] = W[8] * W[219] + W[50] * W[177] + W[92] * W[135] + W[134] * W[93] + W[176] * W[51]
             + W[218] * W[9];
-    W[244] = W[235] + W[243];
-    W[230] = W[3] * W[229] + W[45] * W[187] + W[87] * W[145] + W[129] * W[103] + W[171] * W[61]
-            + W[213] * W[19];
-    W[231] = W[13] * W[230];
-    W[245] = W[13] * W[244];
-    W[232] = W[228] - W[231];
-    W[246] = W[242] - W[245];
-    W[247] = W[246] - W[232];
-    W[248] = W[247] - W[234];
-    X[24] = X[22] / 6.0;
-    X[25] = X[23] / 6.0;
-    W[250] = W[65] * W[209] + W[107] * W[167] + W[149] * W[125] + W[191] * W[83] + W[233] * W[41]
-            + W[240];
-    W[251] = W[65] * W[208] + W[107] * W[166] + W[149] * W[124] + W[191] * W[82] + W[233] * W[40]
-            + W[248];
-    if (solve(ctx, 5, NULL, W + 250))
-        return -1;
-    X[26] = W[250] / 6.0;
-    X[27] = W[251] / 6.0;
-    if (K == 6)
-        goto out;
-    /* order 6 */
-    W[255] = (X[5] * W[214] + 2.0 * X[9] * W[172] + 3.0 * X[13] * W[130] + 4.0 * X[17] * W[88]
-            + 5.0 * X[21] * W[46] + 6.0 * X[25] * W[4]) / 6.0;
-    W[256] = -((X[5] * W[213] + 2.0 * X[9] * W[171] + 3.0 * X[13] * W[129] + 4.0 * X[17] * W[87]
-            + 5.0 * X[21] * W[45] + 6.0 * X[25] * W[3])) / 6.0;
-    W[262] = (X[3] * X[27] + X[7] * X[23] + X[11] * X[19]) * 2.0 + X[15] * X[15];
-    W[275] = W[13] * W[256];
-    W[276] = W[11] * W[255];
-    W[258] = W[4] * X[27] + W[46] * X[23] + W[88] * X[19] + W[130] * X[15] + W[172] * X[11] + W[214] * X[7]
-            + W[256] * X[3];
-    W[261] = X[3] * W[255] + X[7] * W[213] + X[11] * W[171] + X[15] * W[129] + X[19] * W[87] + X[23] * W[45]
-            + X[27] * W[3];
-    W[267] = W[10] * W[255] + W[52] * W[213] + W[94] * W[171] + W[136] * W[129] + W[178] * W[87]
-            + W[220] * W[45] + W[262] * W[3];
-    W[268] = W[4] * W[262] + W[46] * W[220] + W[88] * W[178] + W[130] * W[136] + W[172] * W[94]
-            + W[214] * W[52] + W[256] * W[10];
-    W[259] = W[1] * W[258];
-    W[280] = W[13] * W[267];
-    W[269] = W[16] * W[255] + W[58] * W[213] + W[100] * W[171] + W[142] * W[129] + W[184] * W[87]
-            + W[226] * W[45] + W[268] * W[3];
-    W[260] = X[26] + W[259];
-    W[270] = W[14] * W[269];
-    W[281] = W[280];
-    W[284] = W[31] * W[269];
-    W[285] = W[1] * W[269];
-    W[282] = -W[281];
-    W[271] = X[3] * W[260] + X[7] * W[218] + X[11] * W[176] + X[15] * W[134] + X[19] * W[92] + X[23] * W[50]
-            + X[27] * W[8];
-    W[277] = W[8] * W[261] + W[50] * W[219] + W[92] * W[177] + W[134] * W[135] + W[176] * W[93]
-            + W[218] * W[51] + W[260] * W[9];
+    return 0;
+}
+
+/* Lines 20 .. 34 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+cartpole_taylor_run_15(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[286] = W[277] + W[285];
     W[272] = W[3] * W[271] + W[45] * W[229] + W[87] * W[187] + W[129] * W[145] + W[171] * W[103]
             + W[213] * W[61] + W[255] * W[19];
@@ -746,9 +638,16 @@ cartpole_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
         return -1;
     X[30] = W[292] / 7.0;
     X[31] = W[293] / 7.0;
-    if (K == 7)
-        goto out;
-    /* order 7 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+cartpole_taylor_run_16(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[297] = (X[5] * W[256] + 2.0 * X[9] * W[214] + 3.0 * X[13] * W[172] + 4.0 * X[17] * W[130]
             + 5.0 * X[21] * W[88] + 6.0 * X[25] * W[46] + 7.0 * X[29] * W[4]) / 7.0;
     W[298] = -((X[5] * W[255] + 2.0 * X[9] * W[213] + 3.0 * X[13] * W[171] + 4.0 * X[17] * W[129]
@@ -778,57 +677,16 @@ cartpole_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + X[23] * W[92] + X[27] * W[50] + X[31] * W[8];
     W[319] = W[8] * W[303] + W[50] * W[261] + W[92] * W[219] + W[134] * W[177] + W[176] * W[135]
             + W[218] * W[93] + W[260] * W[51] + W[302] * W[9];
-    W[328] = W[319] + W[327];
-    W[314] = W[3] * W[313] + W[45] * W[271] + W[87] * W[229] + W[129] * W[187] + W[171] * W[145]
-            + W[213] * W[103] + W[255] * W[61] + W[297] * W[19];
-    W[315] = W[13] * W[314];
-    W[329] = W[13] * W[328];
-    W[316] = W[312] - W[315];
-    W[330] = W[326] - W[329];
-    W[331] = W[330] - W[316];
-    W[332] = W[331] - W[318];
-    X[32] = X[30] / 8.0;
-    X[33] = X[31] / 8.0;
-    W[334] = W[65] * W[293] + W[107] * W[251] + W[149] * W[209] + W[191] * W[167] + W[233] * W[125]
-            + W[275] * W[83] + W[317] * W[41] + W[324];
-    W[335] = W[65] * W[292] + W[107] * W[250] + W[149] * W[208] + W[191] * W[166] + W[233] * W[124]
-            + W[275] * W[82] + W[317] * W[40] + W[332];
-    if (solve(ctx, 7, NULL, W + 334))
-        return -1;
-    X[34] = W[334] / 8.0;
-    X[35] = W[335] / 8.0;
-    if (K == 8)
-        goto out;
-    /* order 8 */
-    W[339] = (X[5] * W[298] + 2.0 * X[9] * W[256] + 3.0 * X[13] * W[214] + 4.0 * X[17] * W[172]
-            + 5.0 * X[21] * W[130] + 6.0 * X[25] * W[88] + 7.0 * X[29] * W[46] + 8.0 * X[33] * W[4]) / 8.0;
-    W[340] = -((X[5] * W[297] + 2.0 * X[9] * W[255] + 3.0 * X[13] * W[213] + 4.0 * X[17] * W[171]
-            + 5.0 * X[21] * W[129] + 6.0 * X[25] * W[87] + 7.0 * X[29] * W[45] + 8.0 * X[33] * W[3])) / 8.0;
-    W[346] = (X[3] * X[35] + X[7] * X[31] + X[11] * X[27] + X[15] * X[23]) * 2.0 + X[19] * X[19];
-    W[359] = W[13] * W[340];
-    W[360] = W[11] * W[339];
-    W[342] = W[4] * X[35] + W[46] * X[31] + W[88] * X[27] + W[130] * X[23] + W[172] * X[19] + W[214] * X[15]
-            + W[256] * X[11] + W[298] * X[7] + W[340] * X[3];
-    W[345] = X[3] * W[339] + X[7] * W[297] + X[11] * W[255] + X[15] * W[213] + X[19] * W[171]
-            + X[23] * W[129] + X[27] * W[87] + X[31] * W[45] + X[35] * W[3];
-    W[351] = W[10] * W[339] + W[52] * W[297] + W[94] * W[255] + W[136] * W[213] + W[178] * W[171]
-            + W[220] * W[129] + W[262] * W[87] + W[304] * W[45] + W[346] * W[3];
-    W[352] = W[4] * W[346] + W[46] * W[304] + W[88] * W[262] + W[130] * W[220] + W[172] * W[178]
-            + W[214] * W[136] + W[256] * W[94] + W[298] * W[52] + W[340] * W[10];
-    W[343] = W[1] * W[342];
-    W[364] = W[13] * W[351];
-    W[353] = W[16] * W[339] + W[58] * W[297] + W[100] * W[255] + W[142] * W[213] + W[184] * W[171]
-            + W[226] * W[129] + W[268] * W[87] + W[310] * W[45] + W[352] * W[3];
-    W[344] = X[34] + W[343];
-    W[354] = W[14] * W[353];
-    W[365] = W[364];
-    W[368] = W[31] * W[353];
-    W[369] = W[1] * W[353];
-    W[366] = -W[365];
-    W[355] = X[3] * W[344] + X[7] * W[302] + X[11] * W[260] + X[15] * W[218] + X[19] * W[176]
-            + X[23] * W[134] + X[27] * W[92] + X[31] * W[50] + X[35] * W[8];
-    W[361] = W[8] * W[345] + W[50] * W[303] + W[92] * W[261] + W[134] * W[219] + W[176] * W[177]
-            + W[218] * W[135] + W[260] * W[93] + W[302] * W[51] + W[344] * W[9];
+    return 0;
+}
+
+/* Lines 20 .. 34 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+cartpole_taylor_run_19(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[370] = W[361] + W[369];
     W[356] = W[3] * W[355] + W[45] * W[313] + W[87] * W[271] + W[129] * W[229] + W[171] * W[187]
             + W[213] * W[145] + W[255] * W[103] + W[297] * W[61] + W[339] * W[19];
@@ -848,9 +706,16 @@ cartpole_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
         return -1;
     X[38] = W[376] / 9.0;
     X[39] = W[377] / 9.0;
-    if (K == 9)
-        goto out;
-    /* order 9 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+cartpole_taylor_run_20(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[381] = (X[5] * W[340] + 2.0 * X[9] * W[298] + 3.0 * X[13] * W[256] + 4.0 * X[17] * W[214]
             + 5.0 * X[21] * W[172] + 6.0 * X[25] * W[130] + 7.0 * X[29] * W[88] + 8.0 * X[33] * W[46]
             + 9.0 * X[37] * W[4]) / 9.0;
@@ -882,66 +747,16 @@ cartpole_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + X[23] * W[176] + X[27] * W[134] + X[31] * W[92] + X[35] * W[50] + X[39] * W[8];
     W[403] = W[8] * W[387] + W[50] * W[345] + W[92] * W[303] + W[134] * W[261] + W[176] * W[219]
             + W[218] * W[177] + W[260] * W[135] + W[302] * W[93] + W[344] * W[51] + W[386] * W[9];
-    W[412] = W[403] + W[411];
-    W[398] = W[3] * W[397] + W[45] * W[355] + W[87] * W[313] + W[129] * W[271] + W[171] * W[229]
-            + W[213] * W[187] + W[255] * W[145] + W[297] * W[103] + W[339] * W[61] + W[381] * W[19];
-    W[399] = W[13] * W[398];
-    W[413] = W[13] * W[412];
-    W[400] = W[396] - W[399];
-    W[414] = W[410] - W[413];
-    W[415] = W[414] - W[400];
-    W[416] = W[415] - W[402];
-    X[40] = X[38] / 10.0;
-    X[41] = X[39] / 10.0;
-    W[418] = W[65] * W[377] + W[107] * W[335] + W[149] * W[293] + W[191] * W[251] + W[233] * W[209]
-            + W[275] * W[167] + W[317] * W[125] + W[359] * W[83] + W[401] * W[41] + W[408];
-    W[419] = W[65] * W[376] + W[107] * W[334] + W[149] * W[292] + W[191] * W[250] + W[233] * W[208]
-            + W[275] * W[166] + W[317] * W[124] + W[359] * W[82] + W[401] * W[40] + W[416];
-    if (solve(ctx, 9, NULL, W + 418))
-        return -1;
-    X[42] = W[418] / 10.0;
-    X[43] = W[419] / 10.0;
-    if (K == 10)
-        goto out;
-    /* order 10 */
-    W[423] = (X[5] * W[382] + 2.0 * X[9] * W[340] + 3.0 * X[13] * W[298] + 4.0 * X[17] * W[256]
-            + 5.0 * X[21] * W[214] + 6.0 * X[25] * W[172] + 7.0 * X[29] * W[130] + 8.0 * X[33] * W[88]
-            + 9.0 * X[37] * W[46] + 10.0 * X[41] * W[4]) / 10.0;
-    W[424] = -((X[5] * W[381] + 2.0 * X[9] * W[339] + 3.0 * X[13] * W[297] + 4.0 * X[17] * W[255]
-            + 5.0 * X[21] * W[213] + 6.0 * X[25] * W[171] + 7.0 * X[29] * W[129] + 8.0 * X[33] * W[87]
-            + 9.0 * X[37] * W[45] + 10.0 * X[41] * W[3])) / 10.0;
-    W[430] = (X[3] * X[43] + X[7] * X[39] + X[11] * X[35] + X[15] * X[31] + X[19] * X[27]) * 2.0
-            + X[23] * X[23];
-    W[443] = W[13] * W[424];
-    W[444] = W[11] * W[423];
-    W[426] = W[4] * X[43] + W[46] * X[39] + W[88] * X[35] + W[130] * X[31] + W[172] * X[27] + W[214] * X[23]
-            + W[256] * X[19] + W[298] * X[15] + W[340] * X[11] + W[382] * X[7] + W[424] * X[3];
-    W[429] = X[3] * W[423] + X[7] * W[381] + X[11] * W[339] + X[15] * W[297] + X[19] * W[255]
-            + X[23] * W[213] + X[27] * W[171] + X[31] * W[129] + X[35] * W[87] + X[39] * W[45]
-            + X[43] * W[3];
-    W[435] = W[10] * W[423] + W[52] * W[381] + W[94] * W[339] + W[136] * W[297] + W[178] * W[255]
-            + W[220] * W[213] + W[262] * W[171] + W[304] * W[129] + W[346] * W[87] + W[388] * W[45]
-            + W[430] * W[3];
-    W[436] = W[4] * W[430] + W[46] * W[388] + W[88] * W[346] + W[130] * W[304] + W[172] * W[262]
-            + W[214] * W[220] + W[256] * W[178] + W[298] * W[136] + W[340] * W[94] + W[382] * W[52]
-            + W[424] * W[10];
-    W[427] = W[1] * W[426];
-    W[448] = W[13] * W[435];
-    W[437] = W[16] * W[423] + W[58] * W[381] + W[100] * W[339] + W[142] * W[297] + W[184] * W[255]
-            + W[226] * W[213] + W[268] * W[171] + W[310] * W[129] + W[352] * W[87] + W[394] * W[45]
-            + W[436] * W[3];
-    W[428] = X[42] + W[427];
-    W[438] = W[14] * W[437];
-    W[449] = W[448];
-    W[452] = W[31] * W[437];
-    W[453] = W[1] * W[437];
-    W[450] = -W[449];
-    W[439] = X[3] * W[428] + X[7] * W[386] + X[11] * W[344] + X[15] * W[302] + X[19] * W[260]
-            + X[23] * W[218] + X[27] * W[176] + X[31] * W[134] + X[35] * W[92] + X[39] * W[50]
-            + X[43] * W[8];
-    W[445] = W[8] * W[429] + W[50] * W[387] + W[92] * W[345] + W[134] * W[303] + W[176] * W[261]
-            + W[218] * W[219] + W[260] * W[177] + W[302] * W[135] + W[344] * W[93] + W[386] * W[51]
-            + W[428] * W[9];
+    return 0;
+}
+
+/* Lines 20 .. 34 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+cartpole_taylor_run_23(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[454] = W[445] + W[453];
     W[440] = W[3] * W[439] + W[45] * W[397] + W[87] * W[355] + W[129] * W[313] + W[171] * W[271]
             + W[213] * W[229] + W[255] * W[187] + W[297] * W[145] + W[339] * W[103] + W[381] * W[61]
@@ -964,9 +779,16 @@ cartpole_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
         return -1;
     X[46] = W[460] / 11.0;
     X[47] = W[461] / 11.0;
-    if (K == 11)
-        goto out;
-    /* order 11 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+cartpole_taylor_run_24(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[465] = (X[5] * W[424] + 2.0 * X[9] * W[382] + 3.0 * X[13] * W[340] + 4.0 * X[17] * W[298]
             + 5.0 * X[21] * W[256] + 6.0 * X[25] * W[214] + 7.0 * X[29] * W[172] + 8.0 * X[33] * W[130]
             + 9.0 * X[37] * W[88] + 10.0 * X[41] * W[46] + 11.0 * X[45] * W[4]) / 11.0;
@@ -1005,70 +827,16 @@ cartpole_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[487] = W[8] * W[471] + W[50] * W[429] + W[92] * W[387] + W[134] * W[345] + W[176] * W[303]
             + W[218] * W[261] + W[260] * W[219] + W[302] * W[177] + W[344] * W[135] + W[386] * W[93]
             + W[428] * W[51] + W[470] * W[9];
-    W[496] = W[487] + W[495];
-    W[482] = W[3] * W[481] + W[45] * W[439] + W[87] * W[397] + W[129] * W[355] + W[171] * W[313]
-            + W[213] * W[271] + W[255] * W[229] + W[297] * W[187] + W[339] * W[145] + W[381] * W[103]
-            + W[423] * W[61] + W[465] * W[19];
-    W[483] = W[13] * W[482];
-    W[497] = W[13] * W[496];
-    W[484] = W[480] - W[483];
-    W[498] = W[494] - W[497];
-    W[499] = W[498] - W[484];
-    W[500] = W[499] - W[486];
-    X[48] = X[46] / 12.0;
-    X[49] = X[47] / 12.0;
-    W[502] = W[65] * W[461] + W[107] * W[419] + W[149] * W[377] + W[191] * W[335] + W[233] * W[293]
-            + W[275] * W[251] + W[317] * W[209] + W[359] * W[167] + W[401] * W[125] + W[443] * W[83]
-            + W[485] * W[41] + W[492];
-    W[503] = W[65] * W[460] + W[107] * W[418] + W[149] * W[376] + W[191] * W[334] + W[233] * W[292]
-            + W[275] * W[250] + W[317] * W[208] + W[359] * W[166] + W[401] * W[124] + W[443] * W[82]
-            + W[485] * W[40] + W[500];
-    if (solve(ctx, 11, NULL, W + 502))
-        return -1;
-    X[50] = W[502] / 12.0;
-    X[51] = W[503] / 12.0;
-    if (K == 12)
-        goto out;
-    /* order 12 */
-    W[507] = (X[5] * W[466] + 2.0 * X[9] * W[424] + 3.0 * X[13] * W[382] + 4.0 * X[17] * W[340]
-            + 5.0 * X[21] * W[298] + 6.0 * X[25] * W[256] + 7.0 * X[29] * W[214] + 8.0 * X[33] * W[172]
-            + 9.0 * X[37] * W[130] + 10.0 * X[41] * W[88] + 11.0 * X[45] * W[46] + 12.0 * X[49] * W[4]) / 12.0;
-    W[508] = -((X[5] * W[465] + 2.0 * X[9] * W[423] + 3.0 * X[13] * W[381] + 4.0 * X[17] * W[339]
-            + 5.0 * X[21] * W[297] + 6.0 * X[25] * W[255] + 7.0 * X[29] * W[213] + 8.0 * X[33] * W[171]
-            + 9.0 * X[37] * W[129] + 10.0 * X[41] * W[87] + 11.0 * X[45] * W[45] + 12.0 * X[49] * W[3])) / 12.0;
-    W[514] = (X[3] * X[51] + X[7] * X[47] + X[11] * X[43] + X[15] * X[39] + X[19] * X[35] + X[23] * X[31]) * 2.0
-            + X[27] * X[27];
-    W[527] = W[13] * W[508];
-    W[528] = W[11] * W[507];
-    W[510] = W[4] * X[51] + W[46] * X[47] + W[88] * X[43] + W[130] * X[39] + W[172] * X[35] + W[214] * X[31]
-            + W[256] * X[27] + W[298] * X[23] + W[340] * X[19] + W[382] * X[15] + W[424] * X[11]
-            + W[466] * X[7] + W[508] * X[3];
-    W[513] = X[3] * W[507] + X[7] * W[465] + X[11] * W[423] + X[15] * W[381] + X[19] * W[339]
-            + X[23] * W[297] + X[27] * W[255] + X[31] * W[213] + X[35] * W[171] + X[39] * W[129]
-            + X[43] * W[87] + X[47] * W[45] + X[51] * W[3];
-    W[519] = W[10] * W[507] + W[52] * W[465] + W[94] * W[423] + W[136] * W[381] + W[178] * W[339]
-            + W[220] * W[297] + W[262] * W[255] + W[304] * W[213] + W[346] * W[171] + W[388] * W[129]
-            + W[430] * W[87] + W[472] * W[45] + W[514] * W[3];
-    W[520] = W[4] * W[514] + W[46] * W[472] + W[88] * W[430] + W[130] * W[388] + W[172] * W[346]
-            + W[214] * W[304] + W[256] * W[262] + W[298] * W[220] + W[340] * W[178] + W[382] * W[136]
-            + W[424] * W[94] + W[466] * W[52] + W[508] * W[10];
-    W[511] = W[1] * W[510];
-    W[532] = W[13] * W[519];
-    W[521] = W[16] * W[507] + W[58] * W[465] + W[100] * W[423] + W[142] * W[381] + W[184] * W[339]
-            + W[226] * W[297] + W[268] * W[255] + W[310] * W[213] + W[352] * W[171] + W[394] * W[129]
-            + W[436] * W[87] + W[478] * W[45] + W[520] * W[3];
-    W[512] = X[50] + W[511];
-    W[522] = W[14] * W[521];
-    W[533] = W[532];
-    W[536] = W[31] * W[521];
-    W[537] = W[1] * W[521];
-    W[534] = -W[533];
-    W[523] = X[3] * W[512] + X[7] * W[470] + X[11] * W[428] + X[15] * W[386] + X[19] * W[344]
-            + X[23] * W[302] + X[27] * W[260] + X[31] * W[218] + X[35] * W[176] + X[39] * W[134]
-            + X[43] * W[92] + X[47] * W[50] + X[51] * W[8];
-    W[529] = W[8] * W[513] + W[50] * W[471] + W[92] * W[429] + W[134] * W[387] + W[176] * W[345]
-            + W[218] * W[303] + W[260] * W[261] + W[302] * W[219] + W[344] * W[177] + W[386] * W[135]
-            + W[428] * W[93] + W[470] * W[51] + W[512] * W[9];
+    return 0;
+}
+
+/* Lines 20 .. 34 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+cartpole_taylor_run_27(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[538] = W[529] + W[537];
     W[524] = W[3] * W[523] + W[45] * W[481] + W[87] * W[439] + W[129] * W[397] + W[171] * W[355]
             + W[213] * W[313] + W[255] * W[271] + W[297] * W[229] + W[339] * W[187] + W[381] * W[145]
@@ -1091,9 +859,16 @@ cartpole_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
         return -1;
     X[54] = W[544] / 13.0;
     X[55] = W[545] / 13.0;
-    if (K == 13)
-        goto out;
-    /* order 13 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 13. */
+static EOMC_NOINLINE int
+cartpole_taylor_run_28(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[549] = (X[5] * W[508] + 2.0 * X[9] * W[466] + 3.0 * X[13] * W[424] + 4.0 * X[17] * W[382]
             + 5.0 * X[21] * W[340] + 6.0 * X[25] * W[298] + 7.0 * X[29] * W[256] + 8.0 * X[33] * W[214]
             + 9.0 * X[37] * W[172] + 10.0 * X[41] * W[130] + 11.0 * X[45] * W[88] + 12.0 * X[49] * W[46]
@@ -1135,72 +910,16 @@ cartpole_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[571] = W[8] * W[555] + W[50] * W[513] + W[92] * W[471] + W[134] * W[429] + W[176] * W[387]
             + W[218] * W[345] + W[260] * W[303] + W[302] * W[261] + W[344] * W[219] + W[386] * W[177]
             + W[428] * W[135] + W[470] * W[93] + W[512] * W[51] + W[554] * W[9];
-    W[580] = W[571] + W[579];
-    W[566] = W[3] * W[565] + W[45] * W[523] + W[87] * W[481] + W[129] * W[439] + W[171] * W[397]
-            + W[213] * W[355] + W[255] * W[313] + W[297] * W[271] + W[339] * W[229] + W[381] * W[187]
-            + W[423] * W[145] + W[465] * W[103] + W[507] * W[61] + W[549] * W[19];
-    W[567] = W[13] * W[566];
-    W[581] = W[13] * W[580];
-    W[568] = W[564] - W[567];
-    W[582] = W[578] - W[581];
-    W[583] = W[582] - W[568];
-    W[584] = W[583] - W[570];
-    X[56] = X[54] / 14.0;
-    X[57] = X[55] / 14.0;
-    W[586] = W[65] * W[545] + W[107] * W[503] + W[149] * W[461] + W[191] * W[419] + W[233] * W[377]
-            + W[275] * W[335] + W[317] * W[293] + W[359] * W[251] + W[401] * W[209] + W[443] * W[167]
-            + W[485] * W[125] + W[527] * W[83] + W[569] * W[41] + W[576];
-    W[587] = W[65] * W[544] + W[107] * W[502] + W[149] * W[460] + W[191] * W[418] + W[233] * W[376]
-            + W[275] * W[334] + W[317] * W[292] + W[359] * W[250] + W[401] * W[208] + W[443] * W[166]
-            + W[485] * W[124] + W[527] * W[82] + W[569] * W[40] + W[584];
-    if (solve(ctx, 13, NULL, W + 586))
-        return -1;
-    X[58] = W[586] / 14.0;
-    X[59] = W[587] / 14.0;
-    if (K == 14)
-        goto out;
-    /* order 14 */
-    W[591] = (X[5] * W[550] + 2.0 * X[9] * W[508] + 3.0 * X[13] * W[466] + 4.0 * X[17] * W[424]
-            + 5.0 * X[21] * W[382] + 6.0 * X[25] * W[340] + 7.0 * X[29] * W[298] + 8.0 * X[33] * W[256]
-            + 9.0 * X[37] * W[214] + 10.0 * X[41] * W[172] + 11.0 * X[45] * W[130] + 12.0 * X[49] * W[88]
-            + 13.0 * X[53] * W[46] + 14.0 * X[57] * W[4]) / 14.0;
-    W[592] = -((X[5] * W[549] + 2.0 * X[9] * W[507] + 3.0 * X[13] * W[465] + 4.0 * X[17] * W[423]
-            + 5.0 * X[21] * W[381] + 6.0 * X[25] * W[339] + 7.0 * X[29] * W[297] + 8.0 * X[33] * W[255]
-            + 9.0 * X[37] * W[213] + 10.0 * X[41] * W[171] + 11.0 * X[45] * W[129] + 12.0 * X[49] * W[87]
-            + 13.0 * X[53] * W[45] + 14.0 * X[57] * W[3])) / 14.0;
-    W[598] = (X[3] * X[59] + X[7] * X[55] + X[11] * X[51] + X[15] * X[47] + X[19] * X[43] + X[23] * X[39]
-            + X[27] * X[35]) * 2.0 + X[31] * X[31];
-    W[611] = W[13] * W[592];
-    W[612] = W[11] * W[591];
-    W[594] = W[4] * X[59] + W[46] * X[55] + W[88] * X[51] + W[130] * X[47] + W[172] * X[43] + W[214] * X[39]
-            + W[256] * X[35] + W[298] * X[31] + W[340] * X[27] + W[382] * X[23] + W[424] * X[19]
-            + W[466] * X[15] + W[508] * X[11] + W[550] * X[7] + W[592] * X[3];
-    W[597] = X[3] * W[591] + X[7] * W[549] + X[11] * W[507] + X[15] * W[465] + X[19] * W[423]
-            + X[23] * W[381] + X[27] * W[339] + X[31] * W[297] + X[35] * W[255] + X[39] * W[213]
-            + X[43] * W[171] + X[47] * W[129] + X[51] * W[87] + X[55] * W[45] + X[59] * W[3];
-    W[603] = W[10] * W[591] + W[52] * W[549] + W[94] * W[507] + W[136] * W[465] + W[178] * W[423]
-            + W[220] * W[381] + W[262] * W[339] + W[304] * W[297] + W[346] * W[255] + W[388] * W[213]
-            + W[430] * W[171] + W[472] * W[129] + W[514] * W[87] + W[556] * W[45] + W[598] * W[3];
-    W[604] = W[4] * W[598] + W[46] * W[556] + W[88] * W[514] + W[130] * W[472] + W[172] * W[430]
-            + W[214] * W[388] + W[256] * W[346] + W[298] * W[304] + W[340] * W[262] + W[382] * W[220]
-            + W[424] * W[178] + W[466] * W[136] + W[508] * W[94] + W[550] * W[52] + W[592] * W[10];
-    W[595] = W[1] * W[594];
-    W[616] = W[13] * W[603];
-    W[605] = W[16] * W[591] + W[58] * W[549] + W[100] * W[507] + W[142] * W[465] + W[184] * W[423]
-            + W[226] * W[381] + W[268] * W[339] + W[310] * W[297] + W[352] * W[255] + W[394] * W[213]
-            + W[436] * W[171] + W[478] * W[129] + W[520] * W[87] + W[562] * W[45] + W[604] * W[3];
-    W[596] = X[58] + W[595];
-    W[606] = W[14] * W[605];
-    W[617] = W[616];
-    W[620] = W[31] * W[605];
-    W[621] = W[1] * W[605];
-    W[618] = -W[617];
-    W[607] = X[3] * W[596] + X[7] * W[554] + X[11] * W[512] + X[15] * W[470] + X[19] * W[428]
-            + X[23] * W[386] + X[27] * W[344] + X[31] * W[302] + X[35] * W[260] + X[39] * W[218]
-            + X[43] * W[176] + X[47] * W[134] + X[51] * W[92] + X[55] * W[50] + X[59] * W[8];
-    W[613] = W[8] * W[597] + W[50] * W[555] + W[92] * W[513] + W[134] * W[471] + W[176] * W[429]
-            + W[218] * W[387] + W[260] * W[345] + W[302] * W[303] + W[344] * W[261] + W[386] * W[219]
-            + W[428] * W[177] + W[470] * W[135] + W[512] * W[93] + W[554] * W[51] + W[596] * W[9];
+    return 0;
+}
+
+/* Lines 20 .. 34 of taylor_run's order 14. */
+static EOMC_NOINLINE int
+cartpole_taylor_run_31(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[622] = W[613] + W[621];
     W[608] = W[3] * W[607] + W[45] * W[565] + W[87] * W[523] + W[129] * W[481] + W[171] * W[439]
             + W[213] * W[397] + W[255] * W[355] + W[297] * W[313] + W[339] * W[271] + W[381] * W[229]
@@ -1223,9 +942,16 @@ cartpole_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
         return -1;
     X[62] = W[628] / 15.0;
     X[63] = W[629] / 15.0;
-    if (K == 15)
-        goto out;
-    /* order 15 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+cartpole_taylor_run_32(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[633] = (X[5] * W[592] + 2.0 * X[9] * W[550] + 3.0 * X[13] * W[508] + 4.0 * X[17] * W[466]
             + 5.0 * X[21] * W[424] + 6.0 * X[25] * W[382] + 7.0 * X[29] * W[340] + 8.0 * X[33] * W[298]
             + 9.0 * X[37] * W[256] + 10.0 * X[41] * W[214] + 11.0 * X[45] * W[172] + 12.0 * X[49] * W[130]
@@ -1273,82 +999,16 @@ cartpole_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[218] * W[429] + W[260] * W[387] + W[302] * W[345] + W[344] * W[303] + W[386] * W[261]
             + W[428] * W[219] + W[470] * W[177] + W[512] * W[135] + W[554] * W[93] + W[596] * W[51]
             + W[638] * W[9];
-    W[664] = W[655] + W[663];
-    W[650] = W[3] * W[649] + W[45] * W[607] + W[87] * W[565] + W[129] * W[523] + W[171] * W[481]
-            + W[213] * W[439] + W[255] * W[397] + W[297] * W[355] + W[339] * W[313] + W[381] * W[271]
-            + W[423] * W[229] + W[465] * W[187] + W[507] * W[145] + W[549] * W[103] + W[591] * W[61]
-            + W[633] * W[19];
-    W[651] = W[13] * W[650];
-    W[665] = W[13] * W[664];
-    W[652] = W[648] - W[651];
-    W[666] = W[662] - W[665];
-    W[667] = W[666] - W[652];
-    W[668] = W[667] - W[654];
-    X[64] = X[62] / 16.0;
-    X[65] = X[63] / 16.0;
-    W[670] = W[65] * W[629] + W[107] * W[587] + W[149] * W[545] + W[191] * W[503] + W[233] * W[461]
-            + W[275] * W[419] + W[317] * W[377] + W[359] * W[335] + W[401] * W[293] + W[443] * W[251]
-            + W[485] * W[209] + W[527] * W[167] + W[569] * W[125] + W[611] * W[83] + W[653] * W[41]
-            + W[660];
-    W[671] = W[65] * W[628] + W[107] * W[586] + W[149] * W[544] + W[191] * W[502] + W[233] * W[460]
-            + W[275] * W[418] + W[317] * W[376] + W[359] * W[334] + W[401] * W[292] + W[443] * W[250]
-            + W[485] * W[208] + W[527] * W[166] + W[569] * W[124] + W[611] * W[82] + W[653] * W[40]
-            + W[668];
-    if (solve(ctx, 15, NULL, W + 670))
-        return -1;
-    X[66] = W[670] / 16.0;
-    X[67] = W[671] / 16.0;
-    if (K == 16)
-        goto out;
-    /* order 16 */
-    W[675] = (X[5] * W[634] + 2.0 * X[9] * W[592] + 3.0 * X[13] * W[550] + 4.0 * X[17] * W[508]
-            + 5.0 * X[21] * W[466] + 6.0 * X[25] * W[424] + 7.0 * X[29] * W[382] + 8.0 * X[33] * W[340]
-            + 9.0 * X[37] * W[298] + 10.0 * X[41] * W[256] + 11.0 * X[45] * W[214] + 12.0 * X[49] * W[172]
-            + 13.0 * X[53] * W[130] + 14.0 * X[57] * W[88] + 15.0 * X[61] * W[46] + 16.0 * X[65] * W[4]) / 16.0;
-    W[676] = -((X[5] * W[633] + 2.0 * X[9] * W[591] + 3.0 * X[13] * W[549] + 4.0 * X[17] * W[507]
-            + 5.0 * X[21] * W[465] + 6.0 * X[25] * W[423] + 7.0 * X[29] * W[381] + 8.0 * X[33] * W[339]
-            + 9.0 * X[37] * W[297] + 10.0 * X[41] * W[255] + 11.0 * X[45] * W[213] + 12.0 * X[49] * W[171]
-            + 13.0 * X[53] * W[129] + 14.0 * X[57] * W[87] + 15.0 * X[61] * W[45] + 16.0 * X[65] * W[3])) / 16.0;
-    W[682] = (X[3] * X[67] + X[7] * X[63] + X[11] * X[59] + X[15] * X[55] + X[19] * X[51] + X[23] * X[47]
-            + X[27] * X[43] + X[31] * X[39]) * 2.0 + X[35] * X[35];
-    W[695] = W[13] * W[676];
-    W[696] = W[11] * W[675];
-    W[678] = W[4] * X[67] + W[46] * X[63] + W[88] * X[59] + W[130] * X[55] + W[172] * X[51] + W[214] * X[47]
-            + W[256] * X[43] + W[298] * X[39] + W[340] * X[35] + W[382] * X[31] + W[424] * X[27]
-            + W[466] * X[23] + W[508] * X[19] + W[550] * X[15] + W[592] * X[11] + W[634] * X[7]
-            + W[676] * X[3];
-    W[681] = X[3] * W[675] + X[7] * W[633] + X[11] * W[591] + X[15] * W[549] + X[19] * W[507]
-            + X[23] * W[465] + X[27] * W[423] + X[31] * W[381] + X[35] * W[339] + X[39] * W[297]
-            + X[43] * W[255] + X[47] * W[213] + X[51] * W[171] + X[55] * W[129] + X[59] * W[87]
-            + X[63] * W[45] + X[67] * W[3];
-    W[687] = W[10] * W[675] + W[52] * W[633] + W[94] * W[591] + W[136] * W[549] + W[178] * W[507]
-            + W[220] * W[465] + W[262] * W[423] + W[304] * W[381] + W[346] * W[339] + W[388] * W[297]
-            + W[430] * W[255] + W[472] * W[213] + W[514] * W[171] + W[556] * W[129] + W[598] * W[87]
-            + W[640] * W[45] + W[682] * W[3];
-    W[688] = W[4] * W[682] + W[46] * W[640] + W[88] * W[598] + W[130] * W[556] + W[172] * W[514]
-            + W[214] * W[472] + W[256] * W[430] + W[298] * W[388] + W[340] * W[346] + W[382] * W[304]
-            + W[424] * W[262] + W[466] * W[220] + W[508] * W[178] + W[550] * W[136] + W[592] * W[94]
-            + W[634] * W[52] + W[676] * W[10];
-    W[679] = W[1] * W[678];
-    W[700] = W[13] * W[687];
-    W[689] = W[16] * W[675] + W[58] * W[633] + W[100] * W[591] + W[142] * W[549] + W[184] * W[507]
-            + W[226] * W[465] + W[268] * W[423] + W[310] * W[381] + W[352] * W[339] + W[394] * W[297]
-            + W[436] * W[255] + W[478] * W[213] + W[520] * W[171] + W[562] * W[129] + W[604] * W[87]
-            + W[646] * W[45] + W[688] * W[3];
-    W[680] = X[66] + W[679];
-    W[690] = W[14] * W[689];
-    W[701] = W[700];
-    W[704] = W[31] * W[689];
-    W[705] = W[1] * W[689];
-    W[702] = -W[701];
-    W[691] = X[3] * W[680] + X[7] * W[638] + X[11] * W[596] + X[15] * W[554] + X[19] * W[512]
-            + X[23] * W[470] + X[27] * W[428] + X[31] * W[386] + X[35] * W[344] + X[39] * W[302]
-            + X[43] * W[260] + X[47] * W[218] + X[51] * W[176] + X[55] * W[134] + X[59] * W[92]
-            + X[63] * W[50] + X[67] * W[8];
-    W[697] = W[8] * W[681] + W[50] * W[639] + W[92] * W[597] + W[134] * W[555] + W[176] * W[513]
-            + W[218] * W[471] + W[260] * W[429] + W[302] * W[387] + W[344] * W[345] + W[386] * W[303]
-            + W[428] * W[261] + W[470] * W[219] + W[512] * W[177] + W[554] * W[135] + W[596] * W[93]
-            + W[638] * W[51] + W[680] * W[9];
+    return 0;
+}
+
+/* Lines 20 .. 34 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+cartpole_taylor_run_35(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[706] = W[697] + W[705];
     W[692] = W[3] * W[691] + W[45] * W[649] + W[87] * W[607] + W[129] * W[565] + W[171] * W[523]
             + W[213] * W[481] + W[255] * W[439] + W[297] * W[397] + W[339] * W[355] + W[381] * W[313]
@@ -1374,9 +1034,16 @@ cartpole_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
         return -1;
     X[70] = W[712] / 17.0;
     X[71] = W[713] / 17.0;
-    if (K == 17)
-        goto out;
-    /* order 17 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 17. */
+static EOMC_NOINLINE int
+cartpole_taylor_run_36(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[717] = (X[5] * W[676] + 2.0 * X[9] * W[634] + 3.0 * X[13] * W[592] + 4.0 * X[17] * W[550]
             + 5.0 * X[21] * W[508] + 6.0 * X[25] * W[466] + 7.0 * X[29] * W[424] + 8.0 * X[33] * W[382]
             + 9.0 * X[37] * W[340] + 10.0 * X[41] * W[298] + 11.0 * X[45] * W[256] + 12.0 * X[49] * W[214]
@@ -1427,84 +1094,16 @@ cartpole_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[218] * W[513] + W[260] * W[471] + W[302] * W[429] + W[344] * W[387] + W[386] * W[345]
             + W[428] * W[303] + W[470] * W[261] + W[512] * W[219] + W[554] * W[177] + W[596] * W[135]
             + W[638] * W[93] + W[680] * W[51] + W[722] * W[9];
-    W[748] = W[739] + W[747];
-    W[734] = W[3] * W[733] + W[45] * W[691] + W[87] * W[649] + W[129] * W[607] + W[171] * W[565]
-            + W[213] * W[523] + W[255] * W[481] + W[297] * W[439] + W[339] * W[397] + W[381] * W[355]
-            + W[423] * W[313] + W[465] * W[271] + W[507] * W[229] + W[549] * W[187] + W[591] * W[145]
-            + W[633] * W[103] + W[675] * W[61] + W[717] * W[19];
-    W[735] = W[13] * W[734];
-    W[749] = W[13] * W[748];
-    W[736] = W[732] - W[735];
-    W[750] = W[746] - W[749];
-    W[751] = W[750] - W[736];
-    W[752] = W[751] - W[738];
-    X[72] = X[70] / 18.0;
-    X[73] = X[71] / 18.0;
-    W[754] = W[65] * W[713] + W[107] * W[671] + W[149] * W[629] + W[191] * W[587] + W[233] * W[545]
-            + W[275] * W[503] + W[317] * W[461] + W[359] * W[419] + W[401] * W[377] + W[443] * W[335]
-            + W[485] * W[293] + W[527] * W[251] + W[569] * W[209] + W[611] * W[167] + W[653] * W[125]
-            + W[695] * W[83] + W[737] * W[41] + W[744];
-    W[755] = W[65] * W[712] + W[107] * W[670] + W[149] * W[628] + W[191] * W[586] + W[233] * W[544]
-            + W[275] * W[502] + W[317] * W[460] + W[359] * W[418] + W[401] * W[376] + W[443] * W[334]
-            + W[485] * W[292] + W[527] * W[250] + W[569] * W[208] + W[611] * W[166] + W[653] * W[124]
-            + W[695] * W[82] + W[737] * W[40] + W[752];
-    if (solve(ctx, 17, NULL, W + 754))
-        return -1;
-    X[74] = W[754] / 18.0;
-    X[75] = W[755] / 18.0;
-    if (K == 18)
-        goto out;
-    /* order 18 */
-    W[759] = (X[5] * W[718] + 2.0 * X[9] * W[676] + 3.0 * X[13] * W[634] + 4.0 * X[17] * W[592]
-            + 5.0 * X[21] * W[550] + 6.0 * X[25] * W[508] + 7.0 * X[29] * W[466] + 8.0 * X[33] * W[424]
-            + 9.0 * X[37] * W[382] + 10.0 * X[41] * W[340] + 11.0 * X[45] * W[298] + 12.0 * X[49] * W[256]
-            + 13.0 * X[53] * W[214] + 14.0 * X[57] * W[172] + 15.0 * X[61] * W[130] + 16.0 * X[65] * W[88]
-            + 17.0 * X[69] * W[46] + 18.0 * X[73] * W[4]) / 18.0;
-    W[760] = -((X[5] * W[717] + 2.0 * X[9] * W[675] + 3.0 * X[13] * W[633] + 4.0 * X[17] * W[591]
-            + 5.0 * X[21] * W[549] + 6.0 * X[25] * W[507] + 7.0 * X[29] * W[465] + 8.0 * X[33] * W[423]
-            + 9.0 * X[37] * W[381] + 10.0 * X[41] * W[339] + 11.0 * X[45] * W[297] + 12.0 * X[49] * W[255]
-            + 13.0 * X[53] * W[213] + 14.0 * X[57] * W[171] + 15.0 * X[61] * W[129] + 16.0 * X[65] * W[87]
-            + 17.0 * X[69] * W[45] + 18.0 * X[73] * W[3])) / 18.0;
-    W[766] = (X[3] * X[75] + X[7] * X[71] + X[11] * X[67] + X[15] * X[63] + X[19] * X[59] + X[23] * X[55]
-            + X[27] * X[51] + X[31] * X[47] + X[35] * X[43]) * 2.0 + X[39] * X[39];
-    W[779] = W[13] * W[760];
-    W[780] = W[11] * W[759];
-    W[762] = W[4] * X[75] + W[46] * X[71] + W[88] * X[67] + W[130] * X[63] + W[172] * X[59] + W[214] * X[55]
-            + W[256] * X[51] + W[298] * X[47] + W[340] * X[43] + W[382] * X[39] + W[424] * X[35]
-            + W[466] * X[31] + W[508] * X[27] + W[550] * X[23] + W[592] * X[19] + W[634] * X[15]
-            + W[676] * X[11] + W[718] * X[7] + W[760] * X[3];
-    W[765] = X[3] * W[759] + X[7] * W[717] + X[11] * W[675] + X[15] * W[633] + X[19] * W[591]
-            + X[23] * W[549] + X[27] * W[507] + X[31] * W[465] + X[35] * W[423] + X[39] * W[381]
-            + X[43] * W[339] + X[47] * W[297] + X[51] * W[255] + X[55] * W[213] + X[59] * W[171]
-            + X[63] * W[129] + X[67] * W[87] + X[71] * W[45] + X[75] * W[3];
-    W[771] = W[10] * W[759] + W[52] * W[717] + W[94] * W[675] + W[136] * W[633] + W[178] * W[591]
-            + W[220] * W[549] + W[262] * W[507] + W[304] * W[465] + W[346] * W[423] + W[388] * W[381]
-            + W[430] * W[339] + W[472] * W[297] + W[514] * W[255] + W[556] * W[213] + W[598] * W[171]
-            + W[640] * W[129] + W[682] * W[87] + W[724] * W[45] + W[766] * W[3];
-    W[772] = W[4] * W[766] + W[46] * W[724] + W[88] * W[682] + W[130] * W[640] + W[172] * W[598]
-            + W[214] * W[556] + W[256] * W[514] + W[298] * W[472] + W[340] * W[430] + W[382] * W[388]
-            + W[424] * W[346] + W[466] * W[304] + W[508] * W[262] + W[550] * W[220] + W[592] * W[178]
-            + W[634] * W[136] + W[676] * W[94] + W[718] * W[52] + W[760] * W[10];
-    W[763] = W[1] * W[762];
-    W[784] = W[13] * W[771];
-    W[773] = W[16] * W[759] + W[58] * W[717] + W[100] * W[675] + W[142] * W[633] + W[184] * W[591]
-            + W[226] * W[549] + W[268] * W[507] + W[310] * W[465] + W[352] * W[423] + W[394] * W[381]
-            + W[436] * W[339] + W[478] * W[297] + W[520] * W[255] + W[562] * W[213] + W[604] * W[171]
-            + W[646] * W[129] + W[688] * W[87] + W[730] * W[45] + W[772] * W[3];
-    W[764] = X[74] + W[763];
-    W[774] = W[14] * W[773];
-    W[785] = W[784];
-    W[788] = W[31] * W[773];
-    W[789] = W[1] * W[773];
-    W[786] = -W[785];
-    W[775] = X[3] * W[764] + X[7] * W[722] + X[11] * W[680] + X[15] * W[638] + X[19] * W[596]
-            + X[23] * W[554] + X[27] * W[512] + X[31] * W[470] + X[35] * W[428] + X[39] * W[386]
-            + X[43] * W[344] + X[47] * W[302] + X[51] * W[260] + X[55] * W[218] + X[59] * W[176]
-            + X[63] * W[134] + X[67] * W[92] + X[71] * W[50] + X[75] * W[8];
-    W[781] = W[8] * W[765] + W[50] * W[723] + W[92] * W[681] + W[134] * W[639] + W[176] * W[597]
-            + W[218] * W[555] + W[260] * W[513] + W[302] * W[471] + W[344] * W[429] + W[386] * W[387]
-            + W[428] * W[345] + W[470] * W[303] + W[512] * W[261] + W[554] * W[219] + W[596] * W[177]
-            + W[638] * W[135] + W[680] * W[93] + W[722] * W[51] + W[764] * W[9];
+    return 0;
+}
+
+/* Lines 20 .. 34 of taylor_run's order 18. */
+static EOMC_NOINLINE int
+cartpole_taylor_run_39(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[790] = W[781] + W[789];
     W[776] = W[3] * W[775] + W[45] * W[733] + W[87] * W[691] + W[129] * W[649] + W[171] * W[607]
             + W[213] * W[565] + W[255] * W[523] + W[297] * W[481] + W[339] * W[439] + W[381] * W[397]
@@ -1530,9 +1129,16 @@ cartpole_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
         return -1;
     X[78] = W[796] / 19.0;
     X[79] = W[797] / 19.0;
-    if (K == 19)
-        goto out;
-    /* order 19 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+cartpole_taylor_run_40(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[801] = (X[5] * W[760] + 2.0 * X[9] * W[718] + 3.0 * X[13] * W[676] + 4.0 * X[17] * W[634]
             + 5.0 * X[21] * W[592] + 6.0 * X[25] * W[550] + 7.0 * X[29] * W[508] + 8.0 * X[33] * W[466]
             + 9.0 * X[37] * W[424] + 10.0 * X[41] * W[382] + 11.0 * X[45] * W[340] + 12.0 * X[49] * W[298]
@@ -1583,31 +1189,243 @@ cartpole_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[218] * W[597] + W[260] * W[555] + W[302] * W[513] + W[344] * W[471] + W[386] * W[429]
             + W[428] * W[387] + W[470] * W[345] + W[512] * W[303] + W[554] * W[261] + W[596] * W[219]
             + W[638] * W[177] + W[680] * W[135] + W[722] * W[93] + W[764] * W[51] + W[806] * W[9];
-    W[832] = W[823] + W[831];
-    W[818] = W[3] * W[817] + W[45] * W[775] + W[87] * W[733] + W[129] * W[691] + W[171] * W[649]
-            + W[213] * W[607] + W[255] * W[565] + W[297] * W[523] + W[339] * W[481] + W[381] * W[439]
-            + W[423] * W[397] + W[465] * W[355] + W[507] * W[313] + W[549] * W[271] + W[591] * W[229]
-            + W[633] * W[187] + W[675] * W[145] + W[717] * W[103] + W[759] * W[61] + W[801] * W[19];
-    W[819] = W[13] * W[818];
-    W[833] = W[13] * W[832];
-    W[820] = W[816] - W[819];
-    W[834] = W[830] - W[833];
-    W[835] = W[834] - W[820];
-    W[836] = W[835] - W[822];
-    X[80] = X[78] / 20.0;
-    X[81] = X[79] / 20.0;
-    W[838] = W[65] * W[797] + W[107] * W[755] + W[149] * W[713] + W[191] * W[671] + W[233] * W[629]
-            + W[275] * W[587] + W[317] * W[545] + W[359] * W[503] + W[401] * W[461] + W[443] * W[419]
-            + W[485] * W[377] + W[527] * W[335] + W[569] * W[293] + W[611] * W[251] + W[653] * W[209]
-            + W[695] * W[167] + W[737] * W[125] + W[779] * W[83] + W[821] * W[41] + W[828];
-    W[839] = W[65] * W[796] + W[107] * W[754] + W[149] * W[712] + W[191] * W[670] + W[233] * W[628]
-            + W[275] * W[586] + W[317] * W[544] + W[359] * W[502] + W[401] * W[460] + W[443] * W[418]
-            + W[485] * W[376] + W[527] * W[334] + W[569] * W[292] + W[611] * W[250] + W[653] * W[208]
-            + W[695] * W[166] + W[737] * W[124] + W[779] * W[82] + W[821] * W[40] + W[836];
-    if (solve(ctx, 19, NULL, W + 838))
+    return 0;
+}
+
+EOMC_PART int
+cartpole_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+cartpole_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+cartpole_taylor_run_5(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+cartpole_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+cartpole_taylor_run_9(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+cartpole_taylor_run_10(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+cartpole_taylor_run_13(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+cartpole_taylor_run_14(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+cartpole_taylor_run_17(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+cartpole_taylor_run_18(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+cartpole_taylor_run_21(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+cartpole_taylor_run_22(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+cartpole_taylor_run_25(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+cartpole_taylor_run_26(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+cartpole_taylor_run_29(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+cartpole_taylor_run_30(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+cartpole_taylor_run_33(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+cartpole_taylor_run_34(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+cartpole_taylor_run_37(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+cartpole_taylor_run_38(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+cartpole_taylor_run_41(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+static int
+cartpole_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *T, eomc_real *X, eomc_tay_solve solve, void *ctx)
+{
+    const int S = K + 1;
+    if (K > 20)
+        return 1;
+    (void)S, (void)T, (void)t0, (void)p, (void)u;
+    eomc_real W[882]; /* slot s's coefficient j at W[j * 42 + s], but the
+                   * state's: X[j * 4 + i], q's then v's */
+    /* order 0 */
+    if (cartpole_taylor_run_1(t0, p, u, W, X, solve, ctx))
         return -1;
-    X[82] = W[838] / 20.0;
-    X[83] = W[839] / 20.0;
+    if (cartpole_taylor_run_2(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (cartpole_taylor_run_3(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 1)
+        goto out;
+    /* order 1 */
+    if (cartpole_taylor_run_4(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (cartpole_taylor_run_5(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 2)
+        goto out;
+    /* order 2 */
+    if (cartpole_taylor_run_6(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (cartpole_taylor_run_7(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 3)
+        goto out;
+    /* order 3 */
+    if (cartpole_taylor_run_8(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (cartpole_taylor_run_9(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 4)
+        goto out;
+    /* order 4 */
+    if (cartpole_taylor_run_10(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (cartpole_taylor_run_11(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 5)
+        goto out;
+    /* order 5 */
+    if (cartpole_taylor_run_12(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (cartpole_taylor_run_13(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 6)
+        goto out;
+    /* order 6 */
+    if (cartpole_taylor_run_14(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (cartpole_taylor_run_15(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 7)
+        goto out;
+    /* order 7 */
+    if (cartpole_taylor_run_16(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (cartpole_taylor_run_17(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 8)
+        goto out;
+    /* order 8 */
+    if (cartpole_taylor_run_18(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (cartpole_taylor_run_19(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 9)
+        goto out;
+    /* order 9 */
+    if (cartpole_taylor_run_20(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (cartpole_taylor_run_21(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 10)
+        goto out;
+    /* order 10 */
+    if (cartpole_taylor_run_22(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (cartpole_taylor_run_23(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 11)
+        goto out;
+    /* order 11 */
+    if (cartpole_taylor_run_24(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (cartpole_taylor_run_25(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 12)
+        goto out;
+    /* order 12 */
+    if (cartpole_taylor_run_26(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (cartpole_taylor_run_27(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 13)
+        goto out;
+    /* order 13 */
+    if (cartpole_taylor_run_28(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (cartpole_taylor_run_29(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 14)
+        goto out;
+    /* order 14 */
+    if (cartpole_taylor_run_30(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (cartpole_taylor_run_31(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 15)
+        goto out;
+    /* order 15 */
+    if (cartpole_taylor_run_32(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (cartpole_taylor_run_33(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 16)
+        goto out;
+    /* order 16 */
+    if (cartpole_taylor_run_34(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (cartpole_taylor_run_35(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 17)
+        goto out;
+    /* order 17 */
+    if (cartpole_taylor_run_36(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (cartpole_taylor_run_37(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 18)
+        goto out;
+    /* order 18 */
+    if (cartpole_taylor_run_38(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (cartpole_taylor_run_39(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 19)
+        goto out;
+    /* order 19 */
+    if (cartpole_taylor_run_40(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (cartpole_taylor_run_41(t0, p, u, W, X, solve, ctx))
+        return -1;
 out:
     return 0;
 }
@@ -1696,3 +1514,805 @@ const eomc_model_ext cartpole_model_ext = {
 };
 #endif /* EOMC_EXTENDED */
 #endif /* EOMC_UNIT 3 */
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 4
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define cartpole_taylor_run_1 cartpole_taylor_run_1_ext
+#define cartpole_taylor_run_2 cartpole_taylor_run_2_ext
+#define cartpole_taylor_run_5 cartpole_taylor_run_5_ext
+#define cartpole_taylor_run_6 cartpole_taylor_run_6_ext
+#define cartpole_taylor_run_9 cartpole_taylor_run_9_ext
+#define cartpole_taylor_run_10 cartpole_taylor_run_10_ext
+#define cartpole_taylor_run_13 cartpole_taylor_run_13_ext
+#define cartpole_taylor_run_14 cartpole_taylor_run_14_ext
+#define cartpole_taylor_run_17 cartpole_taylor_run_17_ext
+#define cartpole_taylor_run_18 cartpole_taylor_run_18_ext
+#define cartpole_taylor_run_21 cartpole_taylor_run_21_ext
+#define cartpole_taylor_run_22 cartpole_taylor_run_22_ext
+#define cartpole_taylor_run_25 cartpole_taylor_run_25_ext
+#define cartpole_taylor_run_26 cartpole_taylor_run_26_ext
+#define cartpole_taylor_run_29 cartpole_taylor_run_29_ext
+#define cartpole_taylor_run_30 cartpole_taylor_run_30_ext
+#define cartpole_taylor_run_33 cartpole_taylor_run_33_ext
+#define cartpole_taylor_run_34 cartpole_taylor_run_34_ext
+#define cartpole_taylor_run_37 cartpole_taylor_run_37_ext
+#define cartpole_taylor_run_38 cartpole_taylor_run_38_ext
+#define cartpole_taylor_run_41 cartpole_taylor_run_41_ext
+#endif
+#ifndef EOMC_EXTENDED
+/* Lines 0 .. 19 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+cartpole_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1] = p[2];
+    W[3] = sin(X[1]);
+    W[4] = cos(X[1]);
+    W[10] = X[3] * X[3];
+    W[11] = p[7];
+    W[12] = u[0];
+    W[13] = p[8];
+    W[14] = p[9];
+    W[26] = p[10];
+    W[27] = p[11];
+    W[31] = p[12];
+    W[23] = W[13] * W[4];
+    W[24] = W[11] * W[3];
+    W[6] = W[4] * X[3];
+    W[9] = X[3] * W[3];
+    W[15] = W[10] * W[3];
+    W[16] = W[4] * W[10];
+    W[7] = W[1] * W[6];
+    W[28] = W[13] * W[15];
+    W[17] = W[16] * W[3];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+cartpole_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[8] = X[2] + W[7];
+    W[18] = W[14] * W[17];
+    W[29] = W[12] + W[28];
+    W[32] = W[31] * W[17];
+    W[33] = W[1] * W[17];
+    W[30] = -W[29];
+    W[19] = X[3] * W[8];
+    W[25] = W[8] * W[9];
+    W[34] = W[25] + W[33];
+    W[20] = W[3] * W[19];
+    W[21] = W[13] * W[20];
+    W[35] = W[13] * W[34];
+    W[22] = W[18] - W[21];
+    W[36] = W[32] - W[35];
+    W[37] = W[36] - W[22];
+    W[38] = W[37] - W[24];
+    X[4] = X[2];
+    X[5] = X[3];
+    W[40] = W[30];
+    W[41] = W[38];
+    return 0;
+}
+
+/* Lines 20 .. 34 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+cartpole_taylor_run_5(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[76] = W[67] + W[75];
+    W[62] = W[3] * W[61] + W[45] * W[19];
+    W[63] = W[13] * W[62];
+    W[77] = W[13] * W[76];
+    W[64] = W[60] - W[63];
+    W[78] = W[74] - W[77];
+    W[79] = W[78] - W[64];
+    W[80] = W[79] - W[66];
+    X[8] = X[6] / 2.0;
+    X[9] = X[7] / 2.0;
+    W[82] = W[65] * W[41] + W[72];
+    W[83] = W[65] * W[40] + W[80];
+    if (solve(ctx, 1, NULL, W + 82))
+        return -1;
+    X[10] = W[82] / 2.0;
+    X[11] = W[83] / 2.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+cartpole_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[87] = (X[5] * W[46] + 2.0 * X[9] * W[4]) / 2.0;
+    W[88] = -((X[5] * W[45] + 2.0 * X[9] * W[3])) / 2.0;
+    W[94] = X[3] * X[11] * 2.0 + X[7] * X[7];
+    W[107] = W[13] * W[88];
+    W[108] = W[11] * W[87];
+    W[90] = W[4] * X[11] + W[46] * X[7] + W[88] * X[3];
+    W[93] = X[3] * W[87] + X[7] * W[45] + X[11] * W[3];
+    W[99] = W[10] * W[87] + W[52] * W[45] + W[94] * W[3];
+    W[100] = W[4] * W[94] + W[46] * W[52] + W[88] * W[10];
+    W[91] = W[1] * W[90];
+    W[112] = W[13] * W[99];
+    W[101] = W[16] * W[87] + W[58] * W[45] + W[100] * W[3];
+    W[92] = X[10] + W[91];
+    W[102] = W[14] * W[101];
+    W[113] = W[112];
+    W[116] = W[31] * W[101];
+    W[117] = W[1] * W[101];
+    W[114] = -W[113];
+    W[103] = X[3] * W[92] + X[7] * W[50] + X[11] * W[8];
+    W[109] = W[8] * W[93] + W[50] * W[51] + W[92] * W[9];
+    return 0;
+}
+
+/* Lines 20 .. 34 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+cartpole_taylor_run_9(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[160] = W[151] + W[159];
+    W[146] = W[3] * W[145] + W[45] * W[103] + W[87] * W[61] + W[129] * W[19];
+    W[147] = W[13] * W[146];
+    W[161] = W[13] * W[160];
+    W[148] = W[144] - W[147];
+    W[162] = W[158] - W[161];
+    W[163] = W[162] - W[148];
+    W[164] = W[163] - W[150];
+    X[16] = X[14] / 4.0;
+    X[17] = X[15] / 4.0;
+    W[166] = W[65] * W[125] + W[107] * W[83] + W[149] * W[41] + W[156];
+    W[167] = W[65] * W[124] + W[107] * W[82] + W[149] * W[40] + W[164];
+    if (solve(ctx, 3, NULL, W + 166))
+        return -1;
+    X[18] = W[166] / 4.0;
+    X[19] = W[167] / 4.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+cartpole_taylor_run_10(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[171] = (X[5] * W[130] + 2.0 * X[9] * W[88] + 3.0 * X[13] * W[46] + 4.0 * X[17] * W[4]) / 4.0;
+    W[172] = -((X[5] * W[129] + 2.0 * X[9] * W[87] + 3.0 * X[13] * W[45] + 4.0 * X[17] * W[3])) / 4.0;
+    W[178] = (X[3] * X[19] + X[7] * X[15]) * 2.0 + X[11] * X[11];
+    W[191] = W[13] * W[172];
+    W[192] = W[11] * W[171];
+    W[174] = W[4] * X[19] + W[46] * X[15] + W[88] * X[11] + W[130] * X[7] + W[172] * X[3];
+    W[177] = X[3] * W[171] + X[7] * W[129] + X[11] * W[87] + X[15] * W[45] + X[19] * W[3];
+    W[183] = W[10] * W[171] + W[52] * W[129] + W[94] * W[87] + W[136] * W[45] + W[178] * W[3];
+    W[184] = W[4] * W[178] + W[46] * W[136] + W[88] * W[94] + W[130] * W[52] + W[172] * W[10];
+    W[175] = W[1] * W[174];
+    W[196] = W[13] * W[183];
+    W[185] = W[16] * W[171] + W[58] * W[129] + W[100] * W[87] + W[142] * W[45] + W[184] * W[3];
+    W[176] = X[18] + W[175];
+    W[186] = W[14] * W[185];
+    W[197] = W[196];
+    W[200] = W[31] * W[185];
+    W[201] = W[1] * W[185];
+    W[198] = -W[197];
+    W[187] = X[3] * W[176] + X[7] * W[134] + X[11] * W[92] + X[15] * W[50] + X[19] * W[8];
+    W[193] = W[8] * W[177] + W[50] * W[135] + W[92] * W[93] + W[134] * W[51] + W[176] * W[9];
+    return 0;
+}
+
+/* Lines 20 .. 34 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+cartpole_taylor_run_13(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[244] = W[235] + W[243];
+    W[230] = W[3] * W[229] + W[45] * W[187] + W[87] * W[145] + W[129] * W[103] + W[171] * W[61]
+            + W[213] * W[19];
+    W[231] = W[13] * W[230];
+    W[245] = W[13] * W[244];
+    W[232] = W[228] - W[231];
+    W[246] = W[242] - W[245];
+    W[247] = W[246] - W[232];
+    W[248] = W[247] - W[234];
+    X[24] = X[22] / 6.0;
+    X[25] = X[23] / 6.0;
+    W[250] = W[65] * W[209] + W[107] * W[167] + W[149] * W[125] + W[191] * W[83] + W[233] * W[41]
+            + W[240];
+    W[251] = W[65] * W[208] + W[107] * W[166] + W[149] * W[124] + W[191] * W[82] + W[233] * W[40]
+            + W[248];
+    if (solve(ctx, 5, NULL, W + 250))
+        return -1;
+    X[26] = W[250] / 6.0;
+    X[27] = W[251] / 6.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+cartpole_taylor_run_14(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[255] = (X[5] * W[214] + 2.0 * X[9] * W[172] + 3.0 * X[13] * W[130] + 4.0 * X[17] * W[88]
+            + 5.0 * X[21] * W[46] + 6.0 * X[25] * W[4]) / 6.0;
+    W[256] = -((X[5] * W[213] + 2.0 * X[9] * W[171] + 3.0 * X[13] * W[129] + 4.0 * X[17] * W[87]
+            + 5.0 * X[21] * W[45] + 6.0 * X[25] * W[3])) / 6.0;
+    W[262] = (X[3] * X[27] + X[7] * X[23] + X[11] * X[19]) * 2.0 + X[15] * X[15];
+    W[275] = W[13] * W[256];
+    W[276] = W[11] * W[255];
+    W[258] = W[4] * X[27] + W[46] * X[23] + W[88] * X[19] + W[130] * X[15] + W[172] * X[11] + W[214] * X[7]
+            + W[256] * X[3];
+    W[261] = X[3] * W[255] + X[7] * W[213] + X[11] * W[171] + X[15] * W[129] + X[19] * W[87] + X[23] * W[45]
+            + X[27] * W[3];
+    W[267] = W[10] * W[255] + W[52] * W[213] + W[94] * W[171] + W[136] * W[129] + W[178] * W[87]
+            + W[220] * W[45] + W[262] * W[3];
+    W[268] = W[4] * W[262] + W[46] * W[220] + W[88] * W[178] + W[130] * W[136] + W[172] * W[94]
+            + W[214] * W[52] + W[256] * W[10];
+    W[259] = W[1] * W[258];
+    W[280] = W[13] * W[267];
+    W[269] = W[16] * W[255] + W[58] * W[213] + W[100] * W[171] + W[142] * W[129] + W[184] * W[87]
+            + W[226] * W[45] + W[268] * W[3];
+    W[260] = X[26] + W[259];
+    W[270] = W[14] * W[269];
+    W[281] = W[280];
+    W[284] = W[31] * W[269];
+    W[285] = W[1] * W[269];
+    W[282] = -W[281];
+    W[271] = X[3] * W[260] + X[7] * W[218] + X[11] * W[176] + X[15] * W[134] + X[19] * W[92] + X[23] * W[50]
+            + X[27] * W[8];
+    W[277] = W[8] * W[261] + W[50] * W[219] + W[92] * W[177] + W[134] * W[135] + W[176] * W[93]
+            + W[218] * W[51] + W[260] * W[9];
+    return 0;
+}
+
+/* Lines 20 .. 34 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART int
+cartpole_taylor_run_17(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[328] = W[319] + W[327];
+    W[314] = W[3] * W[313] + W[45] * W[271] + W[87] * W[229] + W[129] * W[187] + W[171] * W[145]
+            + W[213] * W[103] + W[255] * W[61] + W[297] * W[19];
+    W[315] = W[13] * W[314];
+    W[329] = W[13] * W[328];
+    W[316] = W[312] - W[315];
+    W[330] = W[326] - W[329];
+    W[331] = W[330] - W[316];
+    W[332] = W[331] - W[318];
+    X[32] = X[30] / 8.0;
+    X[33] = X[31] / 8.0;
+    W[334] = W[65] * W[293] + W[107] * W[251] + W[149] * W[209] + W[191] * W[167] + W[233] * W[125]
+            + W[275] * W[83] + W[317] * W[41] + W[324];
+    W[335] = W[65] * W[292] + W[107] * W[250] + W[149] * W[208] + W[191] * W[166] + W[233] * W[124]
+            + W[275] * W[82] + W[317] * W[40] + W[332];
+    if (solve(ctx, 7, NULL, W + 334))
+        return -1;
+    X[34] = W[334] / 8.0;
+    X[35] = W[335] / 8.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+cartpole_taylor_run_18(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[339] = (X[5] * W[298] + 2.0 * X[9] * W[256] + 3.0 * X[13] * W[214] + 4.0 * X[17] * W[172]
+            + 5.0 * X[21] * W[130] + 6.0 * X[25] * W[88] + 7.0 * X[29] * W[46] + 8.0 * X[33] * W[4]) / 8.0;
+    W[340] = -((X[5] * W[297] + 2.0 * X[9] * W[255] + 3.0 * X[13] * W[213] + 4.0 * X[17] * W[171]
+            + 5.0 * X[21] * W[129] + 6.0 * X[25] * W[87] + 7.0 * X[29] * W[45] + 8.0 * X[33] * W[3])) / 8.0;
+    W[346] = (X[3] * X[35] + X[7] * X[31] + X[11] * X[27] + X[15] * X[23]) * 2.0 + X[19] * X[19];
+    W[359] = W[13] * W[340];
+    W[360] = W[11] * W[339];
+    W[342] = W[4] * X[35] + W[46] * X[31] + W[88] * X[27] + W[130] * X[23] + W[172] * X[19] + W[214] * X[15]
+            + W[256] * X[11] + W[298] * X[7] + W[340] * X[3];
+    W[345] = X[3] * W[339] + X[7] * W[297] + X[11] * W[255] + X[15] * W[213] + X[19] * W[171]
+            + X[23] * W[129] + X[27] * W[87] + X[31] * W[45] + X[35] * W[3];
+    W[351] = W[10] * W[339] + W[52] * W[297] + W[94] * W[255] + W[136] * W[213] + W[178] * W[171]
+            + W[220] * W[129] + W[262] * W[87] + W[304] * W[45] + W[346] * W[3];
+    W[352] = W[4] * W[346] + W[46] * W[304] + W[88] * W[262] + W[130] * W[220] + W[172] * W[178]
+            + W[214] * W[136] + W[256] * W[94] + W[298] * W[52] + W[340] * W[10];
+    W[343] = W[1] * W[342];
+    W[364] = W[13] * W[351];
+    W[353] = W[16] * W[339] + W[58] * W[297] + W[100] * W[255] + W[142] * W[213] + W[184] * W[171]
+            + W[226] * W[129] + W[268] * W[87] + W[310] * W[45] + W[352] * W[3];
+    W[344] = X[34] + W[343];
+    W[354] = W[14] * W[353];
+    W[365] = W[364];
+    W[368] = W[31] * W[353];
+    W[369] = W[1] * W[353];
+    W[366] = -W[365];
+    W[355] = X[3] * W[344] + X[7] * W[302] + X[11] * W[260] + X[15] * W[218] + X[19] * W[176]
+            + X[23] * W[134] + X[27] * W[92] + X[31] * W[50] + X[35] * W[8];
+    W[361] = W[8] * W[345] + W[50] * W[303] + W[92] * W[261] + W[134] * W[219] + W[176] * W[177]
+            + W[218] * W[135] + W[260] * W[93] + W[302] * W[51] + W[344] * W[9];
+    return 0;
+}
+
+/* Lines 20 .. 34 of taylor_run's order 9, in the fourth unit. */
+EOMC_PART int
+cartpole_taylor_run_21(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[412] = W[403] + W[411];
+    W[398] = W[3] * W[397] + W[45] * W[355] + W[87] * W[313] + W[129] * W[271] + W[171] * W[229]
+            + W[213] * W[187] + W[255] * W[145] + W[297] * W[103] + W[339] * W[61] + W[381] * W[19];
+    W[399] = W[13] * W[398];
+    W[413] = W[13] * W[412];
+    W[400] = W[396] - W[399];
+    W[414] = W[410] - W[413];
+    W[415] = W[414] - W[400];
+    W[416] = W[415] - W[402];
+    X[40] = X[38] / 10.0;
+    X[41] = X[39] / 10.0;
+    W[418] = W[65] * W[377] + W[107] * W[335] + W[149] * W[293] + W[191] * W[251] + W[233] * W[209]
+            + W[275] * W[167] + W[317] * W[125] + W[359] * W[83] + W[401] * W[41] + W[408];
+    W[419] = W[65] * W[376] + W[107] * W[334] + W[149] * W[292] + W[191] * W[250] + W[233] * W[208]
+            + W[275] * W[166] + W[317] * W[124] + W[359] * W[82] + W[401] * W[40] + W[416];
+    if (solve(ctx, 9, NULL, W + 418))
+        return -1;
+    X[42] = W[418] / 10.0;
+    X[43] = W[419] / 10.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+cartpole_taylor_run_22(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[423] = (X[5] * W[382] + 2.0 * X[9] * W[340] + 3.0 * X[13] * W[298] + 4.0 * X[17] * W[256]
+            + 5.0 * X[21] * W[214] + 6.0 * X[25] * W[172] + 7.0 * X[29] * W[130] + 8.0 * X[33] * W[88]
+            + 9.0 * X[37] * W[46] + 10.0 * X[41] * W[4]) / 10.0;
+    W[424] = -((X[5] * W[381] + 2.0 * X[9] * W[339] + 3.0 * X[13] * W[297] + 4.0 * X[17] * W[255]
+            + 5.0 * X[21] * W[213] + 6.0 * X[25] * W[171] + 7.0 * X[29] * W[129] + 8.0 * X[33] * W[87]
+            + 9.0 * X[37] * W[45] + 10.0 * X[41] * W[3])) / 10.0;
+    W[430] = (X[3] * X[43] + X[7] * X[39] + X[11] * X[35] + X[15] * X[31] + X[19] * X[27]) * 2.0
+            + X[23] * X[23];
+    W[443] = W[13] * W[424];
+    W[444] = W[11] * W[423];
+    W[426] = W[4] * X[43] + W[46] * X[39] + W[88] * X[35] + W[130] * X[31] + W[172] * X[27] + W[214] * X[23]
+            + W[256] * X[19] + W[298] * X[15] + W[340] * X[11] + W[382] * X[7] + W[424] * X[3];
+    W[429] = X[3] * W[423] + X[7] * W[381] + X[11] * W[339] + X[15] * W[297] + X[19] * W[255]
+            + X[23] * W[213] + X[27] * W[171] + X[31] * W[129] + X[35] * W[87] + X[39] * W[45]
+            + X[43] * W[3];
+    W[435] = W[10] * W[423] + W[52] * W[381] + W[94] * W[339] + W[136] * W[297] + W[178] * W[255]
+            + W[220] * W[213] + W[262] * W[171] + W[304] * W[129] + W[346] * W[87] + W[388] * W[45]
+            + W[430] * W[3];
+    W[436] = W[4] * W[430] + W[46] * W[388] + W[88] * W[346] + W[130] * W[304] + W[172] * W[262]
+            + W[214] * W[220] + W[256] * W[178] + W[298] * W[136] + W[340] * W[94] + W[382] * W[52]
+            + W[424] * W[10];
+    W[427] = W[1] * W[426];
+    W[448] = W[13] * W[435];
+    W[437] = W[16] * W[423] + W[58] * W[381] + W[100] * W[339] + W[142] * W[297] + W[184] * W[255]
+            + W[226] * W[213] + W[268] * W[171] + W[310] * W[129] + W[352] * W[87] + W[394] * W[45]
+            + W[436] * W[3];
+    W[428] = X[42] + W[427];
+    W[438] = W[14] * W[437];
+    W[449] = W[448];
+    W[452] = W[31] * W[437];
+    W[453] = W[1] * W[437];
+    W[450] = -W[449];
+    W[439] = X[3] * W[428] + X[7] * W[386] + X[11] * W[344] + X[15] * W[302] + X[19] * W[260]
+            + X[23] * W[218] + X[27] * W[176] + X[31] * W[134] + X[35] * W[92] + X[39] * W[50]
+            + X[43] * W[8];
+    W[445] = W[8] * W[429] + W[50] * W[387] + W[92] * W[345] + W[134] * W[303] + W[176] * W[261]
+            + W[218] * W[219] + W[260] * W[177] + W[302] * W[135] + W[344] * W[93] + W[386] * W[51]
+            + W[428] * W[9];
+    return 0;
+}
+
+/* Lines 20 .. 34 of taylor_run's order 11, in the fourth unit. */
+EOMC_PART int
+cartpole_taylor_run_25(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[496] = W[487] + W[495];
+    W[482] = W[3] * W[481] + W[45] * W[439] + W[87] * W[397] + W[129] * W[355] + W[171] * W[313]
+            + W[213] * W[271] + W[255] * W[229] + W[297] * W[187] + W[339] * W[145] + W[381] * W[103]
+            + W[423] * W[61] + W[465] * W[19];
+    W[483] = W[13] * W[482];
+    W[497] = W[13] * W[496];
+    W[484] = W[480] - W[483];
+    W[498] = W[494] - W[497];
+    W[499] = W[498] - W[484];
+    W[500] = W[499] - W[486];
+    X[48] = X[46] / 12.0;
+    X[49] = X[47] / 12.0;
+    W[502] = W[65] * W[461] + W[107] * W[419] + W[149] * W[377] + W[191] * W[335] + W[233] * W[293]
+            + W[275] * W[251] + W[317] * W[209] + W[359] * W[167] + W[401] * W[125] + W[443] * W[83]
+            + W[485] * W[41] + W[492];
+    W[503] = W[65] * W[460] + W[107] * W[418] + W[149] * W[376] + W[191] * W[334] + W[233] * W[292]
+            + W[275] * W[250] + W[317] * W[208] + W[359] * W[166] + W[401] * W[124] + W[443] * W[82]
+            + W[485] * W[40] + W[500];
+    if (solve(ctx, 11, NULL, W + 502))
+        return -1;
+    X[50] = W[502] / 12.0;
+    X[51] = W[503] / 12.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 12, in the fourth unit. */
+EOMC_PART int
+cartpole_taylor_run_26(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[507] = (X[5] * W[466] + 2.0 * X[9] * W[424] + 3.0 * X[13] * W[382] + 4.0 * X[17] * W[340]
+            + 5.0 * X[21] * W[298] + 6.0 * X[25] * W[256] + 7.0 * X[29] * W[214] + 8.0 * X[33] * W[172]
+            + 9.0 * X[37] * W[130] + 10.0 * X[41] * W[88] + 11.0 * X[45] * W[46] + 12.0 * X[49] * W[4]) / 12.0;
+    W[508] = -((X[5] * W[465] + 2.0 * X[9] * W[423] + 3.0 * X[13] * W[381] + 4.0 * X[17] * W[339]
+            + 5.0 * X[21] * W[297] + 6.0 * X[25] * W[255] + 7.0 * X[29] * W[213] + 8.0 * X[33] * W[171]
+            + 9.0 * X[37] * W[129] + 10.0 * X[41] * W[87] + 11.0 * X[45] * W[45] + 12.0 * X[49] * W[3])) / 12.0;
+    W[514] = (X[3] * X[51] + X[7] * X[47] + X[11] * X[43] + X[15] * X[39] + X[19] * X[35] + X[23] * X[31]) * 2.0
+            + X[27] * X[27];
+    W[527] = W[13] * W[508];
+    W[528] = W[11] * W[507];
+    W[510] = W[4] * X[51] + W[46] * X[47] + W[88] * X[43] + W[130] * X[39] + W[172] * X[35] + W[214] * X[31]
+            + W[256] * X[27] + W[298] * X[23] + W[340] * X[19] + W[382] * X[15] + W[424] * X[11]
+            + W[466] * X[7] + W[508] * X[3];
+    W[513] = X[3] * W[507] + X[7] * W[465] + X[11] * W[423] + X[15] * W[381] + X[19] * W[339]
+            + X[23] * W[297] + X[27] * W[255] + X[31] * W[213] + X[35] * W[171] + X[39] * W[129]
+            + X[43] * W[87] + X[47] * W[45] + X[51] * W[3];
+    W[519] = W[10] * W[507] + W[52] * W[465] + W[94] * W[423] + W[136] * W[381] + W[178] * W[339]
+            + W[220] * W[297] + W[262] * W[255] + W[304] * W[213] + W[346] * W[171] + W[388] * W[129]
+            + W[430] * W[87] + W[472] * W[45] + W[514] * W[3];
+    W[520] = W[4] * W[514] + W[46] * W[472] + W[88] * W[430] + W[130] * W[388] + W[172] * W[346]
+            + W[214] * W[304] + W[256] * W[262] + W[298] * W[220] + W[340] * W[178] + W[382] * W[136]
+            + W[424] * W[94] + W[466] * W[52] + W[508] * W[10];
+    W[511] = W[1] * W[510];
+    W[532] = W[13] * W[519];
+    W[521] = W[16] * W[507] + W[58] * W[465] + W[100] * W[423] + W[142] * W[381] + W[184] * W[339]
+            + W[226] * W[297] + W[268] * W[255] + W[310] * W[213] + W[352] * W[171] + W[394] * W[129]
+            + W[436] * W[87] + W[478] * W[45] + W[520] * W[3];
+    W[512] = X[50] + W[511];
+    W[522] = W[14] * W[521];
+    W[533] = W[532];
+    W[536] = W[31] * W[521];
+    W[537] = W[1] * W[521];
+    W[534] = -W[533];
+    W[523] = X[3] * W[512] + X[7] * W[470] + X[11] * W[428] + X[15] * W[386] + X[19] * W[344]
+            + X[23] * W[302] + X[27] * W[260] + X[31] * W[218] + X[35] * W[176] + X[39] * W[134]
+            + X[43] * W[92] + X[47] * W[50] + X[51] * W[8];
+    W[529] = W[8] * W[513] + W[50] * W[471] + W[92] * W[429] + W[134] * W[387] + W[176] * W[345]
+            + W[218] * W[303] + W[260] * W[261] + W[302] * W[219] + W[344] * W[177] + W[386] * W[135]
+            + W[428] * W[93] + W[470] * W[51] + W[512] * W[9];
+    return 0;
+}
+
+/* Lines 20 .. 34 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+cartpole_taylor_run_29(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[580] = W[571] + W[579];
+    W[566] = W[3] * W[565] + W[45] * W[523] + W[87] * W[481] + W[129] * W[439] + W[171] * W[397]
+            + W[213] * W[355] + W[255] * W[313] + W[297] * W[271] + W[339] * W[229] + W[381] * W[187]
+            + W[423] * W[145] + W[465] * W[103] + W[507] * W[61] + W[549] * W[19];
+    W[567] = W[13] * W[566];
+    W[581] = W[13] * W[580];
+    W[568] = W[564] - W[567];
+    W[582] = W[578] - W[581];
+    W[583] = W[582] - W[568];
+    W[584] = W[583] - W[570];
+    X[56] = X[54] / 14.0;
+    X[57] = X[55] / 14.0;
+    W[586] = W[65] * W[545] + W[107] * W[503] + W[149] * W[461] + W[191] * W[419] + W[233] * W[377]
+            + W[275] * W[335] + W[317] * W[293] + W[359] * W[251] + W[401] * W[209] + W[443] * W[167]
+            + W[485] * W[125] + W[527] * W[83] + W[569] * W[41] + W[576];
+    W[587] = W[65] * W[544] + W[107] * W[502] + W[149] * W[460] + W[191] * W[418] + W[233] * W[376]
+            + W[275] * W[334] + W[317] * W[292] + W[359] * W[250] + W[401] * W[208] + W[443] * W[166]
+            + W[485] * W[124] + W[527] * W[82] + W[569] * W[40] + W[584];
+    if (solve(ctx, 13, NULL, W + 586))
+        return -1;
+    X[58] = W[586] / 14.0;
+    X[59] = W[587] / 14.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+cartpole_taylor_run_30(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[591] = (X[5] * W[550] + 2.0 * X[9] * W[508] + 3.0 * X[13] * W[466] + 4.0 * X[17] * W[424]
+            + 5.0 * X[21] * W[382] + 6.0 * X[25] * W[340] + 7.0 * X[29] * W[298] + 8.0 * X[33] * W[256]
+            + 9.0 * X[37] * W[214] + 10.0 * X[41] * W[172] + 11.0 * X[45] * W[130] + 12.0 * X[49] * W[88]
+            + 13.0 * X[53] * W[46] + 14.0 * X[57] * W[4]) / 14.0;
+    W[592] = -((X[5] * W[549] + 2.0 * X[9] * W[507] + 3.0 * X[13] * W[465] + 4.0 * X[17] * W[423]
+            + 5.0 * X[21] * W[381] + 6.0 * X[25] * W[339] + 7.0 * X[29] * W[297] + 8.0 * X[33] * W[255]
+            + 9.0 * X[37] * W[213] + 10.0 * X[41] * W[171] + 11.0 * X[45] * W[129] + 12.0 * X[49] * W[87]
+            + 13.0 * X[53] * W[45] + 14.0 * X[57] * W[3])) / 14.0;
+    W[598] = (X[3] * X[59] + X[7] * X[55] + X[11] * X[51] + X[15] * X[47] + X[19] * X[43] + X[23] * X[39]
+            + X[27] * X[35]) * 2.0 + X[31] * X[31];
+    W[611] = W[13] * W[592];
+    W[612] = W[11] * W[591];
+    W[594] = W[4] * X[59] + W[46] * X[55] + W[88] * X[51] + W[130] * X[47] + W[172] * X[43] + W[214] * X[39]
+            + W[256] * X[35] + W[298] * X[31] + W[340] * X[27] + W[382] * X[23] + W[424] * X[19]
+            + W[466] * X[15] + W[508] * X[11] + W[550] * X[7] + W[592] * X[3];
+    W[597] = X[3] * W[591] + X[7] * W[549] + X[11] * W[507] + X[15] * W[465] + X[19] * W[423]
+            + X[23] * W[381] + X[27] * W[339] + X[31] * W[297] + X[35] * W[255] + X[39] * W[213]
+            + X[43] * W[171] + X[47] * W[129] + X[51] * W[87] + X[55] * W[45] + X[59] * W[3];
+    W[603] = W[10] * W[591] + W[52] * W[549] + W[94] * W[507] + W[136] * W[465] + W[178] * W[423]
+            + W[220] * W[381] + W[262] * W[339] + W[304] * W[297] + W[346] * W[255] + W[388] * W[213]
+            + W[430] * W[171] + W[472] * W[129] + W[514] * W[87] + W[556] * W[45] + W[598] * W[3];
+    W[604] = W[4] * W[598] + W[46] * W[556] + W[88] * W[514] + W[130] * W[472] + W[172] * W[430]
+            + W[214] * W[388] + W[256] * W[346] + W[298] * W[304] + W[340] * W[262] + W[382] * W[220]
+            + W[424] * W[178] + W[466] * W[136] + W[508] * W[94] + W[550] * W[52] + W[592] * W[10];
+    W[595] = W[1] * W[594];
+    W[616] = W[13] * W[603];
+    W[605] = W[16] * W[591] + W[58] * W[549] + W[100] * W[507] + W[142] * W[465] + W[184] * W[423]
+            + W[226] * W[381] + W[268] * W[339] + W[310] * W[297] + W[352] * W[255] + W[394] * W[213]
+            + W[436] * W[171] + W[478] * W[129] + W[520] * W[87] + W[562] * W[45] + W[604] * W[3];
+    W[596] = X[58] + W[595];
+    W[606] = W[14] * W[605];
+    W[617] = W[616];
+    W[620] = W[31] * W[605];
+    W[621] = W[1] * W[605];
+    W[618] = -W[617];
+    W[607] = X[3] * W[596] + X[7] * W[554] + X[11] * W[512] + X[15] * W[470] + X[19] * W[428]
+            + X[23] * W[386] + X[27] * W[344] + X[31] * W[302] + X[35] * W[260] + X[39] * W[218]
+            + X[43] * W[176] + X[47] * W[134] + X[51] * W[92] + X[55] * W[50] + X[59] * W[8];
+    W[613] = W[8] * W[597] + W[50] * W[555] + W[92] * W[513] + W[134] * W[471] + W[176] * W[429]
+            + W[218] * W[387] + W[260] * W[345] + W[302] * W[303] + W[344] * W[261] + W[386] * W[219]
+            + W[428] * W[177] + W[470] * W[135] + W[512] * W[93] + W[554] * W[51] + W[596] * W[9];
+    return 0;
+}
+
+/* Lines 20 .. 34 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+cartpole_taylor_run_33(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[664] = W[655] + W[663];
+    W[650] = W[3] * W[649] + W[45] * W[607] + W[87] * W[565] + W[129] * W[523] + W[171] * W[481]
+            + W[213] * W[439] + W[255] * W[397] + W[297] * W[355] + W[339] * W[313] + W[381] * W[271]
+            + W[423] * W[229] + W[465] * W[187] + W[507] * W[145] + W[549] * W[103] + W[591] * W[61]
+            + W[633] * W[19];
+    W[651] = W[13] * W[650];
+    W[665] = W[13] * W[664];
+    W[652] = W[648] - W[651];
+    W[666] = W[662] - W[665];
+    W[667] = W[666] - W[652];
+    W[668] = W[667] - W[654];
+    X[64] = X[62] / 16.0;
+    X[65] = X[63] / 16.0;
+    W[670] = W[65] * W[629] + W[107] * W[587] + W[149] * W[545] + W[191] * W[503] + W[233] * W[461]
+            + W[275] * W[419] + W[317] * W[377] + W[359] * W[335] + W[401] * W[293] + W[443] * W[251]
+            + W[485] * W[209] + W[527] * W[167] + W[569] * W[125] + W[611] * W[83] + W[653] * W[41]
+            + W[660];
+    W[671] = W[65] * W[628] + W[107] * W[586] + W[149] * W[544] + W[191] * W[502] + W[233] * W[460]
+            + W[275] * W[418] + W[317] * W[376] + W[359] * W[334] + W[401] * W[292] + W[443] * W[250]
+            + W[485] * W[208] + W[527] * W[166] + W[569] * W[124] + W[611] * W[82] + W[653] * W[40]
+            + W[668];
+    if (solve(ctx, 15, NULL, W + 670))
+        return -1;
+    X[66] = W[670] / 16.0;
+    X[67] = W[671] / 16.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 16, in the fourth unit. */
+EOMC_PART int
+cartpole_taylor_run_34(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[675] = (X[5] * W[634] + 2.0 * X[9] * W[592] + 3.0 * X[13] * W[550] + 4.0 * X[17] * W[508]
+            + 5.0 * X[21] * W[466] + 6.0 * X[25] * W[424] + 7.0 * X[29] * W[382] + 8.0 * X[33] * W[340]
+            + 9.0 * X[37] * W[298] + 10.0 * X[41] * W[256] + 11.0 * X[45] * W[214] + 12.0 * X[49] * W[172]
+            + 13.0 * X[53] * W[130] + 14.0 * X[57] * W[88] + 15.0 * X[61] * W[46] + 16.0 * X[65] * W[4]) / 16.0;
+    W[676] = -((X[5] * W[633] + 2.0 * X[9] * W[591] + 3.0 * X[13] * W[549] + 4.0 * X[17] * W[507]
+            + 5.0 * X[21] * W[465] + 6.0 * X[25] * W[423] + 7.0 * X[29] * W[381] + 8.0 * X[33] * W[339]
+            + 9.0 * X[37] * W[297] + 10.0 * X[41] * W[255] + 11.0 * X[45] * W[213] + 12.0 * X[49] * W[171]
+            + 13.0 * X[53] * W[129] + 14.0 * X[57] * W[87] + 15.0 * X[61] * W[45] + 16.0 * X[65] * W[3])) / 16.0;
+    W[682] = (X[3] * X[67] + X[7] * X[63] + X[11] * X[59] + X[15] * X[55] + X[19] * X[51] + X[23] * X[47]
+            + X[27] * X[43] + X[31] * X[39]) * 2.0 + X[35] * X[35];
+    W[695] = W[13] * W[676];
+    W[696] = W[11] * W[675];
+    W[678] = W[4] * X[67] + W[46] * X[63] + W[88] * X[59] + W[130] * X[55] + W[172] * X[51] + W[214] * X[47]
+            + W[256] * X[43] + W[298] * X[39] + W[340] * X[35] + W[382] * X[31] + W[424] * X[27]
+            + W[466] * X[23] + W[508] * X[19] + W[550] * X[15] + W[592] * X[11] + W[634] * X[7]
+            + W[676] * X[3];
+    W[681] = X[3] * W[675] + X[7] * W[633] + X[11] * W[591] + X[15] * W[549] + X[19] * W[507]
+            + X[23] * W[465] + X[27] * W[423] + X[31] * W[381] + X[35] * W[339] + X[39] * W[297]
+            + X[43] * W[255] + X[47] * W[213] + X[51] * W[171] + X[55] * W[129] + X[59] * W[87]
+            + X[63] * W[45] + X[67] * W[3];
+    W[687] = W[10] * W[675] + W[52] * W[633] + W[94] * W[591] + W[136] * W[549] + W[178] * W[507]
+            + W[220] * W[465] + W[262] * W[423] + W[304] * W[381] + W[346] * W[339] + W[388] * W[297]
+            + W[430] * W[255] + W[472] * W[213] + W[514] * W[171] + W[556] * W[129] + W[598] * W[87]
+            + W[640] * W[45] + W[682] * W[3];
+    W[688] = W[4] * W[682] + W[46] * W[640] + W[88] * W[598] + W[130] * W[556] + W[172] * W[514]
+            + W[214] * W[472] + W[256] * W[430] + W[298] * W[388] + W[340] * W[346] + W[382] * W[304]
+            + W[424] * W[262] + W[466] * W[220] + W[508] * W[178] + W[550] * W[136] + W[592] * W[94]
+            + W[634] * W[52] + W[676] * W[10];
+    W[679] = W[1] * W[678];
+    W[700] = W[13] * W[687];
+    W[689] = W[16] * W[675] + W[58] * W[633] + W[100] * W[591] + W[142] * W[549] + W[184] * W[507]
+            + W[226] * W[465] + W[268] * W[423] + W[310] * W[381] + W[352] * W[339] + W[394] * W[297]
+            + W[436] * W[255] + W[478] * W[213] + W[520] * W[171] + W[562] * W[129] + W[604] * W[87]
+            + W[646] * W[45] + W[688] * W[3];
+    W[680] = X[66] + W[679];
+    W[690] = W[14] * W[689];
+    W[701] = W[700];
+    W[704] = W[31] * W[689];
+    W[705] = W[1] * W[689];
+    W[702] = -W[701];
+    W[691] = X[3] * W[680] + X[7] * W[638] + X[11] * W[596] + X[15] * W[554] + X[19] * W[512]
+            + X[23] * W[470] + X[27] * W[428] + X[31] * W[386] + X[35] * W[344] + X[39] * W[302]
+            + X[43] * W[260] + X[47] * W[218] + X[51] * W[176] + X[55] * W[134] + X[59] * W[92]
+            + X[63] * W[50] + X[67] * W[8];
+    W[697] = W[8] * W[681] + W[50] * W[639] + W[92] * W[597] + W[134] * W[555] + W[176] * W[513]
+            + W[218] * W[471] + W[260] * W[429] + W[302] * W[387] + W[344] * W[345] + W[386] * W[303]
+            + W[428] * W[261] + W[470] * W[219] + W[512] * W[177] + W[554] * W[135] + W[596] * W[93]
+            + W[638] * W[51] + W[680] * W[9];
+    return 0;
+}
+
+/* Lines 20 .. 34 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+cartpole_taylor_run_37(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[748] = W[739] + W[747];
+    W[734] = W[3] * W[733] + W[45] * W[691] + W[87] * W[649] + W[129] * W[607] + W[171] * W[565]
+            + W[213] * W[523] + W[255] * W[481] + W[297] * W[439] + W[339] * W[397] + W[381] * W[355]
+            + W[423] * W[313] + W[465] * W[271] + W[507] * W[229] + W[549] * W[187] + W[591] * W[145]
+            + W[633] * W[103] + W[675] * W[61] + W[717] * W[19];
+    W[735] = W[13] * W[734];
+    W[749] = W[13] * W[748];
+    W[736] = W[732] - W[735];
+    W[750] = W[746] - W[749];
+    W[751] = W[750] - W[736];
+    W[752] = W[751] - W[738];
+    X[72] = X[70] / 18.0;
+    X[73] = X[71] / 18.0;
+    W[754] = W[65] * W[713] + W[107] * W[671] + W[149] * W[629] + W[191] * W[587] + W[233] * W[545]
+            + W[275] * W[503] + W[317] * W[461] + W[359] * W[419] + W[401] * W[377] + W[443] * W[335]
+            + W[485] * W[293] + W[527] * W[251] + W[569] * W[209] + W[611] * W[167] + W[653] * W[125]
+            + W[695] * W[83] + W[737] * W[41] + W[744];
+    W[755] = W[65] * W[712] + W[107] * W[670] + W[149] * W[628] + W[191] * W[586] + W[233] * W[544]
+            + W[275] * W[502] + W[317] * W[460] + W[359] * W[418] + W[401] * W[376] + W[443] * W[334]
+            + W[485] * W[292] + W[527] * W[250] + W[569] * W[208] + W[611] * W[166] + W[653] * W[124]
+            + W[695] * W[82] + W[737] * W[40] + W[752];
+    if (solve(ctx, 17, NULL, W + 754))
+        return -1;
+    X[74] = W[754] / 18.0;
+    X[75] = W[755] / 18.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+cartpole_taylor_run_38(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[759] = (X[5] * W[718] + 2.0 * X[9] * W[676] + 3.0 * X[13] * W[634] + 4.0 * X[17] * W[592]
+            + 5.0 * X[21] * W[550] + 6.0 * X[25] * W[508] + 7.0 * X[29] * W[466] + 8.0 * X[33] * W[424]
+            + 9.0 * X[37] * W[382] + 10.0 * X[41] * W[340] + 11.0 * X[45] * W[298] + 12.0 * X[49] * W[256]
+            + 13.0 * X[53] * W[214] + 14.0 * X[57] * W[172] + 15.0 * X[61] * W[130] + 16.0 * X[65] * W[88]
+            + 17.0 * X[69] * W[46] + 18.0 * X[73] * W[4]) / 18.0;
+    W[760] = -((X[5] * W[717] + 2.0 * X[9] * W[675] + 3.0 * X[13] * W[633] + 4.0 * X[17] * W[591]
+            + 5.0 * X[21] * W[549] + 6.0 * X[25] * W[507] + 7.0 * X[29] * W[465] + 8.0 * X[33] * W[423]
+            + 9.0 * X[37] * W[381] + 10.0 * X[41] * W[339] + 11.0 * X[45] * W[297] + 12.0 * X[49] * W[255]
+            + 13.0 * X[53] * W[213] + 14.0 * X[57] * W[171] + 15.0 * X[61] * W[129] + 16.0 * X[65] * W[87]
+            + 17.0 * X[69] * W[45] + 18.0 * X[73] * W[3])) / 18.0;
+    W[766] = (X[3] * X[75] + X[7] * X[71] + X[11] * X[67] + X[15] * X[63] + X[19] * X[59] + X[23] * X[55]
+            + X[27] * X[51] + X[31] * X[47] + X[35] * X[43]) * 2.0 + X[39] * X[39];
+    W[779] = W[13] * W[760];
+    W[780] = W[11] * W[759];
+    W[762] = W[4] * X[75] + W[46] * X[71] + W[88] * X[67] + W[130] * X[63] + W[172] * X[59] + W[214] * X[55]
+            + W[256] * X[51] + W[298] * X[47] + W[340] * X[43] + W[382] * X[39] + W[424] * X[35]
+            + W[466] * X[31] + W[508] * X[27] + W[550] * X[23] + W[592] * X[19] + W[634] * X[15]
+            + W[676] * X[11] + W[718] * X[7] + W[760] * X[3];
+    W[765] = X[3] * W[759] + X[7] * W[717] + X[11] * W[675] + X[15] * W[633] + X[19] * W[591]
+            + X[23] * W[549] + X[27] * W[507] + X[31] * W[465] + X[35] * W[423] + X[39] * W[381]
+            + X[43] * W[339] + X[47] * W[297] + X[51] * W[255] + X[55] * W[213] + X[59] * W[171]
+            + X[63] * W[129] + X[67] * W[87] + X[71] * W[45] + X[75] * W[3];
+    W[771] = W[10] * W[759] + W[52] * W[717] + W[94] * W[675] + W[136] * W[633] + W[178] * W[591]
+            + W[220] * W[549] + W[262] * W[507] + W[304] * W[465] + W[346] * W[423] + W[388] * W[381]
+            + W[430] * W[339] + W[472] * W[297] + W[514] * W[255] + W[556] * W[213] + W[598] * W[171]
+            + W[640] * W[129] + W[682] * W[87] + W[724] * W[45] + W[766] * W[3];
+    W[772] = W[4] * W[766] + W[46] * W[724] + W[88] * W[682] + W[130] * W[640] + W[172] * W[598]
+            + W[214] * W[556] + W[256] * W[514] + W[298] * W[472] + W[340] * W[430] + W[382] * W[388]
+            + W[424] * W[346] + W[466] * W[304] + W[508] * W[262] + W[550] * W[220] + W[592] * W[178]
+            + W[634] * W[136] + W[676] * W[94] + W[718] * W[52] + W[760] * W[10];
+    W[763] = W[1] * W[762];
+    W[784] = W[13] * W[771];
+    W[773] = W[16] * W[759] + W[58] * W[717] + W[100] * W[675] + W[142] * W[633] + W[184] * W[591]
+            + W[226] * W[549] + W[268] * W[507] + W[310] * W[465] + W[352] * W[423] + W[394] * W[381]
+            + W[436] * W[339] + W[478] * W[297] + W[520] * W[255] + W[562] * W[213] + W[604] * W[171]
+            + W[646] * W[129] + W[688] * W[87] + W[730] * W[45] + W[772] * W[3];
+    W[764] = X[74] + W[763];
+    W[774] = W[14] * W[773];
+    W[785] = W[784];
+    W[788] = W[31] * W[773];
+    W[789] = W[1] * W[773];
+    W[786] = -W[785];
+    W[775] = X[3] * W[764] + X[7] * W[722] + X[11] * W[680] + X[15] * W[638] + X[19] * W[596]
+            + X[23] * W[554] + X[27] * W[512] + X[31] * W[470] + X[35] * W[428] + X[39] * W[386]
+            + X[43] * W[344] + X[47] * W[302] + X[51] * W[260] + X[55] * W[218] + X[59] * W[176]
+            + X[63] * W[134] + X[67] * W[92] + X[71] * W[50] + X[75] * W[8];
+    W[781] = W[8] * W[765] + W[50] * W[723] + W[92] * W[681] + W[134] * W[639] + W[176] * W[597]
+            + W[218] * W[555] + W[260] * W[513] + W[302] * W[471] + W[344] * W[429] + W[386] * W[387]
+            + W[428] * W[345] + W[470] * W[303] + W[512] * W[261] + W[554] * W[219] + W[596] * W[177]
+            + W[638] * W[135] + W[680] * W[93] + W[722] * W[51] + W[764] * W[9];
+    return 0;
+}
+
+/* Lines 20 .. 34 of taylor_run's order 19, in the fourth unit. */
+EOMC_PART int
+cartpole_taylor_run_41(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[832] = W[823] + W[831];
+    W[818] = W[3] * W[817] + W[45] * W[775] + W[87] * W[733] + W[129] * W[691] + W[171] * W[649]
+            + W[213] * W[607] + W[255] * W[565] + W[297] * W[523] + W[339] * W[481] + W[381] * W[439]
+            + W[423] * W[397] + W[465] * W[355] + W[507] * W[313] + W[549] * W[271] + W[591] * W[229]
+            + W[633] * W[187] + W[675] * W[145] + W[717] * W[103] + W[759] * W[61] + W[801] * W[19];
+    W[819] = W[13] * W[818];
+    W[833] = W[13] * W[832];
+    W[820] = W[816] - W[819];
+    W[834] = W[830] - W[833];
+    W[835] = W[834] - W[820];
+    W[836] = W[835] - W[822];
+    X[80] = X[78] / 20.0;
+    X[81] = X[79] / 20.0;
+    W[838] = W[65] * W[797] + W[107] * W[755] + W[149] * W[713] + W[191] * W[671] + W[233] * W[629]
+            + W[275] * W[587] + W[317] * W[545] + W[359] * W[503] + W[401] * W[461] + W[443] * W[419]
+            + W[485] * W[377] + W[527] * W[335] + W[569] * W[293] + W[611] * W[251] + W[653] * W[209]
+            + W[695] * W[167] + W[737] * W[125] + W[779] * W[83] + W[821] * W[41] + W[828];
+    W[839] = W[65] * W[796] + W[107] * W[754] + W[149] * W[712] + W[191] * W[670] + W[233] * W[628]
+            + W[275] * W[586] + W[317] * W[544] + W[359] * W[502] + W[401] * W[460] + W[443] * W[418]
+            + W[485] * W[376] + W[527] * W[334] + W[569] * W[292] + W[611] * W[250] + W[653] * W[208]
+            + W[695] * W[166] + W[737] * W[124] + W[779] * W[82] + W[821] * W[40] + W[836];
+    if (solve(ctx, 19, NULL, W + 838))
+        return -1;
+    X[82] = W[838] / 20.0;
+    X[83] = W[839] / 20.0;
+    return 0;
+}
+
+#endif /* EOMC_EXTENDED */
+
+#endif /* EOMC_UNIT 4 */

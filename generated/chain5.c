@@ -1166,6 +1166,129 @@ chain5_place_velocity(eomc_real t, const eomc_real *q, const eomc_real *p,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define chain5_taylor_run_1 chain5_taylor_run_1_ext
+#define chain5_taylor_run_2 chain5_taylor_run_2_ext
+#define chain5_taylor_run_3 chain5_taylor_run_3_ext
+#define chain5_taylor_run_4 chain5_taylor_run_4_ext
+#define chain5_taylor_run_5 chain5_taylor_run_5_ext
+#define chain5_taylor_run_6 chain5_taylor_run_6_ext
+#define chain5_taylor_run_7 chain5_taylor_run_7_ext
+#define chain5_taylor_run_8 chain5_taylor_run_8_ext
+#define chain5_taylor_run_9 chain5_taylor_run_9_ext
+#define chain5_taylor_run_10 chain5_taylor_run_10_ext
+#define chain5_taylor_run_11 chain5_taylor_run_11_ext
+#define chain5_taylor_run_12 chain5_taylor_run_12_ext
+#define chain5_taylor_run_13 chain5_taylor_run_13_ext
+#define chain5_taylor_run_14 chain5_taylor_run_14_ext
+#define chain5_taylor_run_15 chain5_taylor_run_15_ext
+#define chain5_taylor_run_16 chain5_taylor_run_16_ext
+#define chain5_taylor_run_17 chain5_taylor_run_17_ext
+#define chain5_taylor_run_19 chain5_taylor_run_19_ext
+#define chain5_taylor_run_21 chain5_taylor_run_21_ext
+#define chain5_taylor_run_23 chain5_taylor_run_23_ext
+#define chain5_taylor_run_25 chain5_taylor_run_25_ext
+#define chain5_taylor_run_27 chain5_taylor_run_27_ext
+#define chain5_taylor_run_29 chain5_taylor_run_29_ext
+#define chain5_taylor_run_31 chain5_taylor_run_31_ext
+#define chain5_taylor_run_33 chain5_taylor_run_33_ext
+#define chain5_taylor_run_35 chain5_taylor_run_35_ext
+#define chain5_taylor_run_37 chain5_taylor_run_37_ext
+#define chain5_taylor_run_39 chain5_taylor_run_39_ext
+#define chain5_taylor_run_41 chain5_taylor_run_41_ext
+#define chain5_taylor_run_43 chain5_taylor_run_43_ext
+#define chain5_taylor_run_45 chain5_taylor_run_45_ext
+#define chain5_taylor_run_47 chain5_taylor_run_47_ext
+#define chain5_taylor_run_49 chain5_taylor_run_49_ext
+#define chain5_taylor_run_51 chain5_taylor_run_51_ext
+#define chain5_taylor_run_53 chain5_taylor_run_53_ext
+#define chain5_taylor_run_55 chain5_taylor_run_55_ext
+#define chain5_taylor_run_57 chain5_taylor_run_57_ext
+#define chain5_taylor_run_59 chain5_taylor_run_59_ext
+#define chain5_taylor_run_62 chain5_taylor_run_62_ext
+#define chain5_taylor_run_64 chain5_taylor_run_64_ext
+#define chain5_taylor_run_66 chain5_taylor_run_66_ext
+#define chain5_taylor_run_68 chain5_taylor_run_68_ext
+#define chain5_taylor_run_71 chain5_taylor_run_71_ext
+#define chain5_taylor_run_73 chain5_taylor_run_73_ext
+#define chain5_taylor_run_75 chain5_taylor_run_75_ext
+#define chain5_taylor_run_77 chain5_taylor_run_77_ext
+#define chain5_taylor_run_80 chain5_taylor_run_80_ext
+#define chain5_taylor_run_81 chain5_taylor_run_81_ext
+#define chain5_taylor_run_83 chain5_taylor_run_83_ext
+#define chain5_taylor_run_85 chain5_taylor_run_85_ext
+#define chain5_taylor_run_87 chain5_taylor_run_87_ext
+#define chain5_taylor_run_89 chain5_taylor_run_89_ext
+#define chain5_taylor_run_90 chain5_taylor_run_90_ext
+#define chain5_taylor_run_93 chain5_taylor_run_93_ext
+#define chain5_taylor_run_94 chain5_taylor_run_94_ext
+#define chain5_taylor_run_96 chain5_taylor_run_96_ext
+#define chain5_taylor_run_99 chain5_taylor_run_99_ext
+#define chain5_taylor_run_102 chain5_taylor_run_102_ext
+#define chain5_taylor_run_104 chain5_taylor_run_104_ext
+#define chain5_taylor_run_105 chain5_taylor_run_105_ext
+#define chain5_taylor_run_107 chain5_taylor_run_107_ext
+#define chain5_taylor_run_109 chain5_taylor_run_109_ext
+#define chain5_taylor_run_111 chain5_taylor_run_111_ext
+#define chain5_taylor_run_112 chain5_taylor_run_112_ext
+#define chain5_taylor_run_114 chain5_taylor_run_114_ext
+#define chain5_taylor_run_117 chain5_taylor_run_117_ext
+#define chain5_taylor_run_119 chain5_taylor_run_119_ext
+#define chain5_taylor_run_120 chain5_taylor_run_120_ext
+#define chain5_taylor_run_122 chain5_taylor_run_122_ext
+#define chain5_taylor_run_123 chain5_taylor_run_123_ext
+#define chain5_taylor_run_125 chain5_taylor_run_125_ext
+#define chain5_taylor_run_127 chain5_taylor_run_127_ext
+#define chain5_taylor_run_129 chain5_taylor_run_129_ext
+#define chain5_taylor_run_132 chain5_taylor_run_132_ext
+#define chain5_taylor_run_135 chain5_taylor_run_135_ext
+#define chain5_taylor_run_137 chain5_taylor_run_137_ext
+#define chain5_taylor_run_139 chain5_taylor_run_139_ext
+#define chain5_taylor_run_141 chain5_taylor_run_141_ext
+#define chain5_taylor_run_143 chain5_taylor_run_143_ext
+#define chain5_taylor_run_146 chain5_taylor_run_146_ext
+#define chain5_taylor_run_148 chain5_taylor_run_148_ext
+#define chain5_taylor_run_150 chain5_taylor_run_150_ext
+#define chain5_taylor_run_152 chain5_taylor_run_152_ext
+#define chain5_taylor_run_153 chain5_taylor_run_153_ext
+#define chain5_taylor_run_155 chain5_taylor_run_155_ext
+#define chain5_taylor_run_156 chain5_taylor_run_156_ext
+#define chain5_taylor_run_158 chain5_taylor_run_158_ext
+#define chain5_taylor_run_160 chain5_taylor_run_160_ext
+#define chain5_taylor_run_162 chain5_taylor_run_162_ext
+#define chain5_taylor_run_164 chain5_taylor_run_164_ext
+#define chain5_taylor_run_166 chain5_taylor_run_166_ext
+#define chain5_taylor_run_167 chain5_taylor_run_167_ext
+#define chain5_taylor_run_169 chain5_taylor_run_169_ext
+#define chain5_taylor_run_171 chain5_taylor_run_171_ext
+#define chain5_taylor_run_173 chain5_taylor_run_173_ext
+#define chain5_taylor_run_175 chain5_taylor_run_175_ext
+#define chain5_taylor_run_177 chain5_taylor_run_177_ext
+#define chain5_taylor_run_178 chain5_taylor_run_178_ext
+#define chain5_taylor_run_180 chain5_taylor_run_180_ext
+#define chain5_taylor_run_182 chain5_taylor_run_182_ext
+#define chain5_taylor_run_184 chain5_taylor_run_184_ext
+#define chain5_taylor_run_186 chain5_taylor_run_186_ext
+#define chain5_taylor_run_188 chain5_taylor_run_188_ext
+#define chain5_taylor_run_189 chain5_taylor_run_189_ext
+#define chain5_taylor_run_191 chain5_taylor_run_191_ext
+#define chain5_taylor_run_193 chain5_taylor_run_193_ext
+#define chain5_taylor_run_195 chain5_taylor_run_195_ext
+#define chain5_taylor_run_197 chain5_taylor_run_197_ext
+#define chain5_taylor_run_199 chain5_taylor_run_199_ext
+#define chain5_taylor_run_200 chain5_taylor_run_200_ext
+#define chain5_taylor_run_202 chain5_taylor_run_202_ext
+#define chain5_taylor_run_204 chain5_taylor_run_204_ext
+#define chain5_taylor_run_206 chain5_taylor_run_206_ext
+#define chain5_taylor_run_208 chain5_taylor_run_208_ext
+#define chain5_taylor_run_209 chain5_taylor_run_209_ext
+#define chain5_taylor_run_213 chain5_taylor_run_213_ext
+#define chain5_taylor_run_215 chain5_taylor_run_215_ext
+#define chain5_taylor_run_217 chain5_taylor_run_217_ext
+#define chain5_taylor_run_219 chain5_taylor_run_219_ext
+#define chain5_taylor_run_220 chain5_taylor_run_220_ext
+#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED
@@ -2180,375 +2303,13 @@ chain5_taylor(int k, int K, eomc_real t0, const eomc_real *p,
  * caller's hook (M_0 factored at k = 0), then / (k + 1).  Written out to
  * order 20, each recurrence's sum with its indices fixed (the same
  * arithmetic in the same order); above that 1, for the caller's loop. */
-/* Its terms are too many for the C compiler's optimizer, whose time grows
- * faster than they do; each is one statement on values in memory either
- * way (lowered.h, LOW_SERIES_OPTIMIZED_TERMS). */
-#if defined(__clang__)
-#define EOMC_UNOPTIMIZED __attribute__((optnone, noinline))
-#elif defined(__GNUC__)
-#define EOMC_UNOPTIMIZED __attribute__((optimize("O0"), noinline))
-#else
-#define EOMC_UNOPTIMIZED
-#endif
-static EOMC_UNOPTIMIZED int
-chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *T, eomc_real *X, eomc_tay_solve solve, void *ctx)
+/* Lines 120 .. 139 of taylor_run's order 1. */
+static EOMC_NOINLINE int
+chain5_taylor_run_18(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
 {
-    const int S = K + 1;
-    if (K > 20)
-        return 1;
-    (void)S, (void)T, (void)t0, (void)p, (void)u;
-    eomc_real W[4578]; /* slot s's coefficient j at W[j * 218 + s], but the
-                   * state's: X[j * 10 + i], q's then v's */
-    /* order 0 */
-    W[1] = sin(X[0]);
-    W[2] = cos(X[0]);
-    W[4] = X[0] + X[1];
-    W[32] = X[5] * X[5];
-    W[33] = p[3];
-    W[36] = X[5] + X[6];
-    W[56] = p[5];
-    W[57] = p[6];
-    W[59] = p[7];
-    W[62] = p[8];
-    W[65] = p[9];
-    W[5] = sin(W[4]);
-    W[6] = cos(W[4]);
-    W[10] = W[4] + X[2];
-    W[41] = X[7] + W[36];
-    W[68] = W[65] * W[1];
-    W[34] = W[1] * W[32];
-    W[35] = W[2] * W[32];
-    W[7] = W[1] + W[5];
-    W[8] = W[2] + W[6];
-    W[11] = sin(W[10]);
-    W[12] = cos(W[10]);
-    W[16] = W[10] + X[3];
-    W[46] = X[8] + W[41];
-    W[66] = W[62] * W[5];
-    W[37] = W[6] * W[36];
-    W[38] = W[5] * W[36];
-    W[13] = W[7] + W[11];
-    W[14] = W[8] + W[12];
-    W[17] = sin(W[16]);
-    W[18] = cos(W[16]);
-    W[22] = W[16] + X[4];
-    W[51] = X[9] + W[46];
-    W[63] = W[59] * W[11];
-    W[92] = W[5] + W[11];
-    W[96] = W[6] + W[12];
-    W[39] = W[36] * W[38];
-    W[40] = W[36] * W[37];
-    W[42] = W[12] * W[41];
-    W[43] = W[11] * W[41];
-    W[19] = W[13] + W[17];
-    W[20] = W[14] + W[18];
-    W[23] = sin(W[22]);
-    W[24] = cos(W[22]);
-    W[60] = W[57] * W[17];
-    W[93] = W[17] + W[92];
-    W[97] = W[18] + W[96];
-    W[122] = W[11] + W[17];
-    W[125] = W[12] + W[18];
-    W[161] = W[34] + W[39];
-    W[162] = W[35] + W[40];
-    W[44] = W[41] * W[43];
-    W[45] = W[41] * W[42];
-    W[47] = W[18] * W[46];
-    W[48] = W[17] * W[46];
-    W[25] = W[19] + W[23];
-    W[26] = W[20] + W[24];
-    W[58] = W[56] * W[23];
-    W[94] = W[23] + W[93];
-    W[98] = W[24] + W[97];
-    W[123] = W[23] + W[122];
-    W[126] = W[24] + W[125];
-    W[145] = W[18] + W[24];
-    W[148] = W[17] + W[23];
-    W[163] = W[44] + W[161];
-    W[164] = W[45] + W[162];
-    W[49] = W[46] * W[48];
-    W[50] = W[46] * W[47];
-    W[52] = W[24] * W[51];
-    W[53] = W[23] * W[51];
-    W[61] = W[58] - W[60];
-    W[73] = W[19] + W[25];
-    W[76] = W[20] + W[26];
-    W[101] = W[93] + W[94];
-    W[104] = W[97] + W[98];
-    W[129] = W[122] + W[123];
-    W[132] = W[125] + W[126];
-    W[146] = W[18] + W[145];
-    W[149] = W[17] + W[148];
-    W[165] = W[49] + W[163];
-    W[166] = W[50] + W[164];
-    W[54] = W[51] * W[53];
-    W[55] = W[51] * W[52];
-    W[70] = W[23] * W[25];
-    W[71] = W[24] * W[26];
-    W[95] = W[23] * W[94];
-    W[99] = W[24] * W[98];
-    W[124] = W[23] * W[123];
-    W[127] = W[24] * W[126];
-    W[151] = W[23] * W[148];
-    W[152] = W[24] * W[145];
-    W[64] = W[61] - W[63];
-    W[72] = W[70] + W[71];
-    W[79] = W[13] + W[73];
-    W[82] = W[14] + W[76];
-    W[100] = W[95] + W[99];
-    W[107] = W[92] + W[101];
-    W[110] = W[96] + W[104];
-    W[128] = W[124] + W[127];
-    W[135] = W[11] + W[129];
-    W[138] = W[12] + W[132];
-    W[153] = W[151] + W[152];
-    W[167] = W[54] + W[165];
-    W[168] = W[55] + W[166];
-    W[74] = W[17] * W[73];
-    W[77] = W[18] * W[76];
-    W[102] = W[17] * W[101];
-    W[105] = W[18] * W[104];
-    W[130] = W[17] * W[129];
-    W[133] = W[18] * W[132];
-    W[147] = W[18] * W[146];
-    W[150] = W[17] * W[149];
-    W[67] = W[64] - W[66];
-    W[75] = W[72] + W[74];
-    W[85] = W[7] + W[79];
-    W[88] = W[8] + W[82];
-    W[103] = W[100] + W[102];
-    W[113] = W[5] + W[107];
-    W[116] = W[6] + W[110];
-    W[131] = W[128] + W[130];
-    W[154] = W[150] + W[153];
-    W[157] = W[33] * W[72];
-    W[158] = W[33] * W[100];
-    W[159] = W[33] * W[128];
-    W[160] = W[33] * W[153];
-    W[171] = W[166] + W[168];
-    W[173] = W[165] + W[167];
-    W[80] = W[11] * W[79];
-    W[83] = W[12] * W[82];
-    W[108] = W[11] * W[107];
-    W[111] = W[12] * W[110];
-    W[136] = W[11] * W[135];
-    W[139] = W[12] * W[138];
-    W[169] = W[23] * W[168];
-    W[170] = W[24] * W[167];
-    W[69] = W[67] - W[68];
-    W[78] = W[75] + W[77];
-    W[106] = W[103] + W[105];
-    W[134] = W[131] + W[133];
-    W[155] = W[147] + W[154];
-    W[175] = W[164] + W[171];
-    W[177] = W[163] + W[173];
-    W[183] = W[169] - W[170];
-    W[190] = W[1] + W[85];
-    W[193] = W[2] + W[88];
-    W[86] = W[5] * W[85];
-    W[89] = W[6] * W[88];
-    W[114] = W[5] * W[113];
-    W[117] = W[6] * W[116];
-    W[172] = W[17] * W[171];
-    W[174] = W[18] * W[173];
-    W[81] = W[78] + W[80];
-    W[109] = W[106] + W[108];
-    W[137] = W[134] + W[136];
-    W[142] = W[33] * W[78];
-    W[143] = W[33] * W[106];
-    W[144] = W[33] * W[134];
-    W[156] = W[33] * W[155];
-    W[179] = W[162] + W[175];
-    W[181] = W[161] + W[177];
-    W[184] = W[172] + W[183];
-    W[188] = W[33] * W[183];
-    W[176] = W[11] * W[175];
-    W[178] = W[12] * W[177];
-    W[191] = W[1] * W[190];
-    W[194] = W[2] * W[193];
-    W[84] = W[81] + W[83];
-    W[112] = W[109] + W[111];
-    W[140] = W[137] + W[139];
-    W[185] = W[184] - W[174];
-    W[189] = W[58] + W[188];
-    W[203] = W[35] + W[179];
-    W[204] = W[34] + W[181];
-    W[180] = W[5] * W[179];
-    W[182] = W[6] * W[181];
-    W[87] = W[84] + W[86];
-    W[115] = W[112] + W[114];
-    W[120] = W[33] * W[84];
-    W[121] = W[33] * W[112];
-    W[141] = W[33] * W[140];
-    W[186] = W[33] * W[185];
-    W[197] = W[176] + W[185];
-    W[205] = W[1] * W[203];
-    W[207] = W[2] * W[204];
-    W[90] = W[87] + W[89];
-    W[118] = W[115] + W[117];
-    W[187] = W[61] + W[186];
-    W[198] = W[197] - W[178];
-    W[91] = W[33] * W[90];
-    W[119] = W[33] * W[118];
-    W[192] = W[90] + W[191];
-    W[199] = W[33] * W[198];
-    W[200] = W[180] + W[198];
-    W[195] = W[192] + W[194];
-    W[201] = W[200] - W[182];
-    W[212] = W[64] + W[199];
-    W[196] = W[33] * W[195];
-    W[202] = W[33] * W[201];
-    W[206] = W[201] + W[205];
-    W[208] = W[206] - W[207];
-    W[211] = W[67] + W[202];
-    W[209] = W[33] * W[208];
-    W[210] = W[69] + W[209];
-    X[10] = X[5];
-    X[11] = X[6];
-    X[12] = X[7];
-    X[13] = X[8];
-    X[14] = X[9];
-    W[213] = W[210];
-    W[214] = W[211];
-    W[215] = W[212];
-    W[216] = W[187];
-    W[217] = W[189];
-    {
-        const eomc_real M0[25] = {W[196], W[91], W[120], W[142], W[157], W[91], W[119],
-            W[121], W[143], W[158], W[120], W[121], W[141], W[144], W[159], W[142], W[143], W[144],
-            W[156], W[160], W[157], W[158], W[159], W[160], W[33]};
-        if (solve(ctx, 0, M0, W + 213))
-            return -1;
-    }
-    X[15] = W[213];
-    X[16] = W[214];
-    X[17] = W[215];
-    X[18] = W[216];
-    X[19] = W[217];
-    if (K == 1)
-        goto out;
-    /* order 1 */
-    W[219] = X[10] * W[2];
-    W[220] = -X[10] * W[1];
-    W[222] = X[10] + X[11];
-    W[250] = X[5] * X[15] * 2.0;
-    W[254] = X[15] + X[16];
-    W[223] = W[222] * W[6];
-    W[224] = -W[222] * W[5];
-    W[228] = W[222] + X[12];
-    W[259] = X[17] + W[254];
-    W[286] = W[65] * W[219];
-    W[252] = W[1] * W[250] + W[219] * W[32];
-    W[253] = W[2] * W[250] + W[220] * W[32];
-    W[225] = W[219] + W[223];
-    W[226] = W[220] + W[224];
-    W[229] = W[228] * W[12];
-    W[230] = -W[228] * W[11];
-    W[234] = W[228] + X[13];
-    W[264] = X[18] + W[259];
-    W[284] = W[62] * W[223];
-    W[255] = W[6] * W[254] + W[224] * W[36];
-    W[256] = W[5] * W[254] + W[223] * W[36];
-    W[231] = W[225] + W[229];
-    W[232] = W[226] + W[230];
-    W[235] = W[234] * W[18];
-    W[236] = -W[234] * W[17];
-    W[240] = W[234] + X[14];
-    W[269] = X[19] + W[264];
-    W[281] = W[59] * W[229];
-    W[310] = W[223] + W[229];
-    W[314] = W[224] + W[230];
-    W[257] = W[36] * W[256] + W[254] * W[38];
-    W[258] = W[36] * W[255] + W[254] * W[37];
-    W[260] = W[12] * W[259] + W[230] * W[41];
-    W[261] = W[11] * W[259] + W[229] * W[41];
-    W[237] = W[231] + W[235];
-    W[238] = W[232] + W[236];
-    W[241] = W[240] * W[24];
-    W[242] = -W[240] * W[23];
-    W[278] = W[57] * W[235];
-    W[311] = W[235] + W[310];
-    W[315] = W[236] + W[314];
-    W[340] = W[229] + W[235];
-    W[343] = W[230] + W[236];
-    W[379] = W[252] + W[257];
-    W[380] = W[253] + W[258];
-    W[262] = W[41] * W[261] + W[259] * W[43];
-    W[263] = W[41] * W[260] + W[259] * W[42];
-    W[265] = W[18] * W[264] + W[236] * W[46];
-    W[266] = W[17] * W[264] + W[235] * W[46];
-    W[243] = W[237] + W[241];
-    W[244] = W[238] + W[242];
-    W[276] = W[56] * W[241];
-    W[312] = W[241] + W[311];
-    W[316] = W[242] + W[315];
-    W[341] = W[241] + W[340];
-    W[344] = W[242] + W[343];
-    W[363] = W[236] + W[242];
-    W[366] = W[235] + W[241];
-    W[381] = W[262] + W[379];
-    W[382] = W[263] + W[380];
-    W[267] = W[46] * W[266] + W[264] * W[48];
-    W[268] = W[46] * W[265] + W[264] * W[47];
-    W[270] = W[24] * W[269] + W[242] * W[51];
-    W[271] = W[23] * W[269] + W[241] * W[51];
-    W[279] = W[276] - W[278];
-    W[291] = W[237] + W[243];
-    W[294] = W[238] + W[244];
-    W[319] = W[311] + W[312];
-    W[322] = W[315] + W[316];
-    W[347] = W[340] + W[341];
-    W[350] = W[343] + W[344];
-    W[364] = W[236] + W[363];
-    W[367] = W[235] + W[366];
-    W[383] = W[267] + W[381];
-    W[384] = W[268] + W[382];
-    W[272] = W[51] * W[271] + W[269] * W[53];
-    W[273] = W[51] * W[270] + W[269] * W[52];
-    W[288] = W[23] * W[243] + W[241] * W[25];
-    W[289] = W[24] * W[244] + W[242] * W[26];
-    W[313] = W[23] * W[312] + W[241] * W[94];
-    W[317] = W[24] * W[316] + W[242] * W[98];
-    W[342] = W[23] * W[341] + W[241] * W[123];
-    W[345] = W[24] * W[344] + W[242] * W[126];
-    W[369] = W[23] * W[366] + W[241] * W[148];
-    W[370] = W[24] * W[363] + W[242] * W[145];
-    W[282] = W[279] - W[281];
-    W[290] = W[288] + W[289];
-    W[297] = W[231] + W[291];
-    W[300] = W[232] + W[294];
-    W[318] = W[313] + W[317];
-    W[325] = W[310] + W[319];
-    W[328] = W[314] + W[322];
-    W[346] = W[342] + W[345];
-    W[353] = W[229] + W[347];
-    W[356] = W[230] + W[350];
-    W[371] = W[369] + W[370];
-    W[385] = W[272] + W[383];
-    W[386] = W[273] + W[384];
-    W[292] = W[17] * W[291] + W[235] * W[73];
-    W[295] = W[18] * W[294] + W[236] * W[76];
-    W[320] = W[17] * W[319] + W[235] * W[101];
-    W[323] = W[18] * W[322] + W[236] * W[104];
-    W[348] = W[17] * W[347] + W[235] * W[129];
-    W[351] = W[18] * W[350] + W[236] * W[132];
-    W[365] = W[18] * W[364] + W[236] * W[146];
-    W[368] = W[17] * W[367] + W[235] * W[149];
-    W[285] = W[282] - W[284];
-    W[293] = W[290] + W[292];
-    W[303] = W[225] + W[297];
-    W[306] = W[226] + W[300];
-    W[321] = W[318] + W[320];
-    W[331] = W[223] + W[325];
-    W[334] = W[224] + W[328];
-    W[349] = W[346] + W[348];
-    W[372] = W[368] + W[371];
-    W[375] = W[33] * W[290];
-    W[376] = W[33] * W[318];
-    W[377] = W[33] * W[346];
-    W[378] = W[33] * W[371];
-    W[389] = W[384] + W[386];
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[391] = W[383] + W[385];
     W[298] = W[11] * W[297] + W[229] * W[79];
     W[301] = W[12] * W[300] + W[230] * W[82];
@@ -2569,26 +2330,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[408] = W[219] + W[303];
     W[411] = W[220] + W[306];
     W[304] = W[5] * W[303] + W[223] * W[85];
-    W[307] = W[6] * W[306] + W[224] * W[88];
-    W[332] = W[5] * W[331] + W[223] * W[113];
-    W[335] = W[6] * W[334] + W[224] * W[116];
-    W[390] = W[17] * W[389] + W[235] * W[171];
-    W[392] = W[18] * W[391] + W[236] * W[173];
-    W[299] = W[296] + W[298];
-    W[327] = W[324] + W[326];
-    W[355] = W[352] + W[354];
-    W[360] = W[33] * W[296];
-    W[361] = W[33] * W[324];
-    W[362] = W[33] * W[352];
-    W[374] = W[33] * W[373];
-    W[397] = W[380] + W[393];
-    W[399] = W[379] + W[395];
-    W[402] = W[390] + W[401];
-    W[406] = W[33] * W[401];
-    W[394] = W[11] * W[393] + W[229] * W[175];
-    W[396] = W[12] * W[395] + W[230] * W[177];
-    W[409] = W[1] * W[408] + W[219] * W[190];
-    W[412] = W[2] * W[411] + W[220] * W[193];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 1. */
+static EOMC_NOINLINE int
+chain5_taylor_run_20(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[302] = W[299] + W[301];
     W[330] = W[327] + W[329];
     W[358] = W[355] + W[357];
@@ -2609,26 +2360,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[425] = W[2] * W[422] + W[220] * W[204];
     W[308] = W[305] + W[307];
     W[336] = W[333] + W[335];
-    W[405] = W[279] + W[404];
-    W[416] = W[415] - W[396];
-    W[309] = W[33] * W[308];
-    W[337] = W[33] * W[336];
-    W[410] = W[308] + W[409];
-    W[417] = W[33] * W[416];
-    W[418] = W[398] + W[416];
-    W[413] = W[410] + W[412];
-    W[419] = W[418] - W[400];
-    W[430] = W[282] + W[417];
-    W[414] = W[33] * W[413];
-    W[420] = W[33] * W[419];
-    W[424] = W[419] + W[423];
-    W[426] = W[424] - W[425];
-    W[429] = W[285] + W[420];
-    W[427] = W[33] * W[426];
-    W[428] = W[287] + W[427];
-    X[20] = X[15] / 2.0;
-    X[21] = X[16] / 2.0;
-    X[22] = X[17] / 2.0;
+    return 0;
+}
+
+/* Lines 200 .. 212 of taylor_run's order 1. */
+static EOMC_NOINLINE int
+chain5_taylor_run_22(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[23] = X[18] / 2.0;
     X[24] = X[19] / 2.0;
     W[431] = W[414] * W[213] + W[309] * W[214] + W[338] * W[215] + W[360] * W[216] + W[375] * W[217]
@@ -2647,29 +2388,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[27] = W[433] / 2.0;
     X[28] = W[434] / 2.0;
     X[29] = W[435] / 2.0;
-    if (K == 2)
-        goto out;
-    /* order 2 */
-    W[437] = (X[10] * W[220] + 2.0 * X[20] * W[2]) / 2.0;
-    W[438] = -((X[10] * W[219] + 2.0 * X[20] * W[1])) / 2.0;
-    W[440] = X[20] + X[21];
-    W[468] = X[5] * X[25] * 2.0 + X[15] * X[15];
-    W[472] = X[25] + X[26];
-    W[441] = (W[222] * W[224] + 2.0 * W[440] * W[6]) / 2.0;
-    W[442] = -((W[222] * W[223] + 2.0 * W[440] * W[5])) / 2.0;
-    W[446] = W[440] + X[22];
-    W[477] = X[27] + W[472];
-    W[504] = W[65] * W[437];
-    W[470] = W[1] * W[468] + W[219] * W[250] + W[437] * W[32];
-    W[471] = W[2] * W[468] + W[220] * W[250] + W[438] * W[32];
-    W[443] = W[437] + W[441];
-    W[444] = W[438] + W[442];
-    W[447] = (W[228] * W[230] + 2.0 * W[446] * W[12]) / 2.0;
-    W[448] = -((W[228] * W[229] + 2.0 * W[446] * W[11])) / 2.0;
-    W[452] = W[446] + X[23];
-    W[482] = X[28] + W[477];
-    W[502] = W[62] * W[441];
-    W[473] = W[6] * W[472] + W[224] * W[254] + W[442] * W[36];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+chain5_taylor_run_24(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[474] = W[5] * W[472] + W[223] * W[254] + W[441] * W[36];
     W[449] = W[443] + W[447];
     W[450] = W[444] + W[448];
@@ -2690,26 +2418,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[460] = -((W[240] * W[241] + 2.0 * W[458] * W[23])) / 2.0;
     W[496] = W[57] * W[453];
     W[529] = W[453] + W[528];
-    W[533] = W[454] + W[532];
-    W[558] = W[447] + W[453];
-    W[561] = W[448] + W[454];
-    W[597] = W[470] + W[475];
-    W[598] = W[471] + W[476];
-    W[480] = W[41] * W[479] + W[259] * W[261] + W[477] * W[43];
-    W[481] = W[41] * W[478] + W[259] * W[260] + W[477] * W[42];
-    W[483] = W[18] * W[482] + W[236] * W[264] + W[454] * W[46];
-    W[484] = W[17] * W[482] + W[235] * W[264] + W[453] * W[46];
-    W[461] = W[455] + W[459];
-    W[462] = W[456] + W[460];
-    W[494] = W[56] * W[459];
-    W[530] = W[459] + W[529];
-    W[534] = W[460] + W[533];
-    W[559] = W[459] + W[558];
-    W[562] = W[460] + W[561];
-    W[581] = W[454] + W[460];
-    W[584] = W[453] + W[459];
-    W[599] = W[480] + W[597];
-    W[600] = W[481] + W[598];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+chain5_taylor_run_26(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[485] = W[46] * W[484] + W[264] * W[266] + W[482] * W[48];
     W[486] = W[46] * W[483] + W[264] * W[265] + W[482] * W[47];
     W[488] = W[24] * W[487] + W[242] * W[269] + W[460] * W[51];
@@ -2730,26 +2448,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[506] = W[23] * W[461] + W[241] * W[243] + W[459] * W[25];
     W[507] = W[24] * W[462] + W[242] * W[244] + W[460] * W[26];
     W[531] = W[23] * W[530] + W[241] * W[312] + W[459] * W[94];
-    W[535] = W[24] * W[534] + W[242] * W[316] + W[460] * W[98];
-    W[560] = W[23] * W[559] + W[241] * W[341] + W[459] * W[123];
-    W[563] = W[24] * W[562] + W[242] * W[344] + W[460] * W[126];
-    W[587] = W[23] * W[584] + W[241] * W[366] + W[459] * W[148];
-    W[588] = W[24] * W[581] + W[242] * W[363] + W[460] * W[145];
-    W[500] = W[497] - W[499];
-    W[508] = W[506] + W[507];
-    W[515] = W[449] + W[509];
-    W[518] = W[450] + W[512];
-    W[536] = W[531] + W[535];
-    W[543] = W[528] + W[537];
-    W[546] = W[532] + W[540];
-    W[564] = W[560] + W[563];
-    W[571] = W[447] + W[565];
-    W[574] = W[448] + W[568];
-    W[589] = W[587] + W[588];
-    W[603] = W[490] + W[601];
-    W[604] = W[491] + W[602];
-    W[510] = W[17] * W[509] + W[235] * W[291] + W[453] * W[73];
-    W[513] = W[18] * W[512] + W[236] * W[294] + W[454] * W[76];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+chain5_taylor_run_28(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[538] = W[17] * W[537] + W[235] * W[319] + W[453] * W[101];
     W[541] = W[18] * W[540] + W[236] * W[322] + W[454] * W[104];
     W[566] = W[17] * W[565] + W[235] * W[347] + W[453] * W[129];
@@ -2770,26 +2478,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[595] = W[33] * W[564];
     W[596] = W[33] * W[589];
     W[607] = W[602] + W[604];
-    W[609] = W[601] + W[603];
-    W[516] = W[11] * W[515] + W[229] * W[297] + W[447] * W[79];
-    W[519] = W[12] * W[518] + W[230] * W[300] + W[448] * W[82];
-    W[544] = W[11] * W[543] + W[229] * W[325] + W[447] * W[107];
-    W[547] = W[12] * W[546] + W[230] * W[328] + W[448] * W[110];
-    W[572] = W[11] * W[571] + W[229] * W[353] + W[447] * W[135];
-    W[575] = W[12] * W[574] + W[230] * W[356] + W[448] * W[138];
-    W[605] = W[23] * W[604] + W[241] * W[386] + W[459] * W[168];
-    W[606] = W[24] * W[603] + W[242] * W[385] + W[460] * W[167];
-    W[505] = W[503] - W[504];
-    W[514] = W[511] + W[513];
-    W[542] = W[539] + W[541];
-    W[570] = W[567] + W[569];
-    W[591] = W[583] + W[590];
-    W[611] = W[600] + W[607];
-    W[613] = W[599] + W[609];
-    W[619] = W[605] - W[606];
-    W[626] = W[437] + W[521];
-    W[629] = W[438] + W[524];
-    W[522] = W[5] * W[521] + W[223] * W[303] + W[441] * W[85];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+chain5_taylor_run_30(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[525] = W[6] * W[524] + W[224] * W[306] + W[442] * W[88];
     W[550] = W[5] * W[549] + W[223] * W[331] + W[441] * W[113];
     W[553] = W[6] * W[552] + W[224] * W[334] + W[442] * W[116];
@@ -2810,26 +2508,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[614] = W[12] * W[613] + W[230] * W[395] + W[448] * W[177];
     W[627] = W[1] * W[626] + W[219] * W[408] + W[437] * W[190];
     W[630] = W[2] * W[629] + W[220] * W[411] + W[438] * W[193];
-    W[520] = W[517] + W[519];
-    W[548] = W[545] + W[547];
-    W[576] = W[573] + W[575];
-    W[621] = W[620] - W[610];
-    W[625] = W[494] + W[624];
-    W[639] = W[471] + W[615];
-    W[640] = W[470] + W[617];
-    W[616] = W[5] * W[615] + W[223] * W[397] + W[441] * W[179];
-    W[618] = W[6] * W[617] + W[224] * W[399] + W[442] * W[181];
-    W[523] = W[520] + W[522];
-    W[551] = W[548] + W[550];
-    W[556] = W[33] * W[520];
-    W[557] = W[33] * W[548];
-    W[577] = W[33] * W[576];
-    W[622] = W[33] * W[621];
-    W[633] = W[612] + W[621];
-    W[641] = W[1] * W[639] + W[219] * W[421] + W[437] * W[203];
-    W[643] = W[2] * W[640] + W[220] * W[422] + W[438] * W[204];
-    W[526] = W[523] + W[525];
-    W[554] = W[551] + W[553];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+chain5_taylor_run_32(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[623] = W[497] + W[622];
     W[634] = W[633] - W[614];
     W[527] = W[33] * W[526];
@@ -2850,32 +2538,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[30] = X[25] / 3.0;
     X[31] = X[26] / 3.0;
     X[32] = X[27] / 3.0;
-    X[33] = X[28] / 3.0;
-    X[34] = X[29] / 3.0;
-    W[649] = W[414] * W[431] + W[632] * W[213] + W[309] * W[432] + W[527] * W[214] + W[338] * W[433]
-            + W[556] * W[215] + W[360] * W[434] + W[578] * W[216] + W[375] * W[435] + W[593] * W[217]
-            + W[646];
-    W[650] = W[309] * W[431] + W[527] * W[213] + W[337] * W[432] + W[555] * W[214] + W[339] * W[433]
-            + W[557] * W[215] + W[361] * W[434] + W[579] * W[216] + W[376] * W[435] + W[594] * W[217]
-            + W[647];
-    W[651] = W[338] * W[431] + W[556] * W[213] + W[339] * W[432] + W[557] * W[214] + W[359] * W[433]
-            + W[577] * W[215] + W[362] * W[434] + W[580] * W[216] + W[377] * W[435] + W[595] * W[217]
-            + W[648];
-    W[652] = W[360] * W[431] + W[578] * W[213] + W[361] * W[432] + W[579] * W[214] + W[362] * W[433]
-            + W[580] * W[215] + W[374] * W[434] + W[592] * W[216] + W[378] * W[435] + W[596] * W[217]
-            + W[623];
-    W[653] = W[375] * W[431] + W[593] * W[213] + W[376] * W[432] + W[594] * W[214] + W[377] * W[433]
-            + W[595] * W[215] + W[378] * W[434] + W[596] * W[216] + W[625];
-    if (solve(ctx, 2, NULL, W + 649))
-        return -1;
-    X[35] = W[649] / 3.0;
-    X[36] = W[650] / 3.0;
-    X[37] = W[651] / 3.0;
-    X[38] = W[652] / 3.0;
-    X[39] = W[653] / 3.0;
-    if (K == 3)
-        goto out;
-    /* order 3 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+chain5_taylor_run_34(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[655] = (X[10] * W[438] + 2.0 * X[20] * W[220] + 3.0 * X[30] * W[2]) / 3.0;
     W[656] = -((X[10] * W[437] + 2.0 * X[20] * W[219] + 3.0 * X[30] * W[1])) / 3.0;
     W[658] = X[30] + X[31];
@@ -2896,26 +2568,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[700] = X[38] + W[695];
     W[720] = W[62] * W[659];
     W[691] = W[6] * W[690] + W[224] * W[472] + W[442] * W[254] + W[660] * W[36];
-    W[692] = W[5] * W[690] + W[223] * W[472] + W[441] * W[254] + W[659] * W[36];
-    W[667] = W[661] + W[665];
-    W[668] = W[662] + W[666];
-    W[671] = (W[234] * W[454] + 2.0 * W[452] * W[236] + 3.0 * W[670] * W[18]) / 3.0;
-    W[672] = -((W[234] * W[453] + 2.0 * W[452] * W[235] + 3.0 * W[670] * W[17])) / 3.0;
-    W[676] = W[670] + X[34];
-    W[705] = X[39] + W[700];
-    W[717] = W[59] * W[665];
-    W[746] = W[659] + W[665];
-    W[750] = W[660] + W[666];
-    W[693] = W[36] * W[692] + W[254] * W[474] + W[472] * W[256] + W[690] * W[38];
-    W[694] = W[36] * W[691] + W[254] * W[473] + W[472] * W[255] + W[690] * W[37];
-    W[696] = W[12] * W[695] + W[230] * W[477] + W[448] * W[259] + W[666] * W[41];
-    W[697] = W[11] * W[695] + W[229] * W[477] + W[447] * W[259] + W[665] * W[41];
-    W[673] = W[667] + W[671];
-    W[674] = W[668] + W[672];
-    W[677] = (W[240] * W[460] + 2.0 * W[458] * W[242] + 3.0 * W[676] * W[24]) / 3.0;
-    W[678] = -((W[240] * W[459] + 2.0 * W[458] * W[241] + 3.0 * W[676] * W[23])) / 3.0;
-    W[714] = W[57] * W[671];
-    W[747] = W[671] + W[746];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+chain5_taylor_run_36(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[751] = W[672] + W[750];
     W[776] = W[665] + W[671];
     W[779] = W[666] + W[672];
@@ -2936,26 +2598,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[802] = W[671] + W[677];
     W[817] = W[698] + W[815];
     W[818] = W[699] + W[816];
-    W[703] = W[46] * W[702] + W[264] * W[484] + W[482] * W[266] + W[700] * W[48];
-    W[704] = W[46] * W[701] + W[264] * W[483] + W[482] * W[265] + W[700] * W[47];
-    W[706] = W[24] * W[705] + W[242] * W[487] + W[460] * W[269] + W[678] * W[51];
-    W[707] = W[23] * W[705] + W[241] * W[487] + W[459] * W[269] + W[677] * W[51];
-    W[715] = W[712] - W[714];
-    W[727] = W[673] + W[679];
-    W[730] = W[674] + W[680];
-    W[755] = W[747] + W[748];
-    W[758] = W[751] + W[752];
-    W[783] = W[776] + W[777];
-    W[786] = W[779] + W[780];
-    W[800] = W[672] + W[799];
-    W[803] = W[671] + W[802];
-    W[819] = W[703] + W[817];
-    W[820] = W[704] + W[818];
-    W[708] = W[51] * W[707] + W[269] * W[489] + W[487] * W[271] + W[705] * W[53];
-    W[709] = W[51] * W[706] + W[269] * W[488] + W[487] * W[270] + W[705] * W[52];
-    W[724] = W[23] * W[679] + W[241] * W[461] + W[459] * W[243] + W[677] * W[25];
-    W[725] = W[24] * W[680] + W[242] * W[462] + W[460] * W[244] + W[678] * W[26];
-    W[749] = W[23] * W[748] + W[241] * W[530] + W[459] * W[312] + W[677] * W[94];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+chain5_taylor_run_38(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[753] = W[24] * W[752] + W[242] * W[534] + W[460] * W[316] + W[678] * W[98];
     W[778] = W[23] * W[777] + W[241] * W[559] + W[459] * W[341] + W[677] * W[123];
     W[781] = W[24] * W[780] + W[242] * W[562] + W[460] * W[344] + W[678] * W[126];
@@ -2976,26 +2628,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[822] = W[709] + W[820];
     W[728] = W[17] * W[727] + W[235] * W[509] + W[453] * W[291] + W[671] * W[73];
     W[731] = W[18] * W[730] + W[236] * W[512] + W[454] * W[294] + W[672] * W[76];
-    W[756] = W[17] * W[755] + W[235] * W[537] + W[453] * W[319] + W[671] * W[101];
-    W[759] = W[18] * W[758] + W[236] * W[540] + W[454] * W[322] + W[672] * W[104];
-    W[784] = W[17] * W[783] + W[235] * W[565] + W[453] * W[347] + W[671] * W[129];
-    W[787] = W[18] * W[786] + W[236] * W[568] + W[454] * W[350] + W[672] * W[132];
-    W[801] = W[18] * W[800] + W[236] * W[582] + W[454] * W[364] + W[672] * W[146];
-    W[804] = W[17] * W[803] + W[235] * W[585] + W[453] * W[367] + W[671] * W[149];
-    W[721] = W[718] - W[720];
-    W[729] = W[726] + W[728];
-    W[739] = W[661] + W[733];
-    W[742] = W[662] + W[736];
-    W[757] = W[754] + W[756];
-    W[767] = W[659] + W[761];
-    W[770] = W[660] + W[764];
-    W[785] = W[782] + W[784];
-    W[808] = W[804] + W[807];
-    W[811] = W[33] * W[726];
-    W[812] = W[33] * W[754];
-    W[813] = W[33] * W[782];
-    W[814] = W[33] * W[807];
-    W[825] = W[820] + W[822];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+chain5_taylor_run_40(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[827] = W[819] + W[821];
     W[734] = W[11] * W[733] + W[229] * W[515] + W[447] * W[297] + W[665] * W[79];
     W[737] = W[12] * W[736] + W[230] * W[518] + W[448] * W[300] + W[666] * W[82];
@@ -3016,26 +2658,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[844] = W[655] + W[739];
     W[847] = W[656] + W[742];
     W[740] = W[5] * W[739] + W[223] * W[521] + W[441] * W[303] + W[659] * W[85];
-    W[743] = W[6] * W[742] + W[224] * W[524] + W[442] * W[306] + W[660] * W[88];
-    W[768] = W[5] * W[767] + W[223] * W[549] + W[441] * W[331] + W[659] * W[113];
-    W[771] = W[6] * W[770] + W[224] * W[552] + W[442] * W[334] + W[660] * W[116];
-    W[826] = W[17] * W[825] + W[235] * W[607] + W[453] * W[389] + W[671] * W[171];
-    W[828] = W[18] * W[827] + W[236] * W[609] + W[454] * W[391] + W[672] * W[173];
-    W[735] = W[732] + W[734];
-    W[763] = W[760] + W[762];
-    W[791] = W[788] + W[790];
-    W[796] = W[33] * W[732];
-    W[797] = W[33] * W[760];
-    W[798] = W[33] * W[788];
-    W[810] = W[33] * W[809];
-    W[833] = W[816] + W[829];
-    W[835] = W[815] + W[831];
-    W[838] = W[826] + W[837];
-    W[842] = W[33] * W[837];
-    W[830] = W[11] * W[829] + W[229] * W[611] + W[447] * W[393] + W[665] * W[175];
-    W[832] = W[12] * W[831] + W[230] * W[613] + W[448] * W[395] + W[666] * W[177];
-    W[845] = W[1] * W[844] + W[219] * W[626] + W[437] * W[408] + W[655] * W[190];
-    W[848] = W[2] * W[847] + W[220] * W[629] + W[438] * W[411] + W[656] * W[193];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+chain5_taylor_run_42(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[738] = W[735] + W[737];
     W[766] = W[763] + W[765];
     W[794] = W[791] + W[793];
@@ -3056,26 +2688,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[861] = W[2] * W[858] + W[220] * W[640] + W[438] * W[422] + W[656] * W[204];
     W[744] = W[741] + W[743];
     W[772] = W[769] + W[771];
-    W[841] = W[715] + W[840];
-    W[852] = W[851] - W[832];
-    W[745] = W[33] * W[744];
-    W[773] = W[33] * W[772];
-    W[846] = W[744] + W[845];
-    W[853] = W[33] * W[852];
-    W[854] = W[834] + W[852];
-    W[849] = W[846] + W[848];
-    W[855] = W[854] - W[836];
-    W[866] = W[718] + W[853];
-    W[850] = W[33] * W[849];
-    W[856] = W[33] * W[855];
-    W[860] = W[855] + W[859];
-    W[862] = W[860] - W[861];
-    W[865] = W[721] + W[856];
-    W[863] = W[33] * W[862];
-    W[864] = W[723] + W[863];
-    X[40] = X[35] / 4.0;
-    X[41] = X[36] / 4.0;
-    X[42] = X[37] / 4.0;
+    return 0;
+}
+
+/* Lines 200 .. 212 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+chain5_taylor_run_44(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[43] = X[38] / 4.0;
     X[44] = X[39] / 4.0;
     W[867] = W[414] * W[649] + W[632] * W[431] + W[850] * W[213] + W[309] * W[650] + W[527] * W[432]
@@ -3104,29 +2726,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[47] = W[869] / 4.0;
     X[48] = W[870] / 4.0;
     X[49] = W[871] / 4.0;
-    if (K == 4)
-        goto out;
-    /* order 4 */
-    W[873] = (X[10] * W[656] + 2.0 * X[20] * W[438] + 3.0 * X[30] * W[220] + 4.0 * X[40] * W[2]) / 4.0;
-    W[874] = -((X[10] * W[655] + 2.0 * X[20] * W[437] + 3.0 * X[30] * W[219] + 4.0 * X[40] * W[1])) / 4.0;
-    W[876] = X[40] + X[41];
-    W[904] = (X[5] * X[45] + X[15] * X[35]) * 2.0 + X[25] * X[25];
-    W[908] = X[45] + X[46];
-    W[877] = (W[222] * W[660] + 2.0 * W[440] * W[442] + 3.0 * W[658] * W[224] + 4.0 * W[876] * W[6]) / 4.0;
-    W[878] = -((W[222] * W[659] + 2.0 * W[440] * W[441] + 3.0 * W[658] * W[223] + 4.0 * W[876] * W[5])) / 4.0;
-    W[882] = W[876] + X[42];
-    W[913] = X[47] + W[908];
-    W[940] = W[65] * W[873];
-    W[906] = W[1] * W[904] + W[219] * W[686] + W[437] * W[468] + W[655] * W[250] + W[873] * W[32];
-    W[907] = W[2] * W[904] + W[220] * W[686] + W[438] * W[468] + W[656] * W[250] + W[874] * W[32];
-    W[879] = W[873] + W[877];
-    W[880] = W[874] + W[878];
-    W[883] = (W[228] * W[666] + 2.0 * W[446] * W[448] + 3.0 * W[664] * W[230] + 4.0 * W[882] * W[12]) / 4.0;
-    W[884] = -((W[228] * W[665] + 2.0 * W[446] * W[447] + 3.0 * W[664] * W[229] + 4.0 * W[882] * W[11])) / 4.0;
-    W[888] = W[882] + X[43];
-    W[918] = X[48] + W[913];
-    W[938] = W[62] * W[877];
-    W[909] = W[6] * W[908] + W[224] * W[690] + W[442] * W[472] + W[660] * W[254] + W[878] * W[36];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 4. */
+static EOMC_NOINLINE int
+chain5_taylor_run_46(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[910] = W[5] * W[908] + W[223] * W[690] + W[441] * W[472] + W[659] * W[254] + W[877] * W[36];
     W[885] = W[879] + W[883];
     W[886] = W[880] + W[884];
@@ -3147,26 +2756,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[896] = -((W[240] * W[677] + 2.0 * W[458] * W[459] + 3.0 * W[676] * W[241] + 4.0 * W[894] * W[23])) / 4.0;
     W[932] = W[57] * W[889];
     W[965] = W[889] + W[964];
-    W[969] = W[890] + W[968];
-    W[994] = W[883] + W[889];
-    W[997] = W[884] + W[890];
-    W[1033] = W[906] + W[911];
-    W[1034] = W[907] + W[912];
-    W[916] = W[41] * W[915] + W[259] * W[697] + W[477] * W[479] + W[695] * W[261] + W[913] * W[43];
-    W[917] = W[41] * W[914] + W[259] * W[696] + W[477] * W[478] + W[695] * W[260] + W[913] * W[42];
-    W[919] = W[18] * W[918] + W[236] * W[700] + W[454] * W[482] + W[672] * W[264] + W[890] * W[46];
-    W[920] = W[17] * W[918] + W[235] * W[700] + W[453] * W[482] + W[671] * W[264] + W[889] * W[46];
-    W[897] = W[891] + W[895];
-    W[898] = W[892] + W[896];
-    W[930] = W[56] * W[895];
-    W[966] = W[895] + W[965];
-    W[970] = W[896] + W[969];
-    W[995] = W[895] + W[994];
-    W[998] = W[896] + W[997];
-    W[1017] = W[890] + W[896];
-    W[1020] = W[889] + W[895];
-    W[1035] = W[916] + W[1033];
-    W[1036] = W[917] + W[1034];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 4. */
+static EOMC_NOINLINE int
+chain5_taylor_run_48(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[921] = W[46] * W[920] + W[264] * W[702] + W[482] * W[484] + W[700] * W[266] + W[918] * W[48];
     W[922] = W[46] * W[919] + W[264] * W[701] + W[482] * W[483] + W[700] * W[265] + W[918] * W[47];
     W[924] = W[24] * W[923] + W[242] * W[705] + W[460] * W[487] + W[678] * W[269] + W[896] * W[51];
@@ -3187,26 +2786,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[942] = W[23] * W[897] + W[241] * W[679] + W[459] * W[461] + W[677] * W[243] + W[895] * W[25];
     W[943] = W[24] * W[898] + W[242] * W[680] + W[460] * W[462] + W[678] * W[244] + W[896] * W[26];
     W[967] = W[23] * W[966] + W[241] * W[748] + W[459] * W[530] + W[677] * W[312] + W[895] * W[94];
-    W[971] = W[24] * W[970] + W[242] * W[752] + W[460] * W[534] + W[678] * W[316] + W[896] * W[98];
-    W[996] = W[23] * W[995] + W[241] * W[777] + W[459] * W[559] + W[677] * W[341] + W[895] * W[123];
-    W[999] = W[24] * W[998] + W[242] * W[780] + W[460] * W[562] + W[678] * W[344] + W[896] * W[126];
-    W[1023] = W[23] * W[1020] + W[241] * W[802] + W[459] * W[584] + W[677] * W[366] + W[895] * W[148];
-    W[1024] = W[24] * W[1017] + W[242] * W[799] + W[460] * W[581] + W[678] * W[363] + W[896] * W[145];
-    W[936] = W[933] - W[935];
-    W[944] = W[942] + W[943];
-    W[951] = W[885] + W[945];
-    W[954] = W[886] + W[948];
-    W[972] = W[967] + W[971];
-    W[979] = W[964] + W[973];
-    W[982] = W[968] + W[976];
-    W[1000] = W[996] + W[999];
-    W[1007] = W[883] + W[1001];
-    W[1010] = W[884] + W[1004];
-    W[1025] = W[1023] + W[1024];
-    W[1039] = W[926] + W[1037];
-    W[1040] = W[927] + W[1038];
-    W[946] = W[17] * W[945] + W[235] * W[727] + W[453] * W[509] + W[671] * W[291] + W[889] * W[73];
-    W[949] = W[18] * W[948] + W[236] * W[730] + W[454] * W[512] + W[672] * W[294] + W[890] * W[76];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 4. */
+static EOMC_NOINLINE int
+chain5_taylor_run_50(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[974] = W[17] * W[973] + W[235] * W[755] + W[453] * W[537] + W[671] * W[319] + W[889] * W[101];
     W[977] = W[18] * W[976] + W[236] * W[758] + W[454] * W[540] + W[672] * W[322] + W[890] * W[104];
     W[1002] = W[17] * W[1001] + W[235] * W[783] + W[453] * W[565] + W[671] * W[347] + W[889] * W[129];
@@ -3227,26 +2816,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1031] = W[33] * W[1000];
     W[1032] = W[33] * W[1025];
     W[1043] = W[1038] + W[1040];
-    W[1045] = W[1037] + W[1039];
-    W[952] = W[11] * W[951] + W[229] * W[733] + W[447] * W[515] + W[665] * W[297] + W[883] * W[79];
-    W[955] = W[12] * W[954] + W[230] * W[736] + W[448] * W[518] + W[666] * W[300] + W[884] * W[82];
-    W[980] = W[11] * W[979] + W[229] * W[761] + W[447] * W[543] + W[665] * W[325] + W[883] * W[107];
-    W[983] = W[12] * W[982] + W[230] * W[764] + W[448] * W[546] + W[666] * W[328] + W[884] * W[110];
-    W[1008] = W[11] * W[1007] + W[229] * W[789] + W[447] * W[571] + W[665] * W[353] + W[883] * W[135];
-    W[1011] = W[12] * W[1010] + W[230] * W[792] + W[448] * W[574] + W[666] * W[356] + W[884] * W[138];
-    W[1041] = W[23] * W[1040] + W[241] * W[822] + W[459] * W[604] + W[677] * W[386] + W[895] * W[168];
-    W[1042] = W[24] * W[1039] + W[242] * W[821] + W[460] * W[603] + W[678] * W[385] + W[896] * W[167];
-    W[941] = W[939] - W[940];
-    W[950] = W[947] + W[949];
-    W[978] = W[975] + W[977];
-    W[1006] = W[1003] + W[1005];
-    W[1027] = W[1019] + W[1026];
-    W[1047] = W[1036] + W[1043];
-    W[1049] = W[1035] + W[1045];
-    W[1055] = W[1041] - W[1042];
-    W[1062] = W[873] + W[957];
-    W[1065] = W[874] + W[960];
-    W[958] = W[5] * W[957] + W[223] * W[739] + W[441] * W[521] + W[659] * W[303] + W[877] * W[85];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 4. */
+static EOMC_NOINLINE int
+chain5_taylor_run_52(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[961] = W[6] * W[960] + W[224] * W[742] + W[442] * W[524] + W[660] * W[306] + W[878] * W[88];
     W[986] = W[5] * W[985] + W[223] * W[767] + W[441] * W[549] + W[659] * W[331] + W[877] * W[113];
     W[989] = W[6] * W[988] + W[224] * W[770] + W[442] * W[552] + W[660] * W[334] + W[878] * W[116];
@@ -3267,26 +2846,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1050] = W[12] * W[1049] + W[230] * W[831] + W[448] * W[613] + W[666] * W[395] + W[884] * W[177];
     W[1063] = W[1] * W[1062] + W[219] * W[844] + W[437] * W[626] + W[655] * W[408] + W[873] * W[190];
     W[1066] = W[2] * W[1065] + W[220] * W[847] + W[438] * W[629] + W[656] * W[411] + W[874] * W[193];
-    W[956] = W[953] + W[955];
-    W[984] = W[981] + W[983];
-    W[1012] = W[1009] + W[1011];
-    W[1057] = W[1056] - W[1046];
-    W[1061] = W[930] + W[1060];
-    W[1075] = W[907] + W[1051];
-    W[1076] = W[906] + W[1053];
-    W[1052] = W[5] * W[1051] + W[223] * W[833] + W[441] * W[615] + W[659] * W[397] + W[877] * W[179];
-    W[1054] = W[6] * W[1053] + W[224] * W[835] + W[442] * W[617] + W[660] * W[399] + W[878] * W[181];
-    W[959] = W[956] + W[958];
-    W[987] = W[984] + W[986];
-    W[992] = W[33] * W[956];
-    W[993] = W[33] * W[984];
-    W[1013] = W[33] * W[1012];
-    W[1058] = W[33] * W[1057];
-    W[1069] = W[1048] + W[1057];
-    W[1077] = W[1] * W[1075] + W[219] * W[857] + W[437] * W[639] + W[655] * W[421] + W[873] * W[203];
-    W[1079] = W[2] * W[1076] + W[220] * W[858] + W[438] * W[640] + W[656] * W[422] + W[874] * W[204];
-    W[962] = W[959] + W[961];
-    W[990] = W[987] + W[989];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 4. */
+static EOMC_NOINLINE int
+chain5_taylor_run_54(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1059] = W[933] + W[1058];
     W[1070] = W[1069] - W[1050];
     W[963] = W[33] * W[962];
@@ -3307,42 +2876,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[50] = X[45] / 5.0;
     X[51] = X[46] / 5.0;
     X[52] = X[47] / 5.0;
-    X[53] = X[48] / 5.0;
-    X[54] = X[49] / 5.0;
-    W[1085] = W[414] * W[867] + W[632] * W[649] + W[850] * W[431] + W[1068] * W[213] + W[309] * W[868]
-            + W[527] * W[650] + W[745] * W[432] + W[963] * W[214] + W[338] * W[869] + W[556] * W[651]
-            + W[774] * W[433] + W[992] * W[215] + W[360] * W[870] + W[578] * W[652] + W[796] * W[434]
-            + W[1014] * W[216] + W[375] * W[871] + W[593] * W[653] + W[811] * W[435] + W[1029] * W[217]
-            + W[1082];
-    W[1086] = W[309] * W[867] + W[527] * W[649] + W[745] * W[431] + W[963] * W[213] + W[337] * W[868]
-            + W[555] * W[650] + W[773] * W[432] + W[991] * W[214] + W[339] * W[869] + W[557] * W[651]
-            + W[775] * W[433] + W[993] * W[215] + W[361] * W[870] + W[579] * W[652] + W[797] * W[434]
-            + W[1015] * W[216] + W[376] * W[871] + W[594] * W[653] + W[812] * W[435] + W[1030] * W[217]
-            + W[1083];
-    W[1087] = W[338] * W[867] + W[556] * W[649] + W[774] * W[431] + W[992] * W[213] + W[339] * W[868]
-            + W[557] * W[650] + W[775] * W[432] + W[993] * W[214] + W[359] * W[869] + W[577] * W[651]
-            + W[795] * W[433] + W[1013] * W[215] + W[362] * W[870] + W[580] * W[652] + W[798] * W[434]
-            + W[1016] * W[216] + W[377] * W[871] + W[595] * W[653] + W[813] * W[435] + W[1031] * W[217]
-            + W[1084];
-    W[1088] = W[360] * W[867] + W[578] * W[649] + W[796] * W[431] + W[1014] * W[213] + W[361] * W[868]
-            + W[579] * W[650] + W[797] * W[432] + W[1015] * W[214] + W[362] * W[869] + W[580] * W[651]
-            + W[798] * W[433] + W[1016] * W[215] + W[374] * W[870] + W[592] * W[652] + W[810] * W[434]
-            + W[1028] * W[216] + W[378] * W[871] + W[596] * W[653] + W[814] * W[435] + W[1032] * W[217]
-            + W[1059];
-    W[1089] = W[375] * W[867] + W[593] * W[649] + W[811] * W[431] + W[1029] * W[213] + W[376] * W[868]
-            + W[594] * W[650] + W[812] * W[432] + W[1030] * W[214] + W[377] * W[869] + W[595] * W[651]
-            + W[813] * W[433] + W[1031] * W[215] + W[378] * W[870] + W[596] * W[652] + W[814] * W[434]
-            + W[1032] * W[216] + W[1061];
-    if (solve(ctx, 4, NULL, W + 1085))
-        return -1;
-    X[55] = W[1085] / 5.0;
-    X[56] = W[1086] / 5.0;
-    X[57] = W[1087] / 5.0;
-    X[58] = W[1088] / 5.0;
-    X[59] = W[1089] / 5.0;
-    if (K == 5)
-        goto out;
-    /* order 5 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+chain5_taylor_run_56(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1091] = (X[10] * W[874] + 2.0 * X[20] * W[656] + 3.0 * X[30] * W[438] + 4.0 * X[40] * W[220]
             + 5.0 * X[50] * W[2]) / 5.0;
     W[1092] = -((X[10] * W[873] + 2.0 * X[20] * W[655] + 3.0 * X[30] * W[437] + 4.0 * X[40] * W[219]
@@ -3372,35 +2915,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1156] = W[62] * W[1095];
     W[1127] = W[6] * W[1126] + W[224] * W[908] + W[442] * W[690] + W[660] * W[472] + W[878] * W[254]
             + W[1096] * W[36];
-    W[1128] = W[5] * W[1126] + W[223] * W[908] + W[441] * W[690] + W[659] * W[472] + W[877] * W[254]
-            + W[1095] * W[36];
-    W[1103] = W[1097] + W[1101];
-    W[1104] = W[1098] + W[1102];
-    W[1107] = (W[234] * W[890] + 2.0 * W[452] * W[672] + 3.0 * W[670] * W[454] + 4.0 * W[888] * W[236]
-            + 5.0 * W[1106] * W[18]) / 5.0;
-    W[1108] = -((W[234] * W[889] + 2.0 * W[452] * W[671] + 3.0 * W[670] * W[453] + 4.0 * W[888] * W[235]
-            + 5.0 * W[1106] * W[17])) / 5.0;
-    W[1112] = W[1106] + X[54];
-    W[1141] = X[59] + W[1136];
-    W[1153] = W[59] * W[1101];
-    W[1182] = W[1095] + W[1101];
-    W[1186] = W[1096] + W[1102];
-    W[1129] = W[36] * W[1128] + W[254] * W[910] + W[472] * W[692] + W[690] * W[474] + W[908] * W[256]
-            + W[1126] * W[38];
-    W[1130] = W[36] * W[1127] + W[254] * W[909] + W[472] * W[691] + W[690] * W[473] + W[908] * W[255]
-            + W[1126] * W[37];
-    W[1132] = W[12] * W[1131] + W[230] * W[913] + W[448] * W[695] + W[666] * W[477] + W[884] * W[259]
-            + W[1102] * W[41];
-    W[1133] = W[11] * W[1131] + W[229] * W[913] + W[447] * W[695] + W[665] * W[477] + W[883] * W[259]
-            + W[1101] * W[41];
-    W[1109] = W[1103] + W[1107];
-    W[1110] = W[1104] + W[1108];
-    W[1113] = (W[240] * W[896] + 2.0 * W[458] * W[678] + 3.0 * W[676] * W[460] + 4.0 * W[894] * W[242]
-            + 5.0 * W[1112] * W[24]) / 5.0;
-    W[1114] = -((W[240] * W[895] + 2.0 * W[458] * W[677] + 3.0 * W[676] * W[459] + 4.0 * W[894] * W[241]
-            + 5.0 * W[1112] * W[23])) / 5.0;
-    W[1150] = W[57] * W[1107];
-    W[1183] = W[1107] + W[1182];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+chain5_taylor_run_58(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1187] = W[1108] + W[1186];
     W[1212] = W[1101] + W[1107];
     W[1215] = W[1102] + W[1108];
@@ -3425,35 +2949,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1238] = W[1107] + W[1113];
     W[1253] = W[1134] + W[1251];
     W[1254] = W[1135] + W[1252];
-    W[1139] = W[46] * W[1138] + W[264] * W[920] + W[482] * W[702] + W[700] * W[484] + W[918] * W[266]
-            + W[1136] * W[48];
-    W[1140] = W[46] * W[1137] + W[264] * W[919] + W[482] * W[701] + W[700] * W[483] + W[918] * W[265]
-            + W[1136] * W[47];
-    W[1142] = W[24] * W[1141] + W[242] * W[923] + W[460] * W[705] + W[678] * W[487] + W[896] * W[269]
-            + W[1114] * W[51];
-    W[1143] = W[23] * W[1141] + W[241] * W[923] + W[459] * W[705] + W[677] * W[487] + W[895] * W[269]
-            + W[1113] * W[51];
-    W[1151] = W[1148] - W[1150];
-    W[1163] = W[1109] + W[1115];
-    W[1166] = W[1110] + W[1116];
-    W[1191] = W[1183] + W[1184];
-    W[1194] = W[1187] + W[1188];
-    W[1219] = W[1212] + W[1213];
-    W[1222] = W[1215] + W[1216];
-    W[1236] = W[1108] + W[1235];
-    W[1239] = W[1107] + W[1238];
-    W[1255] = W[1139] + W[1253];
-    W[1256] = W[1140] + W[1254];
-    W[1144] = W[51] * W[1143] + W[269] * W[925] + W[487] * W[707] + W[705] * W[489] + W[923] * W[271]
-            + W[1141] * W[53];
-    W[1145] = W[51] * W[1142] + W[269] * W[924] + W[487] * W[706] + W[705] * W[488] + W[923] * W[270]
-            + W[1141] * W[52];
-    W[1160] = W[23] * W[1115] + W[241] * W[897] + W[459] * W[679] + W[677] * W[461] + W[895] * W[243]
-            + W[1113] * W[25];
-    W[1161] = W[24] * W[1116] + W[242] * W[898] + W[460] * W[680] + W[678] * W[462] + W[896] * W[244]
-            + W[1114] * W[26];
-    W[1185] = W[23] * W[1184] + W[241] * W[966] + W[459] * W[748] + W[677] * W[530] + W[895] * W[312]
-            + W[1113] * W[94];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+chain5_taylor_run_60(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1189] = W[24] * W[1188] + W[242] * W[970] + W[460] * W[752] + W[678] * W[534] + W[896] * W[316]
             + W[1114] * W[98];
     W[1214] = W[23] * W[1213] + W[241] * W[995] + W[459] * W[777] + W[677] * W[559] + W[895] * W[341]
@@ -3481,6 +2986,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1107] * W[73];
     W[1167] = W[18] * W[1166] + W[236] * W[948] + W[454] * W[730] + W[672] * W[512] + W[890] * W[294]
             + W[1108] * W[76];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+chain5_taylor_run_61(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1192] = W[17] * W[1191] + W[235] * W[973] + W[453] * W[755] + W[671] * W[537] + W[889] * W[319]
             + W[1107] * W[101];
     W[1195] = W[18] * W[1194] + W[236] * W[976] + W[454] * W[758] + W[672] * W[540] + W[890] * W[322]
@@ -3507,35 +3022,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1249] = W[33] * W[1218];
     W[1250] = W[33] * W[1243];
     W[1261] = W[1256] + W[1258];
-    W[1263] = W[1255] + W[1257];
-    W[1170] = W[11] * W[1169] + W[229] * W[951] + W[447] * W[733] + W[665] * W[515] + W[883] * W[297]
-            + W[1101] * W[79];
-    W[1173] = W[12] * W[1172] + W[230] * W[954] + W[448] * W[736] + W[666] * W[518] + W[884] * W[300]
-            + W[1102] * W[82];
-    W[1198] = W[11] * W[1197] + W[229] * W[979] + W[447] * W[761] + W[665] * W[543] + W[883] * W[325]
-            + W[1101] * W[107];
-    W[1201] = W[12] * W[1200] + W[230] * W[982] + W[448] * W[764] + W[666] * W[546] + W[884] * W[328]
-            + W[1102] * W[110];
-    W[1226] = W[11] * W[1225] + W[229] * W[1007] + W[447] * W[789] + W[665] * W[571] + W[883] * W[353]
-            + W[1101] * W[135];
-    W[1229] = W[12] * W[1228] + W[230] * W[1010] + W[448] * W[792] + W[666] * W[574] + W[884] * W[356]
-            + W[1102] * W[138];
-    W[1259] = W[23] * W[1258] + W[241] * W[1040] + W[459] * W[822] + W[677] * W[604] + W[895] * W[386]
-            + W[1113] * W[168];
-    W[1260] = W[24] * W[1257] + W[242] * W[1039] + W[460] * W[821] + W[678] * W[603] + W[896] * W[385]
-            + W[1114] * W[167];
-    W[1159] = W[1157] - W[1158];
-    W[1168] = W[1165] + W[1167];
-    W[1196] = W[1193] + W[1195];
-    W[1224] = W[1221] + W[1223];
-    W[1245] = W[1237] + W[1244];
-    W[1265] = W[1254] + W[1261];
-    W[1267] = W[1253] + W[1263];
-    W[1273] = W[1259] - W[1260];
-    W[1280] = W[1091] + W[1175];
-    W[1283] = W[1092] + W[1178];
-    W[1176] = W[5] * W[1175] + W[223] * W[957] + W[441] * W[739] + W[659] * W[521] + W[877] * W[303]
-            + W[1095] * W[85];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+chain5_taylor_run_63(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1179] = W[6] * W[1178] + W[224] * W[960] + W[442] * W[742] + W[660] * W[524] + W[878] * W[306]
             + W[1096] * W[88];
     W[1204] = W[5] * W[1203] + W[223] * W[985] + W[441] * W[767] + W[659] * W[549] + W[877] * W[331]
@@ -3565,30 +3061,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1091] * W[190];
     W[1284] = W[2] * W[1283] + W[220] * W[1065] + W[438] * W[847] + W[656] * W[629] + W[874] * W[411]
             + W[1092] * W[193];
-    W[1174] = W[1171] + W[1173];
-    W[1202] = W[1199] + W[1201];
-    W[1230] = W[1227] + W[1229];
-    W[1275] = W[1274] - W[1264];
-    W[1279] = W[1148] + W[1278];
-    W[1293] = W[1125] + W[1269];
-    W[1294] = W[1124] + W[1271];
-    W[1270] = W[5] * W[1269] + W[223] * W[1051] + W[441] * W[833] + W[659] * W[615] + W[877] * W[397]
-            + W[1095] * W[179];
-    W[1272] = W[6] * W[1271] + W[224] * W[1053] + W[442] * W[835] + W[660] * W[617] + W[878] * W[399]
-            + W[1096] * W[181];
-    W[1177] = W[1174] + W[1176];
-    W[1205] = W[1202] + W[1204];
-    W[1210] = W[33] * W[1174];
-    W[1211] = W[33] * W[1202];
-    W[1231] = W[33] * W[1230];
-    W[1276] = W[33] * W[1275];
-    W[1287] = W[1266] + W[1275];
-    W[1295] = W[1] * W[1293] + W[219] * W[1075] + W[437] * W[857] + W[655] * W[639] + W[873] * W[421]
-            + W[1091] * W[203];
-    W[1297] = W[2] * W[1294] + W[220] * W[1076] + W[438] * W[858] + W[656] * W[640] + W[874] * W[422]
-            + W[1092] * W[204];
-    W[1180] = W[1177] + W[1179];
-    W[1208] = W[1205] + W[1207];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+chain5_taylor_run_65(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1277] = W[1151] + W[1276];
     W[1288] = W[1287] - W[1268];
     W[1181] = W[33] * W[1180];
@@ -3609,47 +3091,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[60] = X[55] / 6.0;
     X[61] = X[56] / 6.0;
     X[62] = X[57] / 6.0;
-    X[63] = X[58] / 6.0;
-    X[64] = X[59] / 6.0;
-    W[1303] = W[414] * W[1085] + W[632] * W[867] + W[850] * W[649] + W[1068] * W[431] + W[1286] * W[213]
-            + W[309] * W[1086] + W[527] * W[868] + W[745] * W[650] + W[963] * W[432] + W[1181] * W[214]
-            + W[338] * W[1087] + W[556] * W[869] + W[774] * W[651] + W[992] * W[433] + W[1210] * W[215]
-            + W[360] * W[1088] + W[578] * W[870] + W[796] * W[652] + W[1014] * W[434] + W[1232] * W[216]
-            + W[375] * W[1089] + W[593] * W[871] + W[811] * W[653] + W[1029] * W[435] + W[1247] * W[217]
-            + W[1300];
-    W[1304] = W[309] * W[1085] + W[527] * W[867] + W[745] * W[649] + W[963] * W[431] + W[1181] * W[213]
-            + W[337] * W[1086] + W[555] * W[868] + W[773] * W[650] + W[991] * W[432] + W[1209] * W[214]
-            + W[339] * W[1087] + W[557] * W[869] + W[775] * W[651] + W[993] * W[433] + W[1211] * W[215]
-            + W[361] * W[1088] + W[579] * W[870] + W[797] * W[652] + W[1015] * W[434] + W[1233] * W[216]
-            + W[376] * W[1089] + W[594] * W[871] + W[812] * W[653] + W[1030] * W[435] + W[1248] * W[217]
-            + W[1301];
-    W[1305] = W[338] * W[1085] + W[556] * W[867] + W[774] * W[649] + W[992] * W[431] + W[1210] * W[213]
-            + W[339] * W[1086] + W[557] * W[868] + W[775] * W[650] + W[993] * W[432] + W[1211] * W[214]
-            + W[359] * W[1087] + W[577] * W[869] + W[795] * W[651] + W[1013] * W[433] + W[1231] * W[215]
-            + W[362] * W[1088] + W[580] * W[870] + W[798] * W[652] + W[1016] * W[434] + W[1234] * W[216]
-            + W[377] * W[1089] + W[595] * W[871] + W[813] * W[653] + W[1031] * W[435] + W[1249] * W[217]
-            + W[1302];
-    W[1306] = W[360] * W[1085] + W[578] * W[867] + W[796] * W[649] + W[1014] * W[431] + W[1232] * W[213]
-            + W[361] * W[1086] + W[579] * W[868] + W[797] * W[650] + W[1015] * W[432] + W[1233] * W[214]
-            + W[362] * W[1087] + W[580] * W[869] + W[798] * W[651] + W[1016] * W[433] + W[1234] * W[215]
-            + W[374] * W[1088] + W[592] * W[870] + W[810] * W[652] + W[1028] * W[434] + W[1246] * W[216]
-            + W[378] * W[1089] + W[596] * W[871] + W[814] * W[653] + W[1032] * W[435] + W[1250] * W[217]
-            + W[1277];
-    W[1307] = W[375] * W[1085] + W[593] * W[867] + W[811] * W[649] + W[1029] * W[431] + W[1247] * W[213]
-            + W[376] * W[1086] + W[594] * W[868] + W[812] * W[650] + W[1030] * W[432] + W[1248] * W[214]
-            + W[377] * W[1087] + W[595] * W[869] + W[813] * W[651] + W[1031] * W[433] + W[1249] * W[215]
-            + W[378] * W[1088] + W[596] * W[870] + W[814] * W[652] + W[1032] * W[434] + W[1250] * W[216]
-            + W[1279];
-    if (solve(ctx, 5, NULL, W + 1303))
-        return -1;
-    X[65] = W[1303] / 6.0;
-    X[66] = W[1304] / 6.0;
-    X[67] = W[1305] / 6.0;
-    X[68] = W[1306] / 6.0;
-    X[69] = W[1307] / 6.0;
-    if (K == 6)
-        goto out;
-    /* order 6 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+chain5_taylor_run_67(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1309] = (X[10] * W[1092] + 2.0 * X[20] * W[874] + 3.0 * X[30] * W[656] + 4.0 * X[40] * W[438]
             + 5.0 * X[50] * W[220] + 6.0 * X[60] * W[2]) / 6.0;
     W[1310] = -((X[10] * W[1091] + 2.0 * X[20] * W[873] + 3.0 * X[30] * W[655] + 4.0 * X[40] * W[437]
@@ -3679,35 +3130,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1374] = W[62] * W[1313];
     W[1345] = W[6] * W[1344] + W[224] * W[1126] + W[442] * W[908] + W[660] * W[690] + W[878] * W[472]
             + W[1096] * W[254] + W[1314] * W[36];
-    W[1346] = W[5] * W[1344] + W[223] * W[1126] + W[441] * W[908] + W[659] * W[690] + W[877] * W[472]
-            + W[1095] * W[254] + W[1313] * W[36];
-    W[1321] = W[1315] + W[1319];
-    W[1322] = W[1316] + W[1320];
-    W[1325] = (W[234] * W[1108] + 2.0 * W[452] * W[890] + 3.0 * W[670] * W[672] + 4.0 * W[888] * W[454]
-            + 5.0 * W[1106] * W[236] + 6.0 * W[1324] * W[18]) / 6.0;
-    W[1326] = -((W[234] * W[1107] + 2.0 * W[452] * W[889] + 3.0 * W[670] * W[671] + 4.0 * W[888] * W[453]
-            + 5.0 * W[1106] * W[235] + 6.0 * W[1324] * W[17])) / 6.0;
-    W[1330] = W[1324] + X[64];
-    W[1359] = X[69] + W[1354];
-    W[1371] = W[59] * W[1319];
-    W[1400] = W[1313] + W[1319];
-    W[1404] = W[1314] + W[1320];
-    W[1347] = W[36] * W[1346] + W[254] * W[1128] + W[472] * W[910] + W[690] * W[692] + W[908] * W[474]
-            + W[1126] * W[256] + W[1344] * W[38];
-    W[1348] = W[36] * W[1345] + W[254] * W[1127] + W[472] * W[909] + W[690] * W[691] + W[908] * W[473]
-            + W[1126] * W[255] + W[1344] * W[37];
-    W[1350] = W[12] * W[1349] + W[230] * W[1131] + W[448] * W[913] + W[666] * W[695] + W[884] * W[477]
-            + W[1102] * W[259] + W[1320] * W[41];
-    W[1351] = W[11] * W[1349] + W[229] * W[1131] + W[447] * W[913] + W[665] * W[695] + W[883] * W[477]
-            + W[1101] * W[259] + W[1319] * W[41];
-    W[1327] = W[1321] + W[1325];
-    W[1328] = W[1322] + W[1326];
-    W[1331] = (W[240] * W[1114] + 2.0 * W[458] * W[896] + 3.0 * W[676] * W[678] + 4.0 * W[894] * W[460]
-            + 5.0 * W[1112] * W[242] + 6.0 * W[1330] * W[24]) / 6.0;
-    W[1332] = -((W[240] * W[1113] + 2.0 * W[458] * W[895] + 3.0 * W[676] * W[677] + 4.0 * W[894] * W[459]
-            + 5.0 * W[1112] * W[241] + 6.0 * W[1330] * W[23])) / 6.0;
-    W[1368] = W[57] * W[1325];
-    W[1401] = W[1325] + W[1400];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+chain5_taylor_run_69(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1405] = W[1326] + W[1404];
     W[1430] = W[1319] + W[1325];
     W[1433] = W[1320] + W[1326];
@@ -3732,6 +3164,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1456] = W[1325] + W[1331];
     W[1471] = W[1352] + W[1469];
     W[1472] = W[1353] + W[1470];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+chain5_taylor_run_70(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1357] = W[46] * W[1356] + W[264] * W[1138] + W[482] * W[920] + W[700] * W[702] + W[918] * W[484]
             + W[1136] * W[266] + W[1354] * W[48];
     W[1358] = W[46] * W[1355] + W[264] * W[1137] + W[482] * W[919] + W[700] * W[701] + W[918] * W[483]
@@ -3761,33 +3203,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1114] * W[244] + W[1332] * W[26];
     W[1403] = W[23] * W[1402] + W[241] * W[1184] + W[459] * W[966] + W[677] * W[748] + W[895] * W[530]
             + W[1113] * W[312] + W[1331] * W[94];
-    W[1407] = W[24] * W[1406] + W[242] * W[1188] + W[460] * W[970] + W[678] * W[752] + W[896] * W[534]
-            + W[1114] * W[316] + W[1332] * W[98];
-    W[1432] = W[23] * W[1431] + W[241] * W[1213] + W[459] * W[995] + W[677] * W[777] + W[895] * W[559]
-            + W[1113] * W[341] + W[1331] * W[123];
-    W[1435] = W[24] * W[1434] + W[242] * W[1216] + W[460] * W[998] + W[678] * W[780] + W[896] * W[562]
-            + W[1114] * W[344] + W[1332] * W[126];
-    W[1459] = W[23] * W[1456] + W[241] * W[1238] + W[459] * W[1020] + W[677] * W[802] + W[895] * W[584]
-            + W[1113] * W[366] + W[1331] * W[148];
-    W[1460] = W[24] * W[1453] + W[242] * W[1235] + W[460] * W[1017] + W[678] * W[799] + W[896] * W[581]
-            + W[1114] * W[363] + W[1332] * W[145];
-    W[1372] = W[1369] - W[1371];
-    W[1380] = W[1378] + W[1379];
-    W[1387] = W[1321] + W[1381];
-    W[1390] = W[1322] + W[1384];
-    W[1408] = W[1403] + W[1407];
-    W[1415] = W[1400] + W[1409];
-    W[1418] = W[1404] + W[1412];
-    W[1436] = W[1432] + W[1435];
-    W[1443] = W[1319] + W[1437];
-    W[1446] = W[1320] + W[1440];
-    W[1461] = W[1459] + W[1460];
-    W[1475] = W[1362] + W[1473];
-    W[1476] = W[1363] + W[1474];
-    W[1382] = W[17] * W[1381] + W[235] * W[1163] + W[453] * W[945] + W[671] * W[727] + W[889] * W[509]
-            + W[1107] * W[291] + W[1325] * W[73];
-    W[1385] = W[18] * W[1384] + W[236] * W[1166] + W[454] * W[948] + W[672] * W[730] + W[890] * W[512]
-            + W[1108] * W[294] + W[1326] * W[76];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+chain5_taylor_run_72(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1410] = W[17] * W[1409] + W[235] * W[1191] + W[453] * W[973] + W[671] * W[755] + W[889] * W[537]
             + W[1107] * W[319] + W[1325] * W[101];
     W[1413] = W[18] * W[1412] + W[236] * W[1194] + W[454] * W[976] + W[672] * W[758] + W[890] * W[540]
@@ -3814,35 +3239,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1467] = W[33] * W[1436];
     W[1468] = W[33] * W[1461];
     W[1479] = W[1474] + W[1476];
-    W[1481] = W[1473] + W[1475];
-    W[1388] = W[11] * W[1387] + W[229] * W[1169] + W[447] * W[951] + W[665] * W[733] + W[883] * W[515]
-            + W[1101] * W[297] + W[1319] * W[79];
-    W[1391] = W[12] * W[1390] + W[230] * W[1172] + W[448] * W[954] + W[666] * W[736] + W[884] * W[518]
-            + W[1102] * W[300] + W[1320] * W[82];
-    W[1416] = W[11] * W[1415] + W[229] * W[1197] + W[447] * W[979] + W[665] * W[761] + W[883] * W[543]
-            + W[1101] * W[325] + W[1319] * W[107];
-    W[1419] = W[12] * W[1418] + W[230] * W[1200] + W[448] * W[982] + W[666] * W[764] + W[884] * W[546]
-            + W[1102] * W[328] + W[1320] * W[110];
-    W[1444] = W[11] * W[1443] + W[229] * W[1225] + W[447] * W[1007] + W[665] * W[789] + W[883] * W[571]
-            + W[1101] * W[353] + W[1319] * W[135];
-    W[1447] = W[12] * W[1446] + W[230] * W[1228] + W[448] * W[1010] + W[666] * W[792] + W[884] * W[574]
-            + W[1102] * W[356] + W[1320] * W[138];
-    W[1477] = W[23] * W[1476] + W[241] * W[1258] + W[459] * W[1040] + W[677] * W[822] + W[895] * W[604]
-            + W[1113] * W[386] + W[1331] * W[168];
-    W[1478] = W[24] * W[1475] + W[242] * W[1257] + W[460] * W[1039] + W[678] * W[821] + W[896] * W[603]
-            + W[1114] * W[385] + W[1332] * W[167];
-    W[1377] = W[1375] - W[1376];
-    W[1386] = W[1383] + W[1385];
-    W[1414] = W[1411] + W[1413];
-    W[1442] = W[1439] + W[1441];
-    W[1463] = W[1455] + W[1462];
-    W[1483] = W[1472] + W[1479];
-    W[1485] = W[1471] + W[1481];
-    W[1491] = W[1477] - W[1478];
-    W[1498] = W[1309] + W[1393];
-    W[1501] = W[1310] + W[1396];
-    W[1394] = W[5] * W[1393] + W[223] * W[1175] + W[441] * W[957] + W[659] * W[739] + W[877] * W[521]
-            + W[1095] * W[303] + W[1313] * W[85];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+chain5_taylor_run_74(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1397] = W[6] * W[1396] + W[224] * W[1178] + W[442] * W[960] + W[660] * W[742] + W[878] * W[524]
             + W[1096] * W[306] + W[1314] * W[88];
     W[1422] = W[5] * W[1421] + W[223] * W[1203] + W[441] * W[985] + W[659] * W[767] + W[877] * W[549]
@@ -3872,30 +3278,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1091] * W[408] + W[1309] * W[190];
     W[1502] = W[2] * W[1501] + W[220] * W[1283] + W[438] * W[1065] + W[656] * W[847] + W[874] * W[629]
             + W[1092] * W[411] + W[1310] * W[193];
-    W[1392] = W[1389] + W[1391];
-    W[1420] = W[1417] + W[1419];
-    W[1448] = W[1445] + W[1447];
-    W[1493] = W[1492] - W[1482];
-    W[1497] = W[1366] + W[1496];
-    W[1511] = W[1343] + W[1487];
-    W[1512] = W[1342] + W[1489];
-    W[1488] = W[5] * W[1487] + W[223] * W[1269] + W[441] * W[1051] + W[659] * W[833] + W[877] * W[615]
-            + W[1095] * W[397] + W[1313] * W[179];
-    W[1490] = W[6] * W[1489] + W[224] * W[1271] + W[442] * W[1053] + W[660] * W[835] + W[878] * W[617]
-            + W[1096] * W[399] + W[1314] * W[181];
-    W[1395] = W[1392] + W[1394];
-    W[1423] = W[1420] + W[1422];
-    W[1428] = W[33] * W[1392];
-    W[1429] = W[33] * W[1420];
-    W[1449] = W[33] * W[1448];
-    W[1494] = W[33] * W[1493];
-    W[1505] = W[1484] + W[1493];
-    W[1513] = W[1] * W[1511] + W[219] * W[1293] + W[437] * W[1075] + W[655] * W[857] + W[873] * W[639]
-            + W[1091] * W[421] + W[1309] * W[203];
-    W[1515] = W[2] * W[1512] + W[220] * W[1294] + W[438] * W[1076] + W[656] * W[858] + W[874] * W[640]
-            + W[1092] * W[422] + W[1310] * W[204];
-    W[1398] = W[1395] + W[1397];
-    W[1426] = W[1423] + W[1425];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+chain5_taylor_run_76(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1495] = W[1369] + W[1494];
     W[1506] = W[1505] - W[1486];
     W[1399] = W[33] * W[1398];
@@ -3916,51 +3308,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[70] = X[65] / 7.0;
     X[71] = X[66] / 7.0;
     X[72] = X[67] / 7.0;
-    X[73] = X[68] / 7.0;
-    X[74] = X[69] / 7.0;
-    W[1521] = W[414] * W[1303] + W[632] * W[1085] + W[850] * W[867] + W[1068] * W[649] + W[1286] * W[431]
-            + W[1504] * W[213] + W[309] * W[1304] + W[527] * W[1086] + W[745] * W[868] + W[963] * W[650]
-            + W[1181] * W[432] + W[1399] * W[214] + W[338] * W[1305] + W[556] * W[1087] + W[774] * W[869]
-            + W[992] * W[651] + W[1210] * W[433] + W[1428] * W[215] + W[360] * W[1306] + W[578] * W[1088]
-            + W[796] * W[870] + W[1014] * W[652] + W[1232] * W[434] + W[1450] * W[216] + W[375] * W[1307]
-            + W[593] * W[1089] + W[811] * W[871] + W[1029] * W[653] + W[1247] * W[435] + W[1465] * W[217]
-            + W[1518];
-    W[1522] = W[309] * W[1303] + W[527] * W[1085] + W[745] * W[867] + W[963] * W[649] + W[1181] * W[431]
-            + W[1399] * W[213] + W[337] * W[1304] + W[555] * W[1086] + W[773] * W[868] + W[991] * W[650]
-            + W[1209] * W[432] + W[1427] * W[214] + W[339] * W[1305] + W[557] * W[1087] + W[775] * W[869]
-            + W[993] * W[651] + W[1211] * W[433] + W[1429] * W[215] + W[361] * W[1306] + W[579] * W[1088]
-            + W[797] * W[870] + W[1015] * W[652] + W[1233] * W[434] + W[1451] * W[216] + W[376] * W[1307]
-            + W[594] * W[1089] + W[812] * W[871] + W[1030] * W[653] + W[1248] * W[435] + W[1466] * W[217]
-            + W[1519];
-    W[1523] = W[338] * W[1303] + W[556] * W[1085] + W[774] * W[867] + W[992] * W[649] + W[1210] * W[431]
-            + W[1428] * W[213] + W[339] * W[1304] + W[557] * W[1086] + W[775] * W[868] + W[993] * W[650]
-            + W[1211] * W[432] + W[1429] * W[214] + W[359] * W[1305] + W[577] * W[1087] + W[795] * W[869]
-            + W[1013] * W[651] + W[1231] * W[433] + W[1449] * W[215] + W[362] * W[1306] + W[580] * W[1088]
-            + W[798] * W[870] + W[1016] * W[652] + W[1234] * W[434] + W[1452] * W[216] + W[377] * W[1307]
-            + W[595] * W[1089] + W[813] * W[871] + W[1031] * W[653] + W[1249] * W[435] + W[1467] * W[217]
-            + W[1520];
-    W[1524] = W[360] * W[1303] + W[578] * W[1085] + W[796] * W[867] + W[1014] * W[649] + W[1232] * W[431]
-            + W[1450] * W[213] + W[361] * W[1304] + W[579] * W[1086] + W[797] * W[868] + W[1015] * W[650]
-            + W[1233] * W[432] + W[1451] * W[214] + W[362] * W[1305] + W[580] * W[1087] + W[798] * W[869]
-            + W[1016] * W[651] + W[1234] * W[433] + W[1452] * W[215] + W[374] * W[1306] + W[592] * W[1088]
-            + W[810] * W[870] + W[1028] * W[652] + W[1246] * W[434] + W[1464] * W[216] + W[378] * W[1307]
-            + W[596] * W[1089] + W[814] * W[871] + W[1032] * W[653] + W[1250] * W[435] + W[1468] * W[217]
-            + W[1495];
-    W[1525] = W[375] * W[1303] + W[593] * W[1085] + W[811] * W[867] + W[1029] * W[649] + W[1247] * W[431]
-            + W[1465] * W[213] + W[376] * W[1304] + W[594] * W[1086] + W[812] * W[868] + W[1030] * W[650]
-            + W[1248] * W[432] + W[1466] * W[214] + W[377] * W[1305] + W[595] * W[1087] + W[813] * W[869]
-            + W[1031] * W[651] + W[1249] * W[433] + W[1467] * W[215] + W[378] * W[1306] + W[596] * W[1088]
-            + W[814] * W[870] + W[1032] * W[652] + W[1250] * W[434] + W[1468] * W[216] + W[1497];
-    if (solve(ctx, 6, NULL, W + 1521))
-        return -1;
-    X[75] = W[1521] / 7.0;
-    X[76] = W[1522] / 7.0;
-    X[77] = W[1523] / 7.0;
-    X[78] = W[1524] / 7.0;
-    X[79] = W[1525] / 7.0;
-    if (K == 7)
-        goto out;
-    /* order 7 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+chain5_taylor_run_78(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1527] = (X[10] * W[1310] + 2.0 * X[20] * W[1092] + 3.0 * X[30] * W[874] + 4.0 * X[40] * W[656]
             + 5.0 * X[50] * W[438] + 6.0 * X[60] * W[220] + 7.0 * X[70] * W[2]) / 7.0;
     W[1528] = -((X[10] * W[1309] + 2.0 * X[20] * W[1091] + 3.0 * X[30] * W[873] + 4.0 * X[40] * W[655]
@@ -3990,6 +3347,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1592] = W[62] * W[1531];
     W[1563] = W[6] * W[1562] + W[224] * W[1344] + W[442] * W[1126] + W[660] * W[908] + W[878] * W[690]
             + W[1096] * W[472] + W[1314] * W[254] + W[1532] * W[36];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+chain5_taylor_run_79(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1564] = W[5] * W[1562] + W[223] * W[1344] + W[441] * W[1126] + W[659] * W[908] + W[877] * W[690]
             + W[1095] * W[472] + W[1313] * W[254] + W[1531] * W[36];
     W[1539] = W[1533] + W[1537];
@@ -4019,59 +3386,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + 5.0 * W[1112] * W[459] + 6.0 * W[1330] * W[241] + 7.0 * W[1548] * W[23])) / 7.0;
     W[1586] = W[57] * W[1543];
     W[1619] = W[1543] + W[1618];
-    W[1623] = W[1544] + W[1622];
-    W[1648] = W[1537] + W[1543];
-    W[1651] = W[1538] + W[1544];
-    W[1687] = W[1560] + W[1565];
-    W[1688] = W[1561] + W[1566];
-    W[1570] = W[41] * W[1569] + W[259] * W[1351] + W[477] * W[1133] + W[695] * W[915] + W[913] * W[697]
-            + W[1131] * W[479] + W[1349] * W[261] + W[1567] * W[43];
-    W[1571] = W[41] * W[1568] + W[259] * W[1350] + W[477] * W[1132] + W[695] * W[914] + W[913] * W[696]
-            + W[1131] * W[478] + W[1349] * W[260] + W[1567] * W[42];
-    W[1573] = W[18] * W[1572] + W[236] * W[1354] + W[454] * W[1136] + W[672] * W[918] + W[890] * W[700]
-            + W[1108] * W[482] + W[1326] * W[264] + W[1544] * W[46];
-    W[1574] = W[17] * W[1572] + W[235] * W[1354] + W[453] * W[1136] + W[671] * W[918] + W[889] * W[700]
-            + W[1107] * W[482] + W[1325] * W[264] + W[1543] * W[46];
-    W[1551] = W[1545] + W[1549];
-    W[1552] = W[1546] + W[1550];
-    W[1584] = W[56] * W[1549];
-    W[1620] = W[1549] + W[1619];
-    W[1624] = W[1550] + W[1623];
-    W[1649] = W[1549] + W[1648];
-    W[1652] = W[1550] + W[1651];
-    W[1671] = W[1544] + W[1550];
-    W[1674] = W[1543] + W[1549];
-    W[1689] = W[1570] + W[1687];
-    W[1690] = W[1571] + W[1688];
-    W[1575] = W[46] * W[1574] + W[264] * W[1356] + W[482] * W[1138] + W[700] * W[920] + W[918] * W[702]
-            + W[1136] * W[484] + W[1354] * W[266] + W[1572] * W[48];
-    W[1576] = W[46] * W[1573] + W[264] * W[1355] + W[482] * W[1137] + W[700] * W[919] + W[918] * W[701]
-            + W[1136] * W[483] + W[1354] * W[265] + W[1572] * W[47];
-    W[1578] = W[24] * W[1577] + W[242] * W[1359] + W[460] * W[1141] + W[678] * W[923] + W[896] * W[705]
-            + W[1114] * W[487] + W[1332] * W[269] + W[1550] * W[51];
-    W[1579] = W[23] * W[1577] + W[241] * W[1359] + W[459] * W[1141] + W[677] * W[923] + W[895] * W[705]
-            + W[1113] * W[487] + W[1331] * W[269] + W[1549] * W[51];
-    W[1587] = W[1584] - W[1586];
-    W[1599] = W[1545] + W[1551];
-    W[1602] = W[1546] + W[1552];
-    W[1627] = W[1619] + W[1620];
-    W[1630] = W[1623] + W[1624];
-    W[1655] = W[1648] + W[1649];
-    W[1658] = W[1651] + W[1652];
-    W[1672] = W[1544] + W[1671];
-    W[1675] = W[1543] + W[1674];
-    W[1691] = W[1575] + W[1689];
-    W[1692] = W[1576] + W[1690];
-    W[1580] = W[51] * W[1579] + W[269] * W[1361] + W[487] * W[1143] + W[705] * W[925] + W[923] * W[707]
-            + W[1141] * W[489] + W[1359] * W[271] + W[1577] * W[53];
-    W[1581] = W[51] * W[1578] + W[269] * W[1360] + W[487] * W[1142] + W[705] * W[924] + W[923] * W[706]
-            + W[1141] * W[488] + W[1359] * W[270] + W[1577] * W[52];
-    W[1596] = W[23] * W[1551] + W[241] * W[1333] + W[459] * W[1115] + W[677] * W[897] + W[895] * W[679]
-            + W[1113] * W[461] + W[1331] * W[243] + W[1549] * W[25];
-    W[1597] = W[24] * W[1552] + W[242] * W[1334] + W[460] * W[1116] + W[678] * W[898] + W[896] * W[680]
-            + W[1114] * W[462] + W[1332] * W[244] + W[1550] * W[26];
-    W[1621] = W[23] * W[1620] + W[241] * W[1402] + W[459] * W[1184] + W[677] * W[966] + W[895] * W[748]
-            + W[1113] * W[530] + W[1331] * W[312] + W[1549] * W[94];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+chain5_taylor_run_82(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1625] = W[24] * W[1624] + W[242] * W[1406] + W[460] * W[1188] + W[678] * W[970] + W[896] * W[752]
             + W[1114] * W[534] + W[1332] * W[316] + W[1550] * W[98];
     W[1650] = W[23] * W[1649] + W[241] * W[1431] + W[459] * W[1213] + W[677] * W[995] + W[895] * W[777]
@@ -4099,32 +3423,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1107] * W[509] + W[1325] * W[291] + W[1543] * W[73];
     W[1603] = W[18] * W[1602] + W[236] * W[1384] + W[454] * W[1166] + W[672] * W[948] + W[890] * W[730]
             + W[1108] * W[512] + W[1326] * W[294] + W[1544] * W[76];
-    W[1628] = W[17] * W[1627] + W[235] * W[1409] + W[453] * W[1191] + W[671] * W[973] + W[889] * W[755]
-            + W[1107] * W[537] + W[1325] * W[319] + W[1543] * W[101];
-    W[1631] = W[18] * W[1630] + W[236] * W[1412] + W[454] * W[1194] + W[672] * W[976] + W[890] * W[758]
-            + W[1108] * W[540] + W[1326] * W[322] + W[1544] * W[104];
-    W[1656] = W[17] * W[1655] + W[235] * W[1437] + W[453] * W[1219] + W[671] * W[1001] + W[889] * W[783]
-            + W[1107] * W[565] + W[1325] * W[347] + W[1543] * W[129];
-    W[1659] = W[18] * W[1658] + W[236] * W[1440] + W[454] * W[1222] + W[672] * W[1004] + W[890] * W[786]
-            + W[1108] * W[568] + W[1326] * W[350] + W[1544] * W[132];
-    W[1673] = W[18] * W[1672] + W[236] * W[1454] + W[454] * W[1236] + W[672] * W[1018] + W[890] * W[800]
-            + W[1108] * W[582] + W[1326] * W[364] + W[1544] * W[146];
-    W[1676] = W[17] * W[1675] + W[235] * W[1457] + W[453] * W[1239] + W[671] * W[1021] + W[889] * W[803]
-            + W[1107] * W[585] + W[1325] * W[367] + W[1543] * W[149];
-    W[1593] = W[1590] - W[1592];
-    W[1601] = W[1598] + W[1600];
-    W[1611] = W[1533] + W[1605];
-    W[1614] = W[1534] + W[1608];
-    W[1629] = W[1626] + W[1628];
-    W[1639] = W[1531] + W[1633];
-    W[1642] = W[1532] + W[1636];
-    W[1657] = W[1654] + W[1656];
-    W[1680] = W[1676] + W[1679];
-    W[1683] = W[33] * W[1598];
-    W[1684] = W[33] * W[1626];
-    W[1685] = W[33] * W[1654];
-    W[1686] = W[33] * W[1679];
-    W[1697] = W[1692] + W[1694];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+chain5_taylor_run_84(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1699] = W[1691] + W[1693];
     W[1606] = W[11] * W[1605] + W[229] * W[1387] + W[447] * W[1169] + W[665] * W[951] + W[883] * W[733]
             + W[1101] * W[515] + W[1319] * W[297] + W[1537] * W[79];
@@ -4154,35 +3462,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1719] = W[1528] + W[1614];
     W[1612] = W[5] * W[1611] + W[223] * W[1393] + W[441] * W[1175] + W[659] * W[957] + W[877] * W[739]
             + W[1095] * W[521] + W[1313] * W[303] + W[1531] * W[85];
-    W[1615] = W[6] * W[1614] + W[224] * W[1396] + W[442] * W[1178] + W[660] * W[960] + W[878] * W[742]
-            + W[1096] * W[524] + W[1314] * W[306] + W[1532] * W[88];
-    W[1640] = W[5] * W[1639] + W[223] * W[1421] + W[441] * W[1203] + W[659] * W[985] + W[877] * W[767]
-            + W[1095] * W[549] + W[1313] * W[331] + W[1531] * W[113];
-    W[1643] = W[6] * W[1642] + W[224] * W[1424] + W[442] * W[1206] + W[660] * W[988] + W[878] * W[770]
-            + W[1096] * W[552] + W[1314] * W[334] + W[1532] * W[116];
-    W[1698] = W[17] * W[1697] + W[235] * W[1479] + W[453] * W[1261] + W[671] * W[1043] + W[889] * W[825]
-            + W[1107] * W[607] + W[1325] * W[389] + W[1543] * W[171];
-    W[1700] = W[18] * W[1699] + W[236] * W[1481] + W[454] * W[1263] + W[672] * W[1045] + W[890] * W[827]
-            + W[1108] * W[609] + W[1326] * W[391] + W[1544] * W[173];
-    W[1607] = W[1604] + W[1606];
-    W[1635] = W[1632] + W[1634];
-    W[1663] = W[1660] + W[1662];
-    W[1668] = W[33] * W[1604];
-    W[1669] = W[33] * W[1632];
-    W[1670] = W[33] * W[1660];
-    W[1682] = W[33] * W[1681];
-    W[1705] = W[1688] + W[1701];
-    W[1707] = W[1687] + W[1703];
-    W[1710] = W[1698] + W[1709];
-    W[1714] = W[33] * W[1709];
-    W[1702] = W[11] * W[1701] + W[229] * W[1483] + W[447] * W[1265] + W[665] * W[1047] + W[883] * W[829]
-            + W[1101] * W[611] + W[1319] * W[393] + W[1537] * W[175];
-    W[1704] = W[12] * W[1703] + W[230] * W[1485] + W[448] * W[1267] + W[666] * W[1049] + W[884] * W[831]
-            + W[1102] * W[613] + W[1320] * W[395] + W[1538] * W[177];
-    W[1717] = W[1] * W[1716] + W[219] * W[1498] + W[437] * W[1280] + W[655] * W[1062] + W[873] * W[844]
-            + W[1091] * W[626] + W[1309] * W[408] + W[1527] * W[190];
-    W[1720] = W[2] * W[1719] + W[220] * W[1501] + W[438] * W[1283] + W[656] * W[1065] + W[874] * W[847]
-            + W[1092] * W[629] + W[1310] * W[411] + W[1528] * W[193];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+chain5_taylor_run_86(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1610] = W[1607] + W[1609];
     W[1638] = W[1635] + W[1637];
     W[1666] = W[1663] + W[1665];
@@ -4207,26 +3496,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1092] * W[640] + W[1310] * W[422] + W[1528] * W[204];
     W[1616] = W[1613] + W[1615];
     W[1644] = W[1641] + W[1643];
-    W[1713] = W[1587] + W[1712];
-    W[1724] = W[1723] - W[1704];
-    W[1617] = W[33] * W[1616];
-    W[1645] = W[33] * W[1644];
-    W[1718] = W[1616] + W[1717];
-    W[1725] = W[33] * W[1724];
-    W[1726] = W[1706] + W[1724];
-    W[1721] = W[1718] + W[1720];
-    W[1727] = W[1726] - W[1708];
-    W[1738] = W[1590] + W[1725];
-    W[1722] = W[33] * W[1721];
-    W[1728] = W[33] * W[1727];
-    W[1732] = W[1727] + W[1731];
-    W[1734] = W[1732] - W[1733];
-    W[1737] = W[1593] + W[1728];
-    W[1735] = W[33] * W[1734];
-    W[1736] = W[1595] + W[1735];
-    X[80] = X[75] / 8.0;
-    X[81] = X[76] / 8.0;
-    X[82] = X[77] / 8.0;
+    return 0;
+}
+
+/* Lines 200 .. 212 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+chain5_taylor_run_88(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[83] = X[78] / 8.0;
     X[84] = X[79] / 8.0;
     W[1739] = W[414] * W[1521] + W[632] * W[1303] + W[850] * W[1085] + W[1068] * W[867] + W[1286] * W[649]
@@ -4274,67 +3553,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[87] = W[1741] / 8.0;
     X[88] = W[1742] / 8.0;
     X[89] = W[1743] / 8.0;
-    if (K == 8)
-        goto out;
-    /* order 8 */
-    W[1745] = (X[10] * W[1528] + 2.0 * X[20] * W[1310] + 3.0 * X[30] * W[1092] + 4.0 * X[40] * W[874]
-            + 5.0 * X[50] * W[656] + 6.0 * X[60] * W[438] + 7.0 * X[70] * W[220] + 8.0 * X[80] * W[2]) / 8.0;
-    W[1746] = -((X[10] * W[1527] + 2.0 * X[20] * W[1309] + 3.0 * X[30] * W[1091] + 4.0 * X[40] * W[873]
-            + 5.0 * X[50] * W[655] + 6.0 * X[60] * W[437] + 7.0 * X[70] * W[219] + 8.0 * X[80] * W[1])) / 8.0;
-    W[1748] = X[80] + X[81];
-    W[1776] = (X[5] * X[85] + X[15] * X[75] + X[25] * X[65] + X[35] * X[55]) * 2.0 + X[45] * X[45];
-    W[1780] = X[85] + X[86];
-    W[1749] = (W[222] * W[1532] + 2.0 * W[440] * W[1314] + 3.0 * W[658] * W[1096] + 4.0 * W[876] * W[878]
-            + 5.0 * W[1094] * W[660] + 6.0 * W[1312] * W[442] + 7.0 * W[1530] * W[224] + 8.0 * W[1748] * W[6]) / 8.0;
-    W[1750] = -((W[222] * W[1531] + 2.0 * W[440] * W[1313] + 3.0 * W[658] * W[1095] + 4.0 * W[876] * W[877]
-            + 5.0 * W[1094] * W[659] + 6.0 * W[1312] * W[441] + 7.0 * W[1530] * W[223] + 8.0 * W[1748] * W[5])) / 8.0;
-    W[1754] = W[1748] + X[82];
-    W[1785] = X[87] + W[1780];
-    W[1812] = W[65] * W[1745];
-    W[1778] = W[1] * W[1776] + W[219] * W[1558] + W[437] * W[1340] + W[655] * W[1122] + W[873] * W[904]
-            + W[1091] * W[686] + W[1309] * W[468] + W[1527] * W[250] + W[1745] * W[32];
-    W[1779] = W[2] * W[1776] + W[220] * W[1558] + W[438] * W[1340] + W[656] * W[1122] + W[874] * W[904]
-            + W[1092] * W[686] + W[1310] * W[468] + W[1528] * W[250] + W[1746] * W[32];
-    W[1751] = W[1745] + W[1749];
-    W[1752] = W[1746] + W[1750];
-    W[1755] = (W[228] * W[1538] + 2.0 * W[446] * W[1320] + 3.0 * W[664] * W[1102] + 4.0 * W[882] * W[884]
-            + 5.0 * W[1100] * W[666] + 6.0 * W[1318] * W[448] + 7.0 * W[1536] * W[230] + 8.0 * W[1754] * W[12]) / 8.0;
-    W[1756] = -((W[228] * W[1537] + 2.0 * W[446] * W[1319] + 3.0 * W[664] * W[1101] + 4.0 * W[882] * W[883]
-            + 5.0 * W[1100] * W[665] + 6.0 * W[1318] * W[447] + 7.0 * W[1536] * W[229] + 8.0 * W[1754] * W[11])) / 8.0;
-    W[1760] = W[1754] + X[83];
-    W[1790] = X[88] + W[1785];
-    W[1810] = W[62] * W[1749];
-    W[1781] = W[6] * W[1780] + W[224] * W[1562] + W[442] * W[1344] + W[660] * W[1126] + W[878] * W[908]
-            + W[1096] * W[690] + W[1314] * W[472] + W[1532] * W[254] + W[1750] * W[36];
-    W[1782] = W[5] * W[1780] + W[223] * W[1562] + W[441] * W[1344] + W[659] * W[1126] + W[877] * W[908]
-            + W[1095] * W[690] + W[1313] * W[472] + W[1531] * W[254] + W[1749] * W[36];
-    W[1757] = W[1751] + W[1755];
-    W[1758] = W[1752] + W[1756];
-    W[1761] = (W[234] * W[1544] + 2.0 * W[452] * W[1326] + 3.0 * W[670] * W[1108] + 4.0 * W[888] * W[890]
-            + 5.0 * W[1106] * W[672] + 6.0 * W[1324] * W[454] + 7.0 * W[1542] * W[236] + 8.0 * W[1760] * W[18]) / 8.0;
-    W[1762] = -((W[234] * W[1543] + 2.0 * W[452] * W[1325] + 3.0 * W[670] * W[1107] + 4.0 * W[888] * W[889]
-            + 5.0 * W[1106] * W[671] + 6.0 * W[1324] * W[453] + 7.0 * W[1542] * W[235] + 8.0 * W[1760] * W[17])) / 8.0;
-    W[1766] = W[1760] + X[84];
-    W[1795] = X[89] + W[1790];
-    W[1807] = W[59] * W[1755];
-    W[1836] = W[1749] + W[1755];
-    W[1840] = W[1750] + W[1756];
-    W[1783] = W[36] * W[1782] + W[254] * W[1564] + W[472] * W[1346] + W[690] * W[1128] + W[908] * W[910]
-            + W[1126] * W[692] + W[1344] * W[474] + W[1562] * W[256] + W[1780] * W[38];
-    W[1784] = W[36] * W[1781] + W[254] * W[1563] + W[472] * W[1345] + W[690] * W[1127] + W[908] * W[909]
-            + W[1126] * W[691] + W[1344] * W[473] + W[1562] * W[255] + W[1780] * W[37];
-    W[1786] = W[12] * W[1785] + W[230] * W[1567] + W[448] * W[1349] + W[666] * W[1131] + W[884] * W[913]
-            + W[1102] * W[695] + W[1320] * W[477] + W[1538] * W[259] + W[1756] * W[41];
-    W[1787] = W[11] * W[1785] + W[229] * W[1567] + W[447] * W[1349] + W[665] * W[1131] + W[883] * W[913]
-            + W[1101] * W[695] + W[1319] * W[477] + W[1537] * W[259] + W[1755] * W[41];
-    W[1763] = W[1757] + W[1761];
-    W[1764] = W[1758] + W[1762];
-    W[1767] = (W[240] * W[1550] + 2.0 * W[458] * W[1332] + 3.0 * W[676] * W[1114] + 4.0 * W[894] * W[896]
-            + 5.0 * W[1112] * W[678] + 6.0 * W[1330] * W[460] + 7.0 * W[1548] * W[242] + 8.0 * W[1766] * W[24]) / 8.0;
-    W[1768] = -((W[240] * W[1549] + 2.0 * W[458] * W[1331] + 3.0 * W[676] * W[1113] + 4.0 * W[894] * W[895]
-            + 5.0 * W[1112] * W[677] + 6.0 * W[1330] * W[459] + 7.0 * W[1548] * W[241] + 8.0 * W[1766] * W[23])) / 8.0;
-    W[1804] = W[57] * W[1761];
-    W[1837] = W[1761] + W[1836];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+chain5_taylor_run_91(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1841] = W[1762] + W[1840];
     W[1866] = W[1755] + W[1761];
     W[1869] = W[1756] + W[1762];
@@ -4359,6 +3587,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1892] = W[1761] + W[1767];
     W[1907] = W[1788] + W[1905];
     W[1908] = W[1789] + W[1906];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+chain5_taylor_run_92(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1793] = W[46] * W[1792] + W[264] * W[1574] + W[482] * W[1356] + W[700] * W[1138] + W[918] * W[920]
             + W[1136] * W[702] + W[1354] * W[484] + W[1572] * W[266] + W[1790] * W[48];
     W[1794] = W[46] * W[1791] + W[264] * W[1573] + W[482] * W[1355] + W[700] * W[1137] + W[918] * W[919]
@@ -4388,59 +3626,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1114] * W[680] + W[1332] * W[462] + W[1550] * W[244] + W[1768] * W[26];
     W[1839] = W[23] * W[1838] + W[241] * W[1620] + W[459] * W[1402] + W[677] * W[1184] + W[895] * W[966]
             + W[1113] * W[748] + W[1331] * W[530] + W[1549] * W[312] + W[1767] * W[94];
-    W[1843] = W[24] * W[1842] + W[242] * W[1624] + W[460] * W[1406] + W[678] * W[1188] + W[896] * W[970]
-            + W[1114] * W[752] + W[1332] * W[534] + W[1550] * W[316] + W[1768] * W[98];
-    W[1868] = W[23] * W[1867] + W[241] * W[1649] + W[459] * W[1431] + W[677] * W[1213] + W[895] * W[995]
-            + W[1113] * W[777] + W[1331] * W[559] + W[1549] * W[341] + W[1767] * W[123];
-    W[1871] = W[24] * W[1870] + W[242] * W[1652] + W[460] * W[1434] + W[678] * W[1216] + W[896] * W[998]
-            + W[1114] * W[780] + W[1332] * W[562] + W[1550] * W[344] + W[1768] * W[126];
-    W[1895] = W[23] * W[1892] + W[241] * W[1674] + W[459] * W[1456] + W[677] * W[1238] + W[895] * W[1020]
-            + W[1113] * W[802] + W[1331] * W[584] + W[1549] * W[366] + W[1767] * W[148];
-    W[1896] = W[24] * W[1889] + W[242] * W[1671] + W[460] * W[1453] + W[678] * W[1235] + W[896] * W[1017]
-            + W[1114] * W[799] + W[1332] * W[581] + W[1550] * W[363] + W[1768] * W[145];
-    W[1808] = W[1805] - W[1807];
-    W[1816] = W[1814] + W[1815];
-    W[1823] = W[1757] + W[1817];
-    W[1826] = W[1758] + W[1820];
-    W[1844] = W[1839] + W[1843];
-    W[1851] = W[1836] + W[1845];
-    W[1854] = W[1840] + W[1848];
-    W[1872] = W[1868] + W[1871];
-    W[1879] = W[1755] + W[1873];
-    W[1882] = W[1756] + W[1876];
-    W[1897] = W[1895] + W[1896];
-    W[1911] = W[1798] + W[1909];
-    W[1912] = W[1799] + W[1910];
-    W[1818] = W[17] * W[1817] + W[235] * W[1599] + W[453] * W[1381] + W[671] * W[1163] + W[889] * W[945]
-            + W[1107] * W[727] + W[1325] * W[509] + W[1543] * W[291] + W[1761] * W[73];
-    W[1821] = W[18] * W[1820] + W[236] * W[1602] + W[454] * W[1384] + W[672] * W[1166] + W[890] * W[948]
-            + W[1108] * W[730] + W[1326] * W[512] + W[1544] * W[294] + W[1762] * W[76];
-    W[1846] = W[17] * W[1845] + W[235] * W[1627] + W[453] * W[1409] + W[671] * W[1191] + W[889] * W[973]
-            + W[1107] * W[755] + W[1325] * W[537] + W[1543] * W[319] + W[1761] * W[101];
-    W[1849] = W[18] * W[1848] + W[236] * W[1630] + W[454] * W[1412] + W[672] * W[1194] + W[890] * W[976]
-            + W[1108] * W[758] + W[1326] * W[540] + W[1544] * W[322] + W[1762] * W[104];
-    W[1874] = W[17] * W[1873] + W[235] * W[1655] + W[453] * W[1437] + W[671] * W[1219] + W[889] * W[1001]
-            + W[1107] * W[783] + W[1325] * W[565] + W[1543] * W[347] + W[1761] * W[129];
-    W[1877] = W[18] * W[1876] + W[236] * W[1658] + W[454] * W[1440] + W[672] * W[1222] + W[890] * W[1004]
-            + W[1108] * W[786] + W[1326] * W[568] + W[1544] * W[350] + W[1762] * W[132];
-    W[1891] = W[18] * W[1890] + W[236] * W[1672] + W[454] * W[1454] + W[672] * W[1236] + W[890] * W[1018]
-            + W[1108] * W[800] + W[1326] * W[582] + W[1544] * W[364] + W[1762] * W[146];
-    W[1894] = W[17] * W[1893] + W[235] * W[1675] + W[453] * W[1457] + W[671] * W[1239] + W[889] * W[1021]
-            + W[1107] * W[803] + W[1325] * W[585] + W[1543] * W[367] + W[1761] * W[149];
-    W[1811] = W[1808] - W[1810];
-    W[1819] = W[1816] + W[1818];
-    W[1829] = W[1751] + W[1823];
-    W[1832] = W[1752] + W[1826];
-    W[1847] = W[1844] + W[1846];
-    W[1857] = W[1749] + W[1851];
-    W[1860] = W[1750] + W[1854];
-    W[1875] = W[1872] + W[1874];
-    W[1898] = W[1894] + W[1897];
-    W[1901] = W[33] * W[1816];
-    W[1902] = W[33] * W[1844];
-    W[1903] = W[33] * W[1872];
-    W[1904] = W[33] * W[1897];
-    W[1915] = W[1910] + W[1912];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+chain5_taylor_run_95(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1917] = W[1909] + W[1911];
     W[1824] = W[11] * W[1823] + W[229] * W[1605] + W[447] * W[1387] + W[665] * W[1169] + W[883] * W[951]
             + W[1101] * W[733] + W[1319] * W[515] + W[1537] * W[297] + W[1755] * W[79];
@@ -4470,35 +3665,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1937] = W[1746] + W[1832];
     W[1830] = W[5] * W[1829] + W[223] * W[1611] + W[441] * W[1393] + W[659] * W[1175] + W[877] * W[957]
             + W[1095] * W[739] + W[1313] * W[521] + W[1531] * W[303] + W[1749] * W[85];
-    W[1833] = W[6] * W[1832] + W[224] * W[1614] + W[442] * W[1396] + W[660] * W[1178] + W[878] * W[960]
-            + W[1096] * W[742] + W[1314] * W[524] + W[1532] * W[306] + W[1750] * W[88];
-    W[1858] = W[5] * W[1857] + W[223] * W[1639] + W[441] * W[1421] + W[659] * W[1203] + W[877] * W[985]
-            + W[1095] * W[767] + W[1313] * W[549] + W[1531] * W[331] + W[1749] * W[113];
-    W[1861] = W[6] * W[1860] + W[224] * W[1642] + W[442] * W[1424] + W[660] * W[1206] + W[878] * W[988]
-            + W[1096] * W[770] + W[1314] * W[552] + W[1532] * W[334] + W[1750] * W[116];
-    W[1916] = W[17] * W[1915] + W[235] * W[1697] + W[453] * W[1479] + W[671] * W[1261] + W[889] * W[1043]
-            + W[1107] * W[825] + W[1325] * W[607] + W[1543] * W[389] + W[1761] * W[171];
-    W[1918] = W[18] * W[1917] + W[236] * W[1699] + W[454] * W[1481] + W[672] * W[1263] + W[890] * W[1045]
-            + W[1108] * W[827] + W[1326] * W[609] + W[1544] * W[391] + W[1762] * W[173];
-    W[1825] = W[1822] + W[1824];
-    W[1853] = W[1850] + W[1852];
-    W[1881] = W[1878] + W[1880];
-    W[1886] = W[33] * W[1822];
-    W[1887] = W[33] * W[1850];
-    W[1888] = W[33] * W[1878];
-    W[1900] = W[33] * W[1899];
-    W[1923] = W[1906] + W[1919];
-    W[1925] = W[1905] + W[1921];
-    W[1928] = W[1916] + W[1927];
-    W[1932] = W[33] * W[1927];
-    W[1920] = W[11] * W[1919] + W[229] * W[1701] + W[447] * W[1483] + W[665] * W[1265] + W[883] * W[1047]
-            + W[1101] * W[829] + W[1319] * W[611] + W[1537] * W[393] + W[1755] * W[175];
-    W[1922] = W[12] * W[1921] + W[230] * W[1703] + W[448] * W[1485] + W[666] * W[1267] + W[884] * W[1049]
-            + W[1102] * W[831] + W[1320] * W[613] + W[1538] * W[395] + W[1756] * W[177];
-    W[1935] = W[1] * W[1934] + W[219] * W[1716] + W[437] * W[1498] + W[655] * W[1280] + W[873] * W[1062]
-            + W[1091] * W[844] + W[1309] * W[626] + W[1527] * W[408] + W[1745] * W[190];
-    W[1938] = W[2] * W[1937] + W[220] * W[1719] + W[438] * W[1501] + W[656] * W[1283] + W[874] * W[1065]
-            + W[1092] * W[847] + W[1310] * W[629] + W[1528] * W[411] + W[1746] * W[193];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+chain5_taylor_run_97(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1828] = W[1825] + W[1827];
     W[1856] = W[1853] + W[1855];
     W[1884] = W[1881] + W[1883];
@@ -4523,6 +3699,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1092] * W[858] + W[1310] * W[640] + W[1528] * W[422] + W[1746] * W[204];
     W[1834] = W[1831] + W[1833];
     W[1862] = W[1859] + W[1861];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+chain5_taylor_run_98(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1931] = W[1805] + W[1930];
     W[1942] = W[1941] - W[1922];
     W[1835] = W[33] * W[1834];
@@ -4543,61 +3729,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[90] = X[85] / 9.0;
     X[91] = X[86] / 9.0;
     X[92] = X[87] / 9.0;
-    X[93] = X[88] / 9.0;
-    X[94] = X[89] / 9.0;
-    W[1957] = W[414] * W[1739] + W[632] * W[1521] + W[850] * W[1303] + W[1068] * W[1085] + W[1286] * W[867]
-            + W[1504] * W[649] + W[1722] * W[431] + W[1940] * W[213] + W[309] * W[1740] + W[527] * W[1522]
-            + W[745] * W[1304] + W[963] * W[1086] + W[1181] * W[868] + W[1399] * W[650] + W[1617] * W[432]
-            + W[1835] * W[214] + W[338] * W[1741] + W[556] * W[1523] + W[774] * W[1305] + W[992] * W[1087]
-            + W[1210] * W[869] + W[1428] * W[651] + W[1646] * W[433] + W[1864] * W[215] + W[360] * W[1742]
-            + W[578] * W[1524] + W[796] * W[1306] + W[1014] * W[1088] + W[1232] * W[870] + W[1450] * W[652]
-            + W[1668] * W[434] + W[1886] * W[216] + W[375] * W[1743] + W[593] * W[1525] + W[811] * W[1307]
-            + W[1029] * W[1089] + W[1247] * W[871] + W[1465] * W[653] + W[1683] * W[435] + W[1901] * W[217]
-            + W[1954];
-    W[1958] = W[309] * W[1739] + W[527] * W[1521] + W[745] * W[1303] + W[963] * W[1085] + W[1181] * W[867]
-            + W[1399] * W[649] + W[1617] * W[431] + W[1835] * W[213] + W[337] * W[1740] + W[555] * W[1522]
-            + W[773] * W[1304] + W[991] * W[1086] + W[1209] * W[868] + W[1427] * W[650] + W[1645] * W[432]
-            + W[1863] * W[214] + W[339] * W[1741] + W[557] * W[1523] + W[775] * W[1305] + W[993] * W[1087]
-            + W[1211] * W[869] + W[1429] * W[651] + W[1647] * W[433] + W[1865] * W[215] + W[361] * W[1742]
-            + W[579] * W[1524] + W[797] * W[1306] + W[1015] * W[1088] + W[1233] * W[870] + W[1451] * W[652]
-            + W[1669] * W[434] + W[1887] * W[216] + W[376] * W[1743] + W[594] * W[1525] + W[812] * W[1307]
-            + W[1030] * W[1089] + W[1248] * W[871] + W[1466] * W[653] + W[1684] * W[435] + W[1902] * W[217]
-            + W[1955];
-    W[1959] = W[338] * W[1739] + W[556] * W[1521] + W[774] * W[1303] + W[992] * W[1085] + W[1210] * W[867]
-            + W[1428] * W[649] + W[1646] * W[431] + W[1864] * W[213] + W[339] * W[1740] + W[557] * W[1522]
-            + W[775] * W[1304] + W[993] * W[1086] + W[1211] * W[868] + W[1429] * W[650] + W[1647] * W[432]
-            + W[1865] * W[214] + W[359] * W[1741] + W[577] * W[1523] + W[795] * W[1305] + W[1013] * W[1087]
-            + W[1231] * W[869] + W[1449] * W[651] + W[1667] * W[433] + W[1885] * W[215] + W[362] * W[1742]
-            + W[580] * W[1524] + W[798] * W[1306] + W[1016] * W[1088] + W[1234] * W[870] + W[1452] * W[652]
-            + W[1670] * W[434] + W[1888] * W[216] + W[377] * W[1743] + W[595] * W[1525] + W[813] * W[1307]
-            + W[1031] * W[1089] + W[1249] * W[871] + W[1467] * W[653] + W[1685] * W[435] + W[1903] * W[217]
-            + W[1956];
-    W[1960] = W[360] * W[1739] + W[578] * W[1521] + W[796] * W[1303] + W[1014] * W[1085] + W[1232] * W[867]
-            + W[1450] * W[649] + W[1668] * W[431] + W[1886] * W[213] + W[361] * W[1740] + W[579] * W[1522]
-            + W[797] * W[1304] + W[1015] * W[1086] + W[1233] * W[868] + W[1451] * W[650] + W[1669] * W[432]
-            + W[1887] * W[214] + W[362] * W[1741] + W[580] * W[1523] + W[798] * W[1305] + W[1016] * W[1087]
-            + W[1234] * W[869] + W[1452] * W[651] + W[1670] * W[433] + W[1888] * W[215] + W[374] * W[1742]
-            + W[592] * W[1524] + W[810] * W[1306] + W[1028] * W[1088] + W[1246] * W[870] + W[1464] * W[652]
-            + W[1682] * W[434] + W[1900] * W[216] + W[378] * W[1743] + W[596] * W[1525] + W[814] * W[1307]
-            + W[1032] * W[1089] + W[1250] * W[871] + W[1468] * W[653] + W[1686] * W[435] + W[1904] * W[217]
-            + W[1931];
-    W[1961] = W[375] * W[1739] + W[593] * W[1521] + W[811] * W[1303] + W[1029] * W[1085] + W[1247] * W[867]
-            + W[1465] * W[649] + W[1683] * W[431] + W[1901] * W[213] + W[376] * W[1740] + W[594] * W[1522]
-            + W[812] * W[1304] + W[1030] * W[1086] + W[1248] * W[868] + W[1466] * W[650] + W[1684] * W[432]
-            + W[1902] * W[214] + W[377] * W[1741] + W[595] * W[1523] + W[813] * W[1305] + W[1031] * W[1087]
-            + W[1249] * W[869] + W[1467] * W[651] + W[1685] * W[433] + W[1903] * W[215] + W[378] * W[1742]
-            + W[596] * W[1524] + W[814] * W[1306] + W[1032] * W[1088] + W[1250] * W[870] + W[1468] * W[652]
-            + W[1686] * W[434] + W[1904] * W[216] + W[1933];
-    if (solve(ctx, 8, NULL, W + 1957))
-        return -1;
-    X[95] = W[1957] / 9.0;
-    X[96] = W[1958] / 9.0;
-    X[97] = W[1959] / 9.0;
-    X[98] = W[1960] / 9.0;
-    X[99] = W[1961] / 9.0;
-    if (K == 9)
-        goto out;
-    /* order 9 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+chain5_taylor_run_100(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1963] = (X[10] * W[1746] + 2.0 * X[20] * W[1528] + 3.0 * X[30] * W[1310] + 4.0 * X[40] * W[1092]
             + 5.0 * X[50] * W[874] + 6.0 * X[60] * W[656] + 7.0 * X[70] * W[438] + 8.0 * X[80] * W[220]
             + 9.0 * X[90] * W[2]) / 9.0;
@@ -4633,6 +3774,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2028] = W[62] * W[1967];
     W[1999] = W[6] * W[1998] + W[224] * W[1780] + W[442] * W[1562] + W[660] * W[1344] + W[878] * W[1126]
             + W[1096] * W[908] + W[1314] * W[690] + W[1532] * W[472] + W[1750] * W[254] + W[1968] * W[36];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+chain5_taylor_run_101(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2000] = W[5] * W[1998] + W[223] * W[1780] + W[441] * W[1562] + W[659] * W[1344] + W[877] * W[1126]
             + W[1095] * W[908] + W[1313] * W[690] + W[1531] * W[472] + W[1749] * W[254] + W[1967] * W[36];
     W[1975] = W[1969] + W[1973];
@@ -4666,30 +3817,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + 9.0 * W[1984] * W[23])) / 9.0;
     W[2022] = W[57] * W[1979];
     W[2055] = W[1979] + W[2054];
-    W[2059] = W[1980] + W[2058];
-    W[2084] = W[1973] + W[1979];
-    W[2087] = W[1974] + W[1980];
-    W[2123] = W[1996] + W[2001];
-    W[2124] = W[1997] + W[2002];
-    W[2006] = W[41] * W[2005] + W[259] * W[1787] + W[477] * W[1569] + W[695] * W[1351] + W[913] * W[1133]
-            + W[1131] * W[915] + W[1349] * W[697] + W[1567] * W[479] + W[1785] * W[261] + W[2003] * W[43];
-    W[2007] = W[41] * W[2004] + W[259] * W[1786] + W[477] * W[1568] + W[695] * W[1350] + W[913] * W[1132]
-            + W[1131] * W[914] + W[1349] * W[696] + W[1567] * W[478] + W[1785] * W[260] + W[2003] * W[42];
-    W[2009] = W[18] * W[2008] + W[236] * W[1790] + W[454] * W[1572] + W[672] * W[1354] + W[890] * W[1136]
-            + W[1108] * W[918] + W[1326] * W[700] + W[1544] * W[482] + W[1762] * W[264] + W[1980] * W[46];
-    W[2010] = W[17] * W[2008] + W[235] * W[1790] + W[453] * W[1572] + W[671] * W[1354] + W[889] * W[1136]
-            + W[1107] * W[918] + W[1325] * W[700] + W[1543] * W[482] + W[1761] * W[264] + W[1979] * W[46];
-    W[1987] = W[1981] + W[1985];
-    W[1988] = W[1982] + W[1986];
-    W[2020] = W[56] * W[1985];
-    W[2056] = W[1985] + W[2055];
-    W[2060] = W[1986] + W[2059];
-    W[2085] = W[1985] + W[2084];
-    W[2088] = W[1986] + W[2087];
-    W[2107] = W[1980] + W[1986];
-    W[2110] = W[1979] + W[1985];
-    W[2125] = W[2006] + W[2123];
-    W[2126] = W[2007] + W[2124];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+chain5_taylor_run_103(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2011] = W[46] * W[2010] + W[264] * W[1792] + W[482] * W[1574] + W[700] * W[1356] + W[918] * W[1138]
             + W[1136] * W[920] + W[1354] * W[702] + W[1572] * W[484] + W[1790] * W[266] + W[2008] * W[48];
     W[2012] = W[46] * W[2009] + W[264] * W[1791] + W[482] * W[1573] + W[700] * W[1355] + W[918] * W[1137]
@@ -4719,59 +3856,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1114] * W[898] + W[1332] * W[680] + W[1550] * W[462] + W[1768] * W[244] + W[1986] * W[26];
     W[2057] = W[23] * W[2056] + W[241] * W[1838] + W[459] * W[1620] + W[677] * W[1402] + W[895] * W[1184]
             + W[1113] * W[966] + W[1331] * W[748] + W[1549] * W[530] + W[1767] * W[312] + W[1985] * W[94];
-    W[2061] = W[24] * W[2060] + W[242] * W[1842] + W[460] * W[1624] + W[678] * W[1406] + W[896] * W[1188]
-            + W[1114] * W[970] + W[1332] * W[752] + W[1550] * W[534] + W[1768] * W[316] + W[1986] * W[98];
-    W[2086] = W[23] * W[2085] + W[241] * W[1867] + W[459] * W[1649] + W[677] * W[1431] + W[895] * W[1213]
-            + W[1113] * W[995] + W[1331] * W[777] + W[1549] * W[559] + W[1767] * W[341] + W[1985] * W[123];
-    W[2089] = W[24] * W[2088] + W[242] * W[1870] + W[460] * W[1652] + W[678] * W[1434] + W[896] * W[1216]
-            + W[1114] * W[998] + W[1332] * W[780] + W[1550] * W[562] + W[1768] * W[344] + W[1986] * W[126];
-    W[2113] = W[23] * W[2110] + W[241] * W[1892] + W[459] * W[1674] + W[677] * W[1456] + W[895] * W[1238]
-            + W[1113] * W[1020] + W[1331] * W[802] + W[1549] * W[584] + W[1767] * W[366] + W[1985] * W[148];
-    W[2114] = W[24] * W[2107] + W[242] * W[1889] + W[460] * W[1671] + W[678] * W[1453] + W[896] * W[1235]
-            + W[1114] * W[1017] + W[1332] * W[799] + W[1550] * W[581] + W[1768] * W[363] + W[1986] * W[145];
-    W[2026] = W[2023] - W[2025];
-    W[2034] = W[2032] + W[2033];
-    W[2041] = W[1975] + W[2035];
-    W[2044] = W[1976] + W[2038];
-    W[2062] = W[2057] + W[2061];
-    W[2069] = W[2054] + W[2063];
-    W[2072] = W[2058] + W[2066];
-    W[2090] = W[2086] + W[2089];
-    W[2097] = W[1973] + W[2091];
-    W[2100] = W[1974] + W[2094];
-    W[2115] = W[2113] + W[2114];
-    W[2129] = W[2016] + W[2127];
-    W[2130] = W[2017] + W[2128];
-    W[2036] = W[17] * W[2035] + W[235] * W[1817] + W[453] * W[1599] + W[671] * W[1381] + W[889] * W[1163]
-            + W[1107] * W[945] + W[1325] * W[727] + W[1543] * W[509] + W[1761] * W[291] + W[1979] * W[73];
-    W[2039] = W[18] * W[2038] + W[236] * W[1820] + W[454] * W[1602] + W[672] * W[1384] + W[890] * W[1166]
-            + W[1108] * W[948] + W[1326] * W[730] + W[1544] * W[512] + W[1762] * W[294] + W[1980] * W[76];
-    W[2064] = W[17] * W[2063] + W[235] * W[1845] + W[453] * W[1627] + W[671] * W[1409] + W[889] * W[1191]
-            + W[1107] * W[973] + W[1325] * W[755] + W[1543] * W[537] + W[1761] * W[319] + W[1979] * W[101];
-    W[2067] = W[18] * W[2066] + W[236] * W[1848] + W[454] * W[1630] + W[672] * W[1412] + W[890] * W[1194]
-            + W[1108] * W[976] + W[1326] * W[758] + W[1544] * W[540] + W[1762] * W[322] + W[1980] * W[104];
-    W[2092] = W[17] * W[2091] + W[235] * W[1873] + W[453] * W[1655] + W[671] * W[1437] + W[889] * W[1219]
-            + W[1107] * W[1001] + W[1325] * W[783] + W[1543] * W[565] + W[1761] * W[347] + W[1979] * W[129];
-    W[2095] = W[18] * W[2094] + W[236] * W[1876] + W[454] * W[1658] + W[672] * W[1440] + W[890] * W[1222]
-            + W[1108] * W[1004] + W[1326] * W[786] + W[1544] * W[568] + W[1762] * W[350] + W[1980] * W[132];
-    W[2109] = W[18] * W[2108] + W[236] * W[1890] + W[454] * W[1672] + W[672] * W[1454] + W[890] * W[1236]
-            + W[1108] * W[1018] + W[1326] * W[800] + W[1544] * W[582] + W[1762] * W[364] + W[1980] * W[146];
-    W[2112] = W[17] * W[2111] + W[235] * W[1893] + W[453] * W[1675] + W[671] * W[1457] + W[889] * W[1239]
-            + W[1107] * W[1021] + W[1325] * W[803] + W[1543] * W[585] + W[1761] * W[367] + W[1979] * W[149];
-    W[2029] = W[2026] - W[2028];
-    W[2037] = W[2034] + W[2036];
-    W[2047] = W[1969] + W[2041];
-    W[2050] = W[1970] + W[2044];
-    W[2065] = W[2062] + W[2064];
-    W[2075] = W[1967] + W[2069];
-    W[2078] = W[1968] + W[2072];
-    W[2093] = W[2090] + W[2092];
-    W[2116] = W[2112] + W[2115];
-    W[2119] = W[33] * W[2034];
-    W[2120] = W[33] * W[2062];
-    W[2121] = W[33] * W[2090];
-    W[2122] = W[33] * W[2115];
-    W[2133] = W[2128] + W[2130];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+chain5_taylor_run_106(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2135] = W[2127] + W[2129];
     W[2042] = W[11] * W[2041] + W[229] * W[1823] + W[447] * W[1605] + W[665] * W[1387] + W[883] * W[1169]
             + W[1101] * W[951] + W[1319] * W[733] + W[1537] * W[515] + W[1755] * W[297] + W[1973] * W[79];
@@ -4801,35 +3895,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2155] = W[1964] + W[2050];
     W[2048] = W[5] * W[2047] + W[223] * W[1829] + W[441] * W[1611] + W[659] * W[1393] + W[877] * W[1175]
             + W[1095] * W[957] + W[1313] * W[739] + W[1531] * W[521] + W[1749] * W[303] + W[1967] * W[85];
-    W[2051] = W[6] * W[2050] + W[224] * W[1832] + W[442] * W[1614] + W[660] * W[1396] + W[878] * W[1178]
-            + W[1096] * W[960] + W[1314] * W[742] + W[1532] * W[524] + W[1750] * W[306] + W[1968] * W[88];
-    W[2076] = W[5] * W[2075] + W[223] * W[1857] + W[441] * W[1639] + W[659] * W[1421] + W[877] * W[1203]
-            + W[1095] * W[985] + W[1313] * W[767] + W[1531] * W[549] + W[1749] * W[331] + W[1967] * W[113];
-    W[2079] = W[6] * W[2078] + W[224] * W[1860] + W[442] * W[1642] + W[660] * W[1424] + W[878] * W[1206]
-            + W[1096] * W[988] + W[1314] * W[770] + W[1532] * W[552] + W[1750] * W[334] + W[1968] * W[116];
-    W[2134] = W[17] * W[2133] + W[235] * W[1915] + W[453] * W[1697] + W[671] * W[1479] + W[889] * W[1261]
-            + W[1107] * W[1043] + W[1325] * W[825] + W[1543] * W[607] + W[1761] * W[389] + W[1979] * W[171];
-    W[2136] = W[18] * W[2135] + W[236] * W[1917] + W[454] * W[1699] + W[672] * W[1481] + W[890] * W[1263]
-            + W[1108] * W[1045] + W[1326] * W[827] + W[1544] * W[609] + W[1762] * W[391] + W[1980] * W[173];
-    W[2043] = W[2040] + W[2042];
-    W[2071] = W[2068] + W[2070];
-    W[2099] = W[2096] + W[2098];
-    W[2104] = W[33] * W[2040];
-    W[2105] = W[33] * W[2068];
-    W[2106] = W[33] * W[2096];
-    W[2118] = W[33] * W[2117];
-    W[2141] = W[2124] + W[2137];
-    W[2143] = W[2123] + W[2139];
-    W[2146] = W[2134] + W[2145];
-    W[2150] = W[33] * W[2145];
-    W[2138] = W[11] * W[2137] + W[229] * W[1919] + W[447] * W[1701] + W[665] * W[1483] + W[883] * W[1265]
-            + W[1101] * W[1047] + W[1319] * W[829] + W[1537] * W[611] + W[1755] * W[393] + W[1973] * W[175];
-    W[2140] = W[12] * W[2139] + W[230] * W[1921] + W[448] * W[1703] + W[666] * W[1485] + W[884] * W[1267]
-            + W[1102] * W[1049] + W[1320] * W[831] + W[1538] * W[613] + W[1756] * W[395] + W[1974] * W[177];
-    W[2153] = W[1] * W[2152] + W[219] * W[1934] + W[437] * W[1716] + W[655] * W[1498] + W[873] * W[1280]
-            + W[1091] * W[1062] + W[1309] * W[844] + W[1527] * W[626] + W[1745] * W[408] + W[1963] * W[190];
-    W[2156] = W[2] * W[2155] + W[220] * W[1937] + W[438] * W[1719] + W[656] * W[1501] + W[874] * W[1283]
-            + W[1092] * W[1065] + W[1310] * W[847] + W[1528] * W[629] + W[1746] * W[411] + W[1964] * W[193];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+chain5_taylor_run_108(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2046] = W[2043] + W[2045];
     W[2074] = W[2071] + W[2073];
     W[2102] = W[2099] + W[2101];
@@ -4854,26 +3929,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1092] * W[1076] + W[1310] * W[858] + W[1528] * W[640] + W[1746] * W[422] + W[1964] * W[204];
     W[2052] = W[2049] + W[2051];
     W[2080] = W[2077] + W[2079];
-    W[2149] = W[2023] + W[2148];
-    W[2160] = W[2159] - W[2140];
-    W[2053] = W[33] * W[2052];
-    W[2081] = W[33] * W[2080];
-    W[2154] = W[2052] + W[2153];
-    W[2161] = W[33] * W[2160];
-    W[2162] = W[2142] + W[2160];
-    W[2157] = W[2154] + W[2156];
-    W[2163] = W[2162] - W[2144];
-    W[2174] = W[2026] + W[2161];
-    W[2158] = W[33] * W[2157];
-    W[2164] = W[33] * W[2163];
-    W[2168] = W[2163] + W[2167];
-    W[2170] = W[2168] - W[2169];
-    W[2173] = W[2029] + W[2164];
-    W[2171] = W[33] * W[2170];
-    W[2172] = W[2031] + W[2171];
-    X[100] = X[95] / 10.0;
-    X[101] = X[96] / 10.0;
-    X[102] = X[97] / 10.0;
+    return 0;
+}
+
+/* Lines 200 .. 212 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+chain5_taylor_run_110(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[103] = X[98] / 10.0;
     X[104] = X[99] / 10.0;
     W[2175] = W[414] * W[1957] + W[632] * W[1739] + W[850] * W[1521] + W[1068] * W[1303] + W[1286] * W[1085]
@@ -4931,86 +3996,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[107] = W[2177] / 10.0;
     X[108] = W[2178] / 10.0;
     X[109] = W[2179] / 10.0;
-    if (K == 10)
-        goto out;
-    /* order 10 */
-    W[2181] = (X[10] * W[1964] + 2.0 * X[20] * W[1746] + 3.0 * X[30] * W[1528] + 4.0 * X[40] * W[1310]
-            + 5.0 * X[50] * W[1092] + 6.0 * X[60] * W[874] + 7.0 * X[70] * W[656] + 8.0 * X[80] * W[438]
-            + 9.0 * X[90] * W[220] + 10.0 * X[100] * W[2]) / 10.0;
-    W[2182] = -((X[10] * W[1963] + 2.0 * X[20] * W[1745] + 3.0 * X[30] * W[1527] + 4.0 * X[40] * W[1309]
-            + 5.0 * X[50] * W[1091] + 6.0 * X[60] * W[873] + 7.0 * X[70] * W[655] + 8.0 * X[80] * W[437]
-            + 9.0 * X[90] * W[219] + 10.0 * X[100] * W[1])) / 10.0;
-    W[2184] = X[100] + X[101];
-    W[2212] = (X[5] * X[105] + X[15] * X[95] + X[25] * X[85] + X[35] * X[75] + X[45] * X[65]) * 2.0
-            + X[55] * X[55];
-    W[2216] = X[105] + X[106];
-    W[2185] = (W[222] * W[1968] + 2.0 * W[440] * W[1750] + 3.0 * W[658] * W[1532] + 4.0 * W[876] * W[1314]
-            + 5.0 * W[1094] * W[1096] + 6.0 * W[1312] * W[878] + 7.0 * W[1530] * W[660] + 8.0 * W[1748] * W[442]
-            + 9.0 * W[1966] * W[224] + 10.0 * W[2184] * W[6]) / 10.0;
-    W[2186] = -((W[222] * W[1967] + 2.0 * W[440] * W[1749] + 3.0 * W[658] * W[1531] + 4.0 * W[876] * W[1313]
-            + 5.0 * W[1094] * W[1095] + 6.0 * W[1312] * W[877] + 7.0 * W[1530] * W[659] + 8.0 * W[1748] * W[441]
-            + 9.0 * W[1966] * W[223] + 10.0 * W[2184] * W[5])) / 10.0;
-    W[2190] = W[2184] + X[102];
-    W[2221] = X[107] + W[2216];
-    W[2248] = W[65] * W[2181];
-    W[2214] = W[1] * W[2212] + W[219] * W[1994] + W[437] * W[1776] + W[655] * W[1558] + W[873] * W[1340]
-            + W[1091] * W[1122] + W[1309] * W[904] + W[1527] * W[686] + W[1745] * W[468] + W[1963] * W[250]
-            + W[2181] * W[32];
-    W[2215] = W[2] * W[2212] + W[220] * W[1994] + W[438] * W[1776] + W[656] * W[1558] + W[874] * W[1340]
-            + W[1092] * W[1122] + W[1310] * W[904] + W[1528] * W[686] + W[1746] * W[468] + W[1964] * W[250]
-            + W[2182] * W[32];
-    W[2187] = W[2181] + W[2185];
-    W[2188] = W[2182] + W[2186];
-    W[2191] = (W[228] * W[1974] + 2.0 * W[446] * W[1756] + 3.0 * W[664] * W[1538] + 4.0 * W[882] * W[1320]
-            + 5.0 * W[1100] * W[1102] + 6.0 * W[1318] * W[884] + 7.0 * W[1536] * W[666] + 8.0 * W[1754] * W[448]
-            + 9.0 * W[1972] * W[230] + 10.0 * W[2190] * W[12]) / 10.0;
-    W[2192] = -((W[228] * W[1973] + 2.0 * W[446] * W[1755] + 3.0 * W[664] * W[1537] + 4.0 * W[882] * W[1319]
-            + 5.0 * W[1100] * W[1101] + 6.0 * W[1318] * W[883] + 7.0 * W[1536] * W[665] + 8.0 * W[1754] * W[447]
-            + 9.0 * W[1972] * W[229] + 10.0 * W[2190] * W[11])) / 10.0;
-    W[2196] = W[2190] + X[103];
-    W[2226] = X[108] + W[2221];
-    W[2246] = W[62] * W[2185];
-    W[2217] = W[6] * W[2216] + W[224] * W[1998] + W[442] * W[1780] + W[660] * W[1562] + W[878] * W[1344]
-            + W[1096] * W[1126] + W[1314] * W[908] + W[1532] * W[690] + W[1750] * W[472] + W[1968] * W[254]
-            + W[2186] * W[36];
-    W[2218] = W[5] * W[2216] + W[223] * W[1998] + W[441] * W[1780] + W[659] * W[1562] + W[877] * W[1344]
-            + W[1095] * W[1126] + W[1313] * W[908] + W[1531] * W[690] + W[1749] * W[472] + W[1967] * W[254]
-            + W[2185] * W[36];
-    W[2193] = W[2187] + W[2191];
-    W[2194] = W[2188] + W[2192];
-    W[2197] = (W[234] * W[1980] + 2.0 * W[452] * W[1762] + 3.0 * W[670] * W[1544] + 4.0 * W[888] * W[1326]
-            + 5.0 * W[1106] * W[1108] + 6.0 * W[1324] * W[890] + 7.0 * W[1542] * W[672] + 8.0 * W[1760] * W[454]
-            + 9.0 * W[1978] * W[236] + 10.0 * W[2196] * W[18]) / 10.0;
-    W[2198] = -((W[234] * W[1979] + 2.0 * W[452] * W[1761] + 3.0 * W[670] * W[1543] + 4.0 * W[888] * W[1325]
-            + 5.0 * W[1106] * W[1107] + 6.0 * W[1324] * W[889] + 7.0 * W[1542] * W[671] + 8.0 * W[1760] * W[453]
-            + 9.0 * W[1978] * W[235] + 10.0 * W[2196] * W[17])) / 10.0;
-    W[2202] = W[2196] + X[104];
-    W[2231] = X[109] + W[2226];
-    W[2243] = W[59] * W[2191];
-    W[2272] = W[2185] + W[2191];
-    W[2276] = W[2186] + W[2192];
-    W[2219] = W[36] * W[2218] + W[254] * W[2000] + W[472] * W[1782] + W[690] * W[1564] + W[908] * W[1346]
-            + W[1126] * W[1128] + W[1344] * W[910] + W[1562] * W[692] + W[1780] * W[474] + W[1998] * W[256]
-            + W[2216] * W[38];
-    W[2220] = W[36] * W[2217] + W[254] * W[1999] + W[472] * W[1781] + W[690] * W[1563] + W[908] * W[1345]
-            + W[1126] * W[1127] + W[1344] * W[909] + W[1562] * W[691] + W[1780] * W[473] + W[1998] * W[255]
-            + W[2216] * W[37];
-    W[2222] = W[12] * W[2221] + W[230] * W[2003] + W[448] * W[1785] + W[666] * W[1567] + W[884] * W[1349]
-            + W[1102] * W[1131] + W[1320] * W[913] + W[1538] * W[695] + W[1756] * W[477] + W[1974] * W[259]
-            + W[2192] * W[41];
-    W[2223] = W[11] * W[2221] + W[229] * W[2003] + W[447] * W[1785] + W[665] * W[1567] + W[883] * W[1349]
-            + W[1101] * W[1131] + W[1319] * W[913] + W[1537] * W[695] + W[1755] * W[477] + W[1973] * W[259]
-            + W[2191] * W[41];
-    W[2199] = W[2193] + W[2197];
-    W[2200] = W[2194] + W[2198];
-    W[2203] = (W[240] * W[1986] + 2.0 * W[458] * W[1768] + 3.0 * W[676] * W[1550] + 4.0 * W[894] * W[1332]
-            + 5.0 * W[1112] * W[1114] + 6.0 * W[1330] * W[896] + 7.0 * W[1548] * W[678] + 8.0 * W[1766] * W[460]
-            + 9.0 * W[1984] * W[242] + 10.0 * W[2202] * W[24]) / 10.0;
-    W[2204] = -((W[240] * W[1985] + 2.0 * W[458] * W[1767] + 3.0 * W[676] * W[1549] + 4.0 * W[894] * W[1331]
-            + 5.0 * W[1112] * W[1113] + 6.0 * W[1330] * W[895] + 7.0 * W[1548] * W[677] + 8.0 * W[1766] * W[459]
-            + 9.0 * W[1984] * W[241] + 10.0 * W[2202] * W[23])) / 10.0;
-    W[2240] = W[57] * W[2197];
-    W[2273] = W[2197] + W[2272];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+chain5_taylor_run_113(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2277] = W[2198] + W[2276];
     W[2302] = W[2191] + W[2197];
     W[2305] = W[2192] + W[2198];
@@ -5039,44 +4034,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2328] = W[2197] + W[2203];
     W[2343] = W[2224] + W[2341];
     W[2344] = W[2225] + W[2342];
-    W[2229] = W[46] * W[2228] + W[264] * W[2010] + W[482] * W[1792] + W[700] * W[1574] + W[918] * W[1356]
-            + W[1136] * W[1138] + W[1354] * W[920] + W[1572] * W[702] + W[1790] * W[484] + W[2008] * W[266]
-            + W[2226] * W[48];
-    W[2230] = W[46] * W[2227] + W[264] * W[2009] + W[482] * W[1791] + W[700] * W[1573] + W[918] * W[1355]
-            + W[1136] * W[1137] + W[1354] * W[919] + W[1572] * W[701] + W[1790] * W[483] + W[2008] * W[265]
-            + W[2226] * W[47];
-    W[2232] = W[24] * W[2231] + W[242] * W[2013] + W[460] * W[1795] + W[678] * W[1577] + W[896] * W[1359]
-            + W[1114] * W[1141] + W[1332] * W[923] + W[1550] * W[705] + W[1768] * W[487] + W[1986] * W[269]
-            + W[2204] * W[51];
-    W[2233] = W[23] * W[2231] + W[241] * W[2013] + W[459] * W[1795] + W[677] * W[1577] + W[895] * W[1359]
-            + W[1113] * W[1141] + W[1331] * W[923] + W[1549] * W[705] + W[1767] * W[487] + W[1985] * W[269]
-            + W[2203] * W[51];
-    W[2241] = W[2238] - W[2240];
-    W[2253] = W[2199] + W[2205];
-    W[2256] = W[2200] + W[2206];
-    W[2281] = W[2273] + W[2274];
-    W[2284] = W[2277] + W[2278];
-    W[2309] = W[2302] + W[2303];
-    W[2312] = W[2305] + W[2306];
-    W[2326] = W[2198] + W[2325];
-    W[2329] = W[2197] + W[2328];
-    W[2345] = W[2229] + W[2343];
-    W[2346] = W[2230] + W[2344];
-    W[2234] = W[51] * W[2233] + W[269] * W[2015] + W[487] * W[1797] + W[705] * W[1579] + W[923] * W[1361]
-            + W[1141] * W[1143] + W[1359] * W[925] + W[1577] * W[707] + W[1795] * W[489] + W[2013] * W[271]
-            + W[2231] * W[53];
-    W[2235] = W[51] * W[2232] + W[269] * W[2014] + W[487] * W[1796] + W[705] * W[1578] + W[923] * W[1360]
-            + W[1141] * W[1142] + W[1359] * W[924] + W[1577] * W[706] + W[1795] * W[488] + W[2013] * W[270]
-            + W[2231] * W[52];
-    W[2250] = W[23] * W[2205] + W[241] * W[1987] + W[459] * W[1769] + W[677] * W[1551] + W[895] * W[1333]
-            + W[1113] * W[1115] + W[1331] * W[897] + W[1549] * W[679] + W[1767] * W[461] + W[1985] * W[243]
-            + W[2203] * W[25];
-    W[2251] = W[24] * W[2206] + W[242] * W[1988] + W[460] * W[1770] + W[678] * W[1552] + W[896] * W[1334]
-            + W[1114] * W[1116] + W[1332] * W[898] + W[1550] * W[680] + W[1768] * W[462] + W[1986] * W[244]
-            + W[2204] * W[26];
-    W[2275] = W[23] * W[2274] + W[241] * W[2056] + W[459] * W[1838] + W[677] * W[1620] + W[895] * W[1402]
-            + W[1113] * W[1184] + W[1331] * W[966] + W[1549] * W[748] + W[1767] * W[530] + W[1985] * W[312]
-            + W[2203] * W[94];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+chain5_taylor_run_115(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2279] = W[24] * W[2278] + W[242] * W[2060] + W[460] * W[1842] + W[678] * W[1624] + W[896] * W[1406]
             + W[1114] * W[1188] + W[1332] * W[970] + W[1550] * W[752] + W[1768] * W[534] + W[1986] * W[316]
             + W[2204] * W[98];
@@ -5111,6 +4078,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2257] = W[18] * W[2256] + W[236] * W[2038] + W[454] * W[1820] + W[672] * W[1602] + W[890] * W[1384]
             + W[1108] * W[1166] + W[1326] * W[948] + W[1544] * W[730] + W[1762] * W[512] + W[1980] * W[294]
             + W[2198] * W[76];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+chain5_taylor_run_116(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2282] = W[17] * W[2281] + W[235] * W[2063] + W[453] * W[1845] + W[671] * W[1627] + W[889] * W[1409]
             + W[1107] * W[1191] + W[1325] * W[973] + W[1543] * W[755] + W[1761] * W[537] + W[1979] * W[319]
             + W[2197] * W[101];
@@ -5143,44 +4120,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2339] = W[33] * W[2308];
     W[2340] = W[33] * W[2333];
     W[2351] = W[2346] + W[2348];
-    W[2353] = W[2345] + W[2347];
-    W[2260] = W[11] * W[2259] + W[229] * W[2041] + W[447] * W[1823] + W[665] * W[1605] + W[883] * W[1387]
-            + W[1101] * W[1169] + W[1319] * W[951] + W[1537] * W[733] + W[1755] * W[515] + W[1973] * W[297]
-            + W[2191] * W[79];
-    W[2263] = W[12] * W[2262] + W[230] * W[2044] + W[448] * W[1826] + W[666] * W[1608] + W[884] * W[1390]
-            + W[1102] * W[1172] + W[1320] * W[954] + W[1538] * W[736] + W[1756] * W[518] + W[1974] * W[300]
-            + W[2192] * W[82];
-    W[2288] = W[11] * W[2287] + W[229] * W[2069] + W[447] * W[1851] + W[665] * W[1633] + W[883] * W[1415]
-            + W[1101] * W[1197] + W[1319] * W[979] + W[1537] * W[761] + W[1755] * W[543] + W[1973] * W[325]
-            + W[2191] * W[107];
-    W[2291] = W[12] * W[2290] + W[230] * W[2072] + W[448] * W[1854] + W[666] * W[1636] + W[884] * W[1418]
-            + W[1102] * W[1200] + W[1320] * W[982] + W[1538] * W[764] + W[1756] * W[546] + W[1974] * W[328]
-            + W[2192] * W[110];
-    W[2316] = W[11] * W[2315] + W[229] * W[2097] + W[447] * W[1879] + W[665] * W[1661] + W[883] * W[1443]
-            + W[1101] * W[1225] + W[1319] * W[1007] + W[1537] * W[789] + W[1755] * W[571] + W[1973] * W[353]
-            + W[2191] * W[135];
-    W[2319] = W[12] * W[2318] + W[230] * W[2100] + W[448] * W[1882] + W[666] * W[1664] + W[884] * W[1446]
-            + W[1102] * W[1228] + W[1320] * W[1010] + W[1538] * W[792] + W[1756] * W[574] + W[1974] * W[356]
-            + W[2192] * W[138];
-    W[2349] = W[23] * W[2348] + W[241] * W[2130] + W[459] * W[1912] + W[677] * W[1694] + W[895] * W[1476]
-            + W[1113] * W[1258] + W[1331] * W[1040] + W[1549] * W[822] + W[1767] * W[604] + W[1985] * W[386]
-            + W[2203] * W[168];
-    W[2350] = W[24] * W[2347] + W[242] * W[2129] + W[460] * W[1911] + W[678] * W[1693] + W[896] * W[1475]
-            + W[1114] * W[1257] + W[1332] * W[1039] + W[1550] * W[821] + W[1768] * W[603] + W[1986] * W[385]
-            + W[2204] * W[167];
-    W[2249] = W[2247] - W[2248];
-    W[2258] = W[2255] + W[2257];
-    W[2286] = W[2283] + W[2285];
-    W[2314] = W[2311] + W[2313];
-    W[2335] = W[2327] + W[2334];
-    W[2355] = W[2344] + W[2351];
-    W[2357] = W[2343] + W[2353];
-    W[2363] = W[2349] - W[2350];
-    W[2370] = W[2181] + W[2265];
-    W[2373] = W[2182] + W[2268];
-    W[2266] = W[5] * W[2265] + W[223] * W[2047] + W[441] * W[1829] + W[659] * W[1611] + W[877] * W[1393]
-            + W[1095] * W[1175] + W[1313] * W[957] + W[1531] * W[739] + W[1749] * W[521] + W[1967] * W[303]
-            + W[2185] * W[85];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+chain5_taylor_run_118(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2269] = W[6] * W[2268] + W[224] * W[2050] + W[442] * W[1832] + W[660] * W[1614] + W[878] * W[1396]
             + W[1096] * W[1178] + W[1314] * W[960] + W[1532] * W[742] + W[1750] * W[524] + W[1968] * W[306]
             + W[2186] * W[88];
@@ -5219,54 +4168,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2374] = W[2] * W[2373] + W[220] * W[2155] + W[438] * W[1937] + W[656] * W[1719] + W[874] * W[1501]
             + W[1092] * W[1283] + W[1310] * W[1065] + W[1528] * W[847] + W[1746] * W[629] + W[1964] * W[411]
             + W[2182] * W[193];
-    W[2264] = W[2261] + W[2263];
-    W[2292] = W[2289] + W[2291];
-    W[2320] = W[2317] + W[2319];
-    W[2365] = W[2364] - W[2354];
-    W[2369] = W[2238] + W[2368];
-    W[2383] = W[2215] + W[2359];
-    W[2384] = W[2214] + W[2361];
-    W[2360] = W[5] * W[2359] + W[223] * W[2141] + W[441] * W[1923] + W[659] * W[1705] + W[877] * W[1487]
-            + W[1095] * W[1269] + W[1313] * W[1051] + W[1531] * W[833] + W[1749] * W[615] + W[1967] * W[397]
-            + W[2185] * W[179];
-    W[2362] = W[6] * W[2361] + W[224] * W[2143] + W[442] * W[1925] + W[660] * W[1707] + W[878] * W[1489]
-            + W[1096] * W[1271] + W[1314] * W[1053] + W[1532] * W[835] + W[1750] * W[617] + W[1968] * W[399]
-            + W[2186] * W[181];
-    W[2267] = W[2264] + W[2266];
-    W[2295] = W[2292] + W[2294];
-    W[2300] = W[33] * W[2264];
-    W[2301] = W[33] * W[2292];
-    W[2321] = W[33] * W[2320];
-    W[2366] = W[33] * W[2365];
-    W[2377] = W[2356] + W[2365];
-    W[2385] = W[1] * W[2383] + W[219] * W[2165] + W[437] * W[1947] + W[655] * W[1729] + W[873] * W[1511]
-            + W[1091] * W[1293] + W[1309] * W[1075] + W[1527] * W[857] + W[1745] * W[639] + W[1963] * W[421]
-            + W[2181] * W[203];
-    W[2387] = W[2] * W[2384] + W[220] * W[2166] + W[438] * W[1948] + W[656] * W[1730] + W[874] * W[1512]
-            + W[1092] * W[1294] + W[1310] * W[1076] + W[1528] * W[858] + W[1746] * W[640] + W[1964] * W[422]
-            + W[2182] * W[204];
-    W[2270] = W[2267] + W[2269];
-    W[2298] = W[2295] + W[2297];
-    W[2367] = W[2241] + W[2366];
-    W[2378] = W[2377] - W[2358];
-    W[2271] = W[33] * W[2270];
-    W[2299] = W[33] * W[2298];
-    W[2372] = W[2270] + W[2371];
-    W[2379] = W[33] * W[2378];
-    W[2380] = W[2360] + W[2378];
-    W[2375] = W[2372] + W[2374];
-    W[2381] = W[2380] - W[2362];
-    W[2392] = W[2244] + W[2379];
-    W[2376] = W[33] * W[2375];
-    W[2382] = W[33] * W[2381];
-    W[2386] = W[2381] + W[2385];
-    W[2388] = W[2386] - W[2387];
-    W[2391] = W[2247] + W[2382];
-    W[2389] = W[33] * W[2388];
-    W[2390] = W[2249] + W[2389];
-    X[110] = X[105] / 11.0;
-    X[111] = X[106] / 11.0;
-    X[112] = X[107] / 11.0;
+    return 0;
+}
+
+/* Lines 200 .. 212 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+chain5_taylor_run_121(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[113] = X[108] / 11.0;
     X[114] = X[109] / 11.0;
     W[2393] = W[414] * W[2175] + W[632] * W[1957] + W[850] * W[1739] + W[1068] * W[1521] + W[1286] * W[1303]
@@ -5329,86 +4240,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[117] = W[2395] / 11.0;
     X[118] = W[2396] / 11.0;
     X[119] = W[2397] / 11.0;
-    if (K == 11)
-        goto out;
-    /* order 11 */
-    W[2399] = (X[10] * W[2182] + 2.0 * X[20] * W[1964] + 3.0 * X[30] * W[1746] + 4.0 * X[40] * W[1528]
-            + 5.0 * X[50] * W[1310] + 6.0 * X[60] * W[1092] + 7.0 * X[70] * W[874] + 8.0 * X[80] * W[656]
-            + 9.0 * X[90] * W[438] + 10.0 * X[100] * W[220] + 11.0 * X[110] * W[2]) / 11.0;
-    W[2400] = -((X[10] * W[2181] + 2.0 * X[20] * W[1963] + 3.0 * X[30] * W[1745] + 4.0 * X[40] * W[1527]
-            + 5.0 * X[50] * W[1309] + 6.0 * X[60] * W[1091] + 7.0 * X[70] * W[873] + 8.0 * X[80] * W[655]
-            + 9.0 * X[90] * W[437] + 10.0 * X[100] * W[219] + 11.0 * X[110] * W[1])) / 11.0;
-    W[2402] = X[110] + X[111];
-    W[2430] = (X[5] * X[115] + X[15] * X[105] + X[25] * X[95] + X[35] * X[85] + X[45] * X[75]
-            + X[55] * X[65]) * 2.0;
-    W[2434] = X[115] + X[116];
-    W[2403] = (W[222] * W[2186] + 2.0 * W[440] * W[1968] + 3.0 * W[658] * W[1750] + 4.0 * W[876] * W[1532]
-            + 5.0 * W[1094] * W[1314] + 6.0 * W[1312] * W[1096] + 7.0 * W[1530] * W[878] + 8.0 * W[1748] * W[660]
-            + 9.0 * W[1966] * W[442] + 10.0 * W[2184] * W[224] + 11.0 * W[2402] * W[6]) / 11.0;
-    W[2404] = -((W[222] * W[2185] + 2.0 * W[440] * W[1967] + 3.0 * W[658] * W[1749] + 4.0 * W[876] * W[1531]
-            + 5.0 * W[1094] * W[1313] + 6.0 * W[1312] * W[1095] + 7.0 * W[1530] * W[877] + 8.0 * W[1748] * W[659]
-            + 9.0 * W[1966] * W[441] + 10.0 * W[2184] * W[223] + 11.0 * W[2402] * W[5])) / 11.0;
-    W[2408] = W[2402] + X[112];
-    W[2439] = X[117] + W[2434];
-    W[2466] = W[65] * W[2399];
-    W[2432] = W[1] * W[2430] + W[219] * W[2212] + W[437] * W[1994] + W[655] * W[1776] + W[873] * W[1558]
-            + W[1091] * W[1340] + W[1309] * W[1122] + W[1527] * W[904] + W[1745] * W[686] + W[1963] * W[468]
-            + W[2181] * W[250] + W[2399] * W[32];
-    W[2433] = W[2] * W[2430] + W[220] * W[2212] + W[438] * W[1994] + W[656] * W[1776] + W[874] * W[1558]
-            + W[1092] * W[1340] + W[1310] * W[1122] + W[1528] * W[904] + W[1746] * W[686] + W[1964] * W[468]
-            + W[2182] * W[250] + W[2400] * W[32];
-    W[2405] = W[2399] + W[2403];
-    W[2406] = W[2400] + W[2404];
-    W[2409] = (W[228] * W[2192] + 2.0 * W[446] * W[1974] + 3.0 * W[664] * W[1756] + 4.0 * W[882] * W[1538]
-            + 5.0 * W[1100] * W[1320] + 6.0 * W[1318] * W[1102] + 7.0 * W[1536] * W[884] + 8.0 * W[1754] * W[666]
-            + 9.0 * W[1972] * W[448] + 10.0 * W[2190] * W[230] + 11.0 * W[2408] * W[12]) / 11.0;
-    W[2410] = -((W[228] * W[2191] + 2.0 * W[446] * W[1973] + 3.0 * W[664] * W[1755] + 4.0 * W[882] * W[1537]
-            + 5.0 * W[1100] * W[1319] + 6.0 * W[1318] * W[1101] + 7.0 * W[1536] * W[883] + 8.0 * W[1754] * W[665]
-            + 9.0 * W[1972] * W[447] + 10.0 * W[2190] * W[229] + 11.0 * W[2408] * W[11])) / 11.0;
-    W[2414] = W[2408] + X[113];
-    W[2444] = X[118] + W[2439];
-    W[2464] = W[62] * W[2403];
-    W[2435] = W[6] * W[2434] + W[224] * W[2216] + W[442] * W[1998] + W[660] * W[1780] + W[878] * W[1562]
-            + W[1096] * W[1344] + W[1314] * W[1126] + W[1532] * W[908] + W[1750] * W[690] + W[1968] * W[472]
-            + W[2186] * W[254] + W[2404] * W[36];
-    W[2436] = W[5] * W[2434] + W[223] * W[2216] + W[441] * W[1998] + W[659] * W[1780] + W[877] * W[1562]
-            + W[1095] * W[1344] + W[1313] * W[1126] + W[1531] * W[908] + W[1749] * W[690] + W[1967] * W[472]
-            + W[2185] * W[254] + W[2403] * W[36];
-    W[2411] = W[2405] + W[2409];
-    W[2412] = W[2406] + W[2410];
-    W[2415] = (W[234] * W[2198] + 2.0 * W[452] * W[1980] + 3.0 * W[670] * W[1762] + 4.0 * W[888] * W[1544]
-            + 5.0 * W[1106] * W[1326] + 6.0 * W[1324] * W[1108] + 7.0 * W[1542] * W[890] + 8.0 * W[1760] * W[672]
-            + 9.0 * W[1978] * W[454] + 10.0 * W[2196] * W[236] + 11.0 * W[2414] * W[18]) / 11.0;
-    W[2416] = -((W[234] * W[2197] + 2.0 * W[452] * W[1979] + 3.0 * W[670] * W[1761] + 4.0 * W[888] * W[1543]
-            + 5.0 * W[1106] * W[1325] + 6.0 * W[1324] * W[1107] + 7.0 * W[1542] * W[889] + 8.0 * W[1760] * W[671]
-            + 9.0 * W[1978] * W[453] + 10.0 * W[2196] * W[235] + 11.0 * W[2414] * W[17])) / 11.0;
-    W[2420] = W[2414] + X[114];
-    W[2449] = X[119] + W[2444];
-    W[2461] = W[59] * W[2409];
-    W[2490] = W[2403] + W[2409];
-    W[2494] = W[2404] + W[2410];
-    W[2437] = W[36] * W[2436] + W[254] * W[2218] + W[472] * W[2000] + W[690] * W[1782] + W[908] * W[1564]
-            + W[1126] * W[1346] + W[1344] * W[1128] + W[1562] * W[910] + W[1780] * W[692] + W[1998] * W[474]
-            + W[2216] * W[256] + W[2434] * W[38];
-    W[2438] = W[36] * W[2435] + W[254] * W[2217] + W[472] * W[1999] + W[690] * W[1781] + W[908] * W[1563]
-            + W[1126] * W[1345] + W[1344] * W[1127] + W[1562] * W[909] + W[1780] * W[691] + W[1998] * W[473]
-            + W[2216] * W[255] + W[2434] * W[37];
-    W[2440] = W[12] * W[2439] + W[230] * W[2221] + W[448] * W[2003] + W[666] * W[1785] + W[884] * W[1567]
-            + W[1102] * W[1349] + W[1320] * W[1131] + W[1538] * W[913] + W[1756] * W[695] + W[1974] * W[477]
-            + W[2192] * W[259] + W[2410] * W[41];
-    W[2441] = W[11] * W[2439] + W[229] * W[2221] + W[447] * W[2003] + W[665] * W[1785] + W[883] * W[1567]
-            + W[1101] * W[1349] + W[1319] * W[1131] + W[1537] * W[913] + W[1755] * W[695] + W[1973] * W[477]
-            + W[2191] * W[259] + W[2409] * W[41];
-    W[2417] = W[2411] + W[2415];
-    W[2418] = W[2412] + W[2416];
-    W[2421] = (W[240] * W[2204] + 2.0 * W[458] * W[1986] + 3.0 * W[676] * W[1768] + 4.0 * W[894] * W[1550]
-            + 5.0 * W[1112] * W[1332] + 6.0 * W[1330] * W[1114] + 7.0 * W[1548] * W[896] + 8.0 * W[1766] * W[678]
-            + 9.0 * W[1984] * W[460] + 10.0 * W[2202] * W[242] + 11.0 * W[2420] * W[24]) / 11.0;
-    W[2422] = -((W[240] * W[2203] + 2.0 * W[458] * W[1985] + 3.0 * W[676] * W[1767] + 4.0 * W[894] * W[1549]
-            + 5.0 * W[1112] * W[1331] + 6.0 * W[1330] * W[1113] + 7.0 * W[1548] * W[895] + 8.0 * W[1766] * W[677]
-            + 9.0 * W[1984] * W[459] + 10.0 * W[2202] * W[241] + 11.0 * W[2420] * W[23])) / 11.0;
-    W[2458] = W[57] * W[2415];
-    W[2491] = W[2415] + W[2490];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+chain5_taylor_run_124(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2495] = W[2416] + W[2494];
     W[2520] = W[2409] + W[2415];
     W[2523] = W[2410] + W[2416];
@@ -5437,44 +4278,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2546] = W[2415] + W[2421];
     W[2561] = W[2442] + W[2559];
     W[2562] = W[2443] + W[2560];
-    W[2447] = W[46] * W[2446] + W[264] * W[2228] + W[482] * W[2010] + W[700] * W[1792] + W[918] * W[1574]
-            + W[1136] * W[1356] + W[1354] * W[1138] + W[1572] * W[920] + W[1790] * W[702] + W[2008] * W[484]
-            + W[2226] * W[266] + W[2444] * W[48];
-    W[2448] = W[46] * W[2445] + W[264] * W[2227] + W[482] * W[2009] + W[700] * W[1791] + W[918] * W[1573]
-            + W[1136] * W[1355] + W[1354] * W[1137] + W[1572] * W[919] + W[1790] * W[701] + W[2008] * W[483]
-            + W[2226] * W[265] + W[2444] * W[47];
-    W[2450] = W[24] * W[2449] + W[242] * W[2231] + W[460] * W[2013] + W[678] * W[1795] + W[896] * W[1577]
-            + W[1114] * W[1359] + W[1332] * W[1141] + W[1550] * W[923] + W[1768] * W[705] + W[1986] * W[487]
-            + W[2204] * W[269] + W[2422] * W[51];
-    W[2451] = W[23] * W[2449] + W[241] * W[2231] + W[459] * W[2013] + W[677] * W[1795] + W[895] * W[1577]
-            + W[1113] * W[1359] + W[1331] * W[1141] + W[1549] * W[923] + W[1767] * W[705] + W[1985] * W[487]
-            + W[2203] * W[269] + W[2421] * W[51];
-    W[2459] = W[2456] - W[2458];
-    W[2471] = W[2417] + W[2423];
-    W[2474] = W[2418] + W[2424];
-    W[2499] = W[2491] + W[2492];
-    W[2502] = W[2495] + W[2496];
-    W[2527] = W[2520] + W[2521];
-    W[2530] = W[2523] + W[2524];
-    W[2544] = W[2416] + W[2543];
-    W[2547] = W[2415] + W[2546];
-    W[2563] = W[2447] + W[2561];
-    W[2564] = W[2448] + W[2562];
-    W[2452] = W[51] * W[2451] + W[269] * W[2233] + W[487] * W[2015] + W[705] * W[1797] + W[923] * W[1579]
-            + W[1141] * W[1361] + W[1359] * W[1143] + W[1577] * W[925] + W[1795] * W[707] + W[2013] * W[489]
-            + W[2231] * W[271] + W[2449] * W[53];
-    W[2453] = W[51] * W[2450] + W[269] * W[2232] + W[487] * W[2014] + W[705] * W[1796] + W[923] * W[1578]
-            + W[1141] * W[1360] + W[1359] * W[1142] + W[1577] * W[924] + W[1795] * W[706] + W[2013] * W[488]
-            + W[2231] * W[270] + W[2449] * W[52];
-    W[2468] = W[23] * W[2423] + W[241] * W[2205] + W[459] * W[1987] + W[677] * W[1769] + W[895] * W[1551]
-            + W[1113] * W[1333] + W[1331] * W[1115] + W[1549] * W[897] + W[1767] * W[679] + W[1985] * W[461]
-            + W[2203] * W[243] + W[2421] * W[25];
-    W[2469] = W[24] * W[2424] + W[242] * W[2206] + W[460] * W[1988] + W[678] * W[1770] + W[896] * W[1552]
-            + W[1114] * W[1334] + W[1332] * W[1116] + W[1550] * W[898] + W[1768] * W[680] + W[1986] * W[462]
-            + W[2204] * W[244] + W[2422] * W[26];
-    W[2493] = W[23] * W[2492] + W[241] * W[2274] + W[459] * W[2056] + W[677] * W[1838] + W[895] * W[1620]
-            + W[1113] * W[1402] + W[1331] * W[1184] + W[1549] * W[966] + W[1767] * W[748] + W[1985] * W[530]
-            + W[2203] * W[312] + W[2421] * W[94];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+chain5_taylor_run_126(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2497] = W[24] * W[2496] + W[242] * W[2278] + W[460] * W[2060] + W[678] * W[1842] + W[896] * W[1624]
             + W[1114] * W[1406] + W[1332] * W[1188] + W[1550] * W[970] + W[1768] * W[752] + W[1986] * W[534]
             + W[2204] * W[316] + W[2422] * W[98];
@@ -5509,38 +4322,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2475] = W[18] * W[2474] + W[236] * W[2256] + W[454] * W[2038] + W[672] * W[1820] + W[890] * W[1602]
             + W[1108] * W[1384] + W[1326] * W[1166] + W[1544] * W[948] + W[1762] * W[730] + W[1980] * W[512]
             + W[2198] * W[294] + W[2416] * W[76];
-    W[2500] = W[17] * W[2499] + W[235] * W[2281] + W[453] * W[2063] + W[671] * W[1845] + W[889] * W[1627]
-            + W[1107] * W[1409] + W[1325] * W[1191] + W[1543] * W[973] + W[1761] * W[755] + W[1979] * W[537]
-            + W[2197] * W[319] + W[2415] * W[101];
-    W[2503] = W[18] * W[2502] + W[236] * W[2284] + W[454] * W[2066] + W[672] * W[1848] + W[890] * W[1630]
-            + W[1108] * W[1412] + W[1326] * W[1194] + W[1544] * W[976] + W[1762] * W[758] + W[1980] * W[540]
-            + W[2198] * W[322] + W[2416] * W[104];
-    W[2528] = W[17] * W[2527] + W[235] * W[2309] + W[453] * W[2091] + W[671] * W[1873] + W[889] * W[1655]
-            + W[1107] * W[1437] + W[1325] * W[1219] + W[1543] * W[1001] + W[1761] * W[783] + W[1979] * W[565]
-            + W[2197] * W[347] + W[2415] * W[129];
-    W[2531] = W[18] * W[2530] + W[236] * W[2312] + W[454] * W[2094] + W[672] * W[1876] + W[890] * W[1658]
-            + W[1108] * W[1440] + W[1326] * W[1222] + W[1544] * W[1004] + W[1762] * W[786] + W[1980] * W[568]
-            + W[2198] * W[350] + W[2416] * W[132];
-    W[2545] = W[18] * W[2544] + W[236] * W[2326] + W[454] * W[2108] + W[672] * W[1890] + W[890] * W[1672]
-            + W[1108] * W[1454] + W[1326] * W[1236] + W[1544] * W[1018] + W[1762] * W[800] + W[1980] * W[582]
-            + W[2198] * W[364] + W[2416] * W[146];
-    W[2548] = W[17] * W[2547] + W[235] * W[2329] + W[453] * W[2111] + W[671] * W[1893] + W[889] * W[1675]
-            + W[1107] * W[1457] + W[1325] * W[1239] + W[1543] * W[1021] + W[1761] * W[803] + W[1979] * W[585]
-            + W[2197] * W[367] + W[2415] * W[149];
-    W[2465] = W[2462] - W[2464];
-    W[2473] = W[2470] + W[2472];
-    W[2483] = W[2405] + W[2477];
-    W[2486] = W[2406] + W[2480];
-    W[2501] = W[2498] + W[2500];
-    W[2511] = W[2403] + W[2505];
-    W[2514] = W[2404] + W[2508];
-    W[2529] = W[2526] + W[2528];
-    W[2552] = W[2548] + W[2551];
-    W[2555] = W[33] * W[2470];
-    W[2556] = W[33] * W[2498];
-    W[2557] = W[33] * W[2526];
-    W[2558] = W[33] * W[2551];
-    W[2569] = W[2564] + W[2566];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+chain5_taylor_run_128(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2571] = W[2563] + W[2565];
     W[2478] = W[11] * W[2477] + W[229] * W[2259] + W[447] * W[2041] + W[665] * W[1823] + W[883] * W[1605]
             + W[1101] * W[1387] + W[1319] * W[1169] + W[1537] * W[951] + W[1755] * W[733] + W[1973] * W[515]
@@ -5579,44 +4370,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2484] = W[5] * W[2483] + W[223] * W[2265] + W[441] * W[2047] + W[659] * W[1829] + W[877] * W[1611]
             + W[1095] * W[1393] + W[1313] * W[1175] + W[1531] * W[957] + W[1749] * W[739] + W[1967] * W[521]
             + W[2185] * W[303] + W[2403] * W[85];
-    W[2487] = W[6] * W[2486] + W[224] * W[2268] + W[442] * W[2050] + W[660] * W[1832] + W[878] * W[1614]
-            + W[1096] * W[1396] + W[1314] * W[1178] + W[1532] * W[960] + W[1750] * W[742] + W[1968] * W[524]
-            + W[2186] * W[306] + W[2404] * W[88];
-    W[2512] = W[5] * W[2511] + W[223] * W[2293] + W[441] * W[2075] + W[659] * W[1857] + W[877] * W[1639]
-            + W[1095] * W[1421] + W[1313] * W[1203] + W[1531] * W[985] + W[1749] * W[767] + W[1967] * W[549]
-            + W[2185] * W[331] + W[2403] * W[113];
-    W[2515] = W[6] * W[2514] + W[224] * W[2296] + W[442] * W[2078] + W[660] * W[1860] + W[878] * W[1642]
-            + W[1096] * W[1424] + W[1314] * W[1206] + W[1532] * W[988] + W[1750] * W[770] + W[1968] * W[552]
-            + W[2186] * W[334] + W[2404] * W[116];
-    W[2570] = W[17] * W[2569] + W[235] * W[2351] + W[453] * W[2133] + W[671] * W[1915] + W[889] * W[1697]
-            + W[1107] * W[1479] + W[1325] * W[1261] + W[1543] * W[1043] + W[1761] * W[825] + W[1979] * W[607]
-            + W[2197] * W[389] + W[2415] * W[171];
-    W[2572] = W[18] * W[2571] + W[236] * W[2353] + W[454] * W[2135] + W[672] * W[1917] + W[890] * W[1699]
-            + W[1108] * W[1481] + W[1326] * W[1263] + W[1544] * W[1045] + W[1762] * W[827] + W[1980] * W[609]
-            + W[2198] * W[391] + W[2416] * W[173];
-    W[2479] = W[2476] + W[2478];
-    W[2507] = W[2504] + W[2506];
-    W[2535] = W[2532] + W[2534];
-    W[2540] = W[33] * W[2476];
-    W[2541] = W[33] * W[2504];
-    W[2542] = W[33] * W[2532];
-    W[2554] = W[33] * W[2553];
-    W[2577] = W[2560] + W[2573];
-    W[2579] = W[2559] + W[2575];
-    W[2582] = W[2570] + W[2581];
-    W[2586] = W[33] * W[2581];
-    W[2574] = W[11] * W[2573] + W[229] * W[2355] + W[447] * W[2137] + W[665] * W[1919] + W[883] * W[1701]
-            + W[1101] * W[1483] + W[1319] * W[1265] + W[1537] * W[1047] + W[1755] * W[829] + W[1973] * W[611]
-            + W[2191] * W[393] + W[2409] * W[175];
-    W[2576] = W[12] * W[2575] + W[230] * W[2357] + W[448] * W[2139] + W[666] * W[1921] + W[884] * W[1703]
-            + W[1102] * W[1485] + W[1320] * W[1267] + W[1538] * W[1049] + W[1756] * W[831] + W[1974] * W[613]
-            + W[2192] * W[395] + W[2410] * W[177];
-    W[2589] = W[1] * W[2588] + W[219] * W[2370] + W[437] * W[2152] + W[655] * W[1934] + W[873] * W[1716]
-            + W[1091] * W[1498] + W[1309] * W[1280] + W[1527] * W[1062] + W[1745] * W[844] + W[1963] * W[626]
-            + W[2181] * W[408] + W[2399] * W[190];
-    W[2592] = W[2] * W[2591] + W[220] * W[2373] + W[438] * W[2155] + W[656] * W[1937] + W[874] * W[1719]
-            + W[1092] * W[1501] + W[1310] * W[1283] + W[1528] * W[1065] + W[1746] * W[847] + W[1964] * W[629]
-            + W[2182] * W[411] + W[2400] * W[193];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+chain5_taylor_run_130(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2482] = W[2479] + W[2481];
     W[2510] = W[2507] + W[2509];
     W[2538] = W[2535] + W[2537];
@@ -5645,6 +4408,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2182] * W[422] + W[2400] * W[204];
     W[2488] = W[2485] + W[2487];
     W[2516] = W[2513] + W[2515];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+chain5_taylor_run_131(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2585] = W[2459] + W[2584];
     W[2596] = W[2595] - W[2576];
     W[2489] = W[33] * W[2488];
@@ -5665,75 +4438,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[120] = X[115] / 12.0;
     X[121] = X[116] / 12.0;
     X[122] = X[117] / 12.0;
-    X[123] = X[118] / 12.0;
-    X[124] = X[119] / 12.0;
-    W[2611] = W[414] * W[2393] + W[632] * W[2175] + W[850] * W[1957] + W[1068] * W[1739] + W[1286] * W[1521]
-            + W[1504] * W[1303] + W[1722] * W[1085] + W[1940] * W[867] + W[2158] * W[649] + W[2376] * W[431]
-            + W[2594] * W[213] + W[309] * W[2394] + W[527] * W[2176] + W[745] * W[1958] + W[963] * W[1740]
-            + W[1181] * W[1522] + W[1399] * W[1304] + W[1617] * W[1086] + W[1835] * W[868] + W[2053] * W[650]
-            + W[2271] * W[432] + W[2489] * W[214] + W[338] * W[2395] + W[556] * W[2177] + W[774] * W[1959]
-            + W[992] * W[1741] + W[1210] * W[1523] + W[1428] * W[1305] + W[1646] * W[1087] + W[1864] * W[869]
-            + W[2082] * W[651] + W[2300] * W[433] + W[2518] * W[215] + W[360] * W[2396] + W[578] * W[2178]
-            + W[796] * W[1960] + W[1014] * W[1742] + W[1232] * W[1524] + W[1450] * W[1306] + W[1668] * W[1088]
-            + W[1886] * W[870] + W[2104] * W[652] + W[2322] * W[434] + W[2540] * W[216] + W[375] * W[2397]
-            + W[593] * W[2179] + W[811] * W[1961] + W[1029] * W[1743] + W[1247] * W[1525] + W[1465] * W[1307]
-            + W[1683] * W[1089] + W[1901] * W[871] + W[2119] * W[653] + W[2337] * W[435] + W[2555] * W[217]
-            + W[2608];
-    W[2612] = W[309] * W[2393] + W[527] * W[2175] + W[745] * W[1957] + W[963] * W[1739] + W[1181] * W[1521]
-            + W[1399] * W[1303] + W[1617] * W[1085] + W[1835] * W[867] + W[2053] * W[649] + W[2271] * W[431]
-            + W[2489] * W[213] + W[337] * W[2394] + W[555] * W[2176] + W[773] * W[1958] + W[991] * W[1740]
-            + W[1209] * W[1522] + W[1427] * W[1304] + W[1645] * W[1086] + W[1863] * W[868] + W[2081] * W[650]
-            + W[2299] * W[432] + W[2517] * W[214] + W[339] * W[2395] + W[557] * W[2177] + W[775] * W[1959]
-            + W[993] * W[1741] + W[1211] * W[1523] + W[1429] * W[1305] + W[1647] * W[1087] + W[1865] * W[869]
-            + W[2083] * W[651] + W[2301] * W[433] + W[2519] * W[215] + W[361] * W[2396] + W[579] * W[2178]
-            + W[797] * W[1960] + W[1015] * W[1742] + W[1233] * W[1524] + W[1451] * W[1306] + W[1669] * W[1088]
-            + W[1887] * W[870] + W[2105] * W[652] + W[2323] * W[434] + W[2541] * W[216] + W[376] * W[2397]
-            + W[594] * W[2179] + W[812] * W[1961] + W[1030] * W[1743] + W[1248] * W[1525] + W[1466] * W[1307]
-            + W[1684] * W[1089] + W[1902] * W[871] + W[2120] * W[653] + W[2338] * W[435] + W[2556] * W[217]
-            + W[2609];
-    W[2613] = W[338] * W[2393] + W[556] * W[2175] + W[774] * W[1957] + W[992] * W[1739] + W[1210] * W[1521]
-            + W[1428] * W[1303] + W[1646] * W[1085] + W[1864] * W[867] + W[2082] * W[649] + W[2300] * W[431]
-            + W[2518] * W[213] + W[339] * W[2394] + W[557] * W[2176] + W[775] * W[1958] + W[993] * W[1740]
-            + W[1211] * W[1522] + W[1429] * W[1304] + W[1647] * W[1086] + W[1865] * W[868] + W[2083] * W[650]
-            + W[2301] * W[432] + W[2519] * W[214] + W[359] * W[2395] + W[577] * W[2177] + W[795] * W[1959]
-            + W[1013] * W[1741] + W[1231] * W[1523] + W[1449] * W[1305] + W[1667] * W[1087] + W[1885] * W[869]
-            + W[2103] * W[651] + W[2321] * W[433] + W[2539] * W[215] + W[362] * W[2396] + W[580] * W[2178]
-            + W[798] * W[1960] + W[1016] * W[1742] + W[1234] * W[1524] + W[1452] * W[1306] + W[1670] * W[1088]
-            + W[1888] * W[870] + W[2106] * W[652] + W[2324] * W[434] + W[2542] * W[216] + W[377] * W[2397]
-            + W[595] * W[2179] + W[813] * W[1961] + W[1031] * W[1743] + W[1249] * W[1525] + W[1467] * W[1307]
-            + W[1685] * W[1089] + W[1903] * W[871] + W[2121] * W[653] + W[2339] * W[435] + W[2557] * W[217]
-            + W[2610];
-    W[2614] = W[360] * W[2393] + W[578] * W[2175] + W[796] * W[1957] + W[1014] * W[1739] + W[1232] * W[1521]
-            + W[1450] * W[1303] + W[1668] * W[1085] + W[1886] * W[867] + W[2104] * W[649] + W[2322] * W[431]
-            + W[2540] * W[213] + W[361] * W[2394] + W[579] * W[2176] + W[797] * W[1958] + W[1015] * W[1740]
-            + W[1233] * W[1522] + W[1451] * W[1304] + W[1669] * W[1086] + W[1887] * W[868] + W[2105] * W[650]
-            + W[2323] * W[432] + W[2541] * W[214] + W[362] * W[2395] + W[580] * W[2177] + W[798] * W[1959]
-            + W[1016] * W[1741] + W[1234] * W[1523] + W[1452] * W[1305] + W[1670] * W[1087] + W[1888] * W[869]
-            + W[2106] * W[651] + W[2324] * W[433] + W[2542] * W[215] + W[374] * W[2396] + W[592] * W[2178]
-            + W[810] * W[1960] + W[1028] * W[1742] + W[1246] * W[1524] + W[1464] * W[1306] + W[1682] * W[1088]
-            + W[1900] * W[870] + W[2118] * W[652] + W[2336] * W[434] + W[2554] * W[216] + W[378] * W[2397]
-            + W[596] * W[2179] + W[814] * W[1961] + W[1032] * W[1743] + W[1250] * W[1525] + W[1468] * W[1307]
-            + W[1686] * W[1089] + W[1904] * W[871] + W[2122] * W[653] + W[2340] * W[435] + W[2558] * W[217]
-            + W[2585];
-    W[2615] = W[375] * W[2393] + W[593] * W[2175] + W[811] * W[1957] + W[1029] * W[1739] + W[1247] * W[1521]
-            + W[1465] * W[1303] + W[1683] * W[1085] + W[1901] * W[867] + W[2119] * W[649] + W[2337] * W[431]
-            + W[2555] * W[213] + W[376] * W[2394] + W[594] * W[2176] + W[812] * W[1958] + W[1030] * W[1740]
-            + W[1248] * W[1522] + W[1466] * W[1304] + W[1684] * W[1086] + W[1902] * W[868] + W[2120] * W[650]
-            + W[2338] * W[432] + W[2556] * W[214] + W[377] * W[2395] + W[595] * W[2177] + W[813] * W[1959]
-            + W[1031] * W[1741] + W[1249] * W[1523] + W[1467] * W[1305] + W[1685] * W[1087] + W[1903] * W[869]
-            + W[2121] * W[651] + W[2339] * W[433] + W[2557] * W[215] + W[378] * W[2396] + W[596] * W[2178]
-            + W[814] * W[1960] + W[1032] * W[1742] + W[1250] * W[1524] + W[1468] * W[1306] + W[1686] * W[1088]
-            + W[1904] * W[870] + W[2122] * W[652] + W[2340] * W[434] + W[2558] * W[216] + W[2587];
-    if (solve(ctx, 11, NULL, W + 2611))
-        return -1;
-    X[125] = W[2611] / 12.0;
-    X[126] = W[2612] / 12.0;
-    X[127] = W[2613] / 12.0;
-    X[128] = W[2614] / 12.0;
-    X[129] = W[2615] / 12.0;
-    if (K == 12)
-        goto out;
-    /* order 12 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+chain5_taylor_run_133(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2617] = (X[10] * W[2400] + 2.0 * X[20] * W[2182] + 3.0 * X[30] * W[1964] + 4.0 * X[40] * W[1746]
             + 5.0 * X[50] * W[1528] + 6.0 * X[60] * W[1310] + 7.0 * X[70] * W[1092] + 8.0 * X[80] * W[874]
             + 9.0 * X[90] * W[656] + 10.0 * X[100] * W[438] + 11.0 * X[110] * W[220] + 12.0 * X[120] * W[2]) / 12.0;
@@ -5773,6 +4487,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2653] = W[6] * W[2652] + W[224] * W[2434] + W[442] * W[2216] + W[660] * W[1998] + W[878] * W[1780]
             + W[1096] * W[1562] + W[1314] * W[1344] + W[1532] * W[1126] + W[1750] * W[908] + W[1968] * W[690]
             + W[2186] * W[472] + W[2404] * W[254] + W[2622] * W[36];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+chain5_taylor_run_134(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2654] = W[5] * W[2652] + W[223] * W[2434] + W[441] * W[2216] + W[659] * W[1998] + W[877] * W[1780]
             + W[1095] * W[1562] + W[1313] * W[1344] + W[1531] * W[1126] + W[1749] * W[908] + W[1967] * W[690]
             + W[2185] * W[472] + W[2403] * W[254] + W[2621] * W[36];
@@ -5811,34 +4535,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + 9.0 * W[1984] * W[677] + 10.0 * W[2202] * W[459] + 11.0 * W[2420] * W[241] + 12.0 * W[2638] * W[23])) / 12.0;
     W[2676] = W[57] * W[2633];
     W[2709] = W[2633] + W[2708];
-    W[2713] = W[2634] + W[2712];
-    W[2738] = W[2627] + W[2633];
-    W[2741] = W[2628] + W[2634];
-    W[2777] = W[2650] + W[2655];
-    W[2778] = W[2651] + W[2656];
-    W[2660] = W[41] * W[2659] + W[259] * W[2441] + W[477] * W[2223] + W[695] * W[2005] + W[913] * W[1787]
-            + W[1131] * W[1569] + W[1349] * W[1351] + W[1567] * W[1133] + W[1785] * W[915] + W[2003] * W[697]
-            + W[2221] * W[479] + W[2439] * W[261] + W[2657] * W[43];
-    W[2661] = W[41] * W[2658] + W[259] * W[2440] + W[477] * W[2222] + W[695] * W[2004] + W[913] * W[1786]
-            + W[1131] * W[1568] + W[1349] * W[1350] + W[1567] * W[1132] + W[1785] * W[914] + W[2003] * W[696]
-            + W[2221] * W[478] + W[2439] * W[260] + W[2657] * W[42];
-    W[2663] = W[18] * W[2662] + W[236] * W[2444] + W[454] * W[2226] + W[672] * W[2008] + W[890] * W[1790]
-            + W[1108] * W[1572] + W[1326] * W[1354] + W[1544] * W[1136] + W[1762] * W[918] + W[1980] * W[700]
-            + W[2198] * W[482] + W[2416] * W[264] + W[2634] * W[46];
-    W[2664] = W[17] * W[2662] + W[235] * W[2444] + W[453] * W[2226] + W[671] * W[2008] + W[889] * W[1790]
-            + W[1107] * W[1572] + W[1325] * W[1354] + W[1543] * W[1136] + W[1761] * W[918] + W[1979] * W[700]
-            + W[2197] * W[482] + W[2415] * W[264] + W[2633] * W[46];
-    W[2641] = W[2635] + W[2639];
-    W[2642] = W[2636] + W[2640];
-    W[2674] = W[56] * W[2639];
-    W[2710] = W[2639] + W[2709];
-    W[2714] = W[2640] + W[2713];
-    W[2739] = W[2639] + W[2738];
-    W[2742] = W[2640] + W[2741];
-    W[2761] = W[2634] + W[2640];
-    W[2764] = W[2633] + W[2639];
-    W[2779] = W[2660] + W[2777];
-    W[2780] = W[2661] + W[2778];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+chain5_taylor_run_136(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2665] = W[46] * W[2664] + W[264] * W[2446] + W[482] * W[2228] + W[700] * W[2010] + W[918] * W[1792]
             + W[1136] * W[1574] + W[1354] * W[1356] + W[1572] * W[1138] + W[1790] * W[920] + W[2008] * W[702]
             + W[2226] * W[484] + W[2444] * W[266] + W[2662] * W[48];
@@ -5877,40 +4583,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2711] = W[23] * W[2710] + W[241] * W[2492] + W[459] * W[2274] + W[677] * W[2056] + W[895] * W[1838]
             + W[1113] * W[1620] + W[1331] * W[1402] + W[1549] * W[1184] + W[1767] * W[966] + W[1985] * W[748]
             + W[2203] * W[530] + W[2421] * W[312] + W[2639] * W[94];
-    W[2715] = W[24] * W[2714] + W[242] * W[2496] + W[460] * W[2278] + W[678] * W[2060] + W[896] * W[1842]
-            + W[1114] * W[1624] + W[1332] * W[1406] + W[1550] * W[1188] + W[1768] * W[970] + W[1986] * W[752]
-            + W[2204] * W[534] + W[2422] * W[316] + W[2640] * W[98];
-    W[2740] = W[23] * W[2739] + W[241] * W[2521] + W[459] * W[2303] + W[677] * W[2085] + W[895] * W[1867]
-            + W[1113] * W[1649] + W[1331] * W[1431] + W[1549] * W[1213] + W[1767] * W[995] + W[1985] * W[777]
-            + W[2203] * W[559] + W[2421] * W[341] + W[2639] * W[123];
-    W[2743] = W[24] * W[2742] + W[242] * W[2524] + W[460] * W[2306] + W[678] * W[2088] + W[896] * W[1870]
-            + W[1114] * W[1652] + W[1332] * W[1434] + W[1550] * W[1216] + W[1768] * W[998] + W[1986] * W[780]
-            + W[2204] * W[562] + W[2422] * W[344] + W[2640] * W[126];
-    W[2767] = W[23] * W[2764] + W[241] * W[2546] + W[459] * W[2328] + W[677] * W[2110] + W[895] * W[1892]
-            + W[1113] * W[1674] + W[1331] * W[1456] + W[1549] * W[1238] + W[1767] * W[1020] + W[1985] * W[802]
-            + W[2203] * W[584] + W[2421] * W[366] + W[2639] * W[148];
-    W[2768] = W[24] * W[2761] + W[242] * W[2543] + W[460] * W[2325] + W[678] * W[2107] + W[896] * W[1889]
-            + W[1114] * W[1671] + W[1332] * W[1453] + W[1550] * W[1235] + W[1768] * W[1017] + W[1986] * W[799]
-            + W[2204] * W[581] + W[2422] * W[363] + W[2640] * W[145];
-    W[2680] = W[2677] - W[2679];
-    W[2688] = W[2686] + W[2687];
-    W[2695] = W[2629] + W[2689];
-    W[2698] = W[2630] + W[2692];
-    W[2716] = W[2711] + W[2715];
-    W[2723] = W[2708] + W[2717];
-    W[2726] = W[2712] + W[2720];
-    W[2744] = W[2740] + W[2743];
-    W[2751] = W[2627] + W[2745];
-    W[2754] = W[2628] + W[2748];
-    W[2769] = W[2767] + W[2768];
-    W[2783] = W[2670] + W[2781];
-    W[2784] = W[2671] + W[2782];
-    W[2690] = W[17] * W[2689] + W[235] * W[2471] + W[453] * W[2253] + W[671] * W[2035] + W[889] * W[1817]
-            + W[1107] * W[1599] + W[1325] * W[1381] + W[1543] * W[1163] + W[1761] * W[945] + W[1979] * W[727]
-            + W[2197] * W[509] + W[2415] * W[291] + W[2633] * W[73];
-    W[2693] = W[18] * W[2692] + W[236] * W[2474] + W[454] * W[2256] + W[672] * W[2038] + W[890] * W[1820]
-            + W[1108] * W[1602] + W[1326] * W[1384] + W[1544] * W[1166] + W[1762] * W[948] + W[1980] * W[730]
-            + W[2198] * W[512] + W[2416] * W[294] + W[2634] * W[76];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+chain5_taylor_run_138(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2718] = W[17] * W[2717] + W[235] * W[2499] + W[453] * W[2281] + W[671] * W[2063] + W[889] * W[1845]
             + W[1107] * W[1627] + W[1325] * W[1409] + W[1543] * W[1191] + W[1761] * W[973] + W[1979] * W[755]
             + W[2197] * W[537] + W[2415] * W[319] + W[2633] * W[101];
@@ -5943,44 +4625,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2775] = W[33] * W[2744];
     W[2776] = W[33] * W[2769];
     W[2787] = W[2782] + W[2784];
-    W[2789] = W[2781] + W[2783];
-    W[2696] = W[11] * W[2695] + W[229] * W[2477] + W[447] * W[2259] + W[665] * W[2041] + W[883] * W[1823]
-            + W[1101] * W[1605] + W[1319] * W[1387] + W[1537] * W[1169] + W[1755] * W[951] + W[1973] * W[733]
-            + W[2191] * W[515] + W[2409] * W[297] + W[2627] * W[79];
-    W[2699] = W[12] * W[2698] + W[230] * W[2480] + W[448] * W[2262] + W[666] * W[2044] + W[884] * W[1826]
-            + W[1102] * W[1608] + W[1320] * W[1390] + W[1538] * W[1172] + W[1756] * W[954] + W[1974] * W[736]
-            + W[2192] * W[518] + W[2410] * W[300] + W[2628] * W[82];
-    W[2724] = W[11] * W[2723] + W[229] * W[2505] + W[447] * W[2287] + W[665] * W[2069] + W[883] * W[1851]
-            + W[1101] * W[1633] + W[1319] * W[1415] + W[1537] * W[1197] + W[1755] * W[979] + W[1973] * W[761]
-            + W[2191] * W[543] + W[2409] * W[325] + W[2627] * W[107];
-    W[2727] = W[12] * W[2726] + W[230] * W[2508] + W[448] * W[2290] + W[666] * W[2072] + W[884] * W[1854]
-            + W[1102] * W[1636] + W[1320] * W[1418] + W[1538] * W[1200] + W[1756] * W[982] + W[1974] * W[764]
-            + W[2192] * W[546] + W[2410] * W[328] + W[2628] * W[110];
-    W[2752] = W[11] * W[2751] + W[229] * W[2533] + W[447] * W[2315] + W[665] * W[2097] + W[883] * W[1879]
-            + W[1101] * W[1661] + W[1319] * W[1443] + W[1537] * W[1225] + W[1755] * W[1007] + W[1973] * W[789]
-            + W[2191] * W[571] + W[2409] * W[353] + W[2627] * W[135];
-    W[2755] = W[12] * W[2754] + W[230] * W[2536] + W[448] * W[2318] + W[666] * W[2100] + W[884] * W[1882]
-            + W[1102] * W[1664] + W[1320] * W[1446] + W[1538] * W[1228] + W[1756] * W[1010] + W[1974] * W[792]
-            + W[2192] * W[574] + W[2410] * W[356] + W[2628] * W[138];
-    W[2785] = W[23] * W[2784] + W[241] * W[2566] + W[459] * W[2348] + W[677] * W[2130] + W[895] * W[1912]
-            + W[1113] * W[1694] + W[1331] * W[1476] + W[1549] * W[1258] + W[1767] * W[1040] + W[1985] * W[822]
-            + W[2203] * W[604] + W[2421] * W[386] + W[2639] * W[168];
-    W[2786] = W[24] * W[2783] + W[242] * W[2565] + W[460] * W[2347] + W[678] * W[2129] + W[896] * W[1911]
-            + W[1114] * W[1693] + W[1332] * W[1475] + W[1550] * W[1257] + W[1768] * W[1039] + W[1986] * W[821]
-            + W[2204] * W[603] + W[2422] * W[385] + W[2640] * W[167];
-    W[2685] = W[2683] - W[2684];
-    W[2694] = W[2691] + W[2693];
-    W[2722] = W[2719] + W[2721];
-    W[2750] = W[2747] + W[2749];
-    W[2771] = W[2763] + W[2770];
-    W[2791] = W[2780] + W[2787];
-    W[2793] = W[2779] + W[2789];
-    W[2799] = W[2785] - W[2786];
-    W[2806] = W[2617] + W[2701];
-    W[2809] = W[2618] + W[2704];
-    W[2702] = W[5] * W[2701] + W[223] * W[2483] + W[441] * W[2265] + W[659] * W[2047] + W[877] * W[1829]
-            + W[1095] * W[1611] + W[1313] * W[1393] + W[1531] * W[1175] + W[1749] * W[957] + W[1967] * W[739]
-            + W[2185] * W[521] + W[2403] * W[303] + W[2621] * W[85];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+chain5_taylor_run_140(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2705] = W[6] * W[2704] + W[224] * W[2486] + W[442] * W[2268] + W[660] * W[2050] + W[878] * W[1832]
             + W[1096] * W[1614] + W[1314] * W[1396] + W[1532] * W[1178] + W[1750] * W[960] + W[1968] * W[742]
             + W[2186] * W[524] + W[2404] * W[306] + W[2622] * W[88];
@@ -6019,34 +4673,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2810] = W[2] * W[2809] + W[220] * W[2591] + W[438] * W[2373] + W[656] * W[2155] + W[874] * W[1937]
             + W[1092] * W[1719] + W[1310] * W[1501] + W[1528] * W[1283] + W[1746] * W[1065] + W[1964] * W[847]
             + W[2182] * W[629] + W[2400] * W[411] + W[2618] * W[193];
-    W[2700] = W[2697] + W[2699];
-    W[2728] = W[2725] + W[2727];
-    W[2756] = W[2753] + W[2755];
-    W[2801] = W[2800] - W[2790];
-    W[2805] = W[2674] + W[2804];
-    W[2819] = W[2651] + W[2795];
-    W[2820] = W[2650] + W[2797];
-    W[2796] = W[5] * W[2795] + W[223] * W[2577] + W[441] * W[2359] + W[659] * W[2141] + W[877] * W[1923]
-            + W[1095] * W[1705] + W[1313] * W[1487] + W[1531] * W[1269] + W[1749] * W[1051] + W[1967] * W[833]
-            + W[2185] * W[615] + W[2403] * W[397] + W[2621] * W[179];
-    W[2798] = W[6] * W[2797] + W[224] * W[2579] + W[442] * W[2361] + W[660] * W[2143] + W[878] * W[1925]
-            + W[1096] * W[1707] + W[1314] * W[1489] + W[1532] * W[1271] + W[1750] * W[1053] + W[1968] * W[835]
-            + W[2186] * W[617] + W[2404] * W[399] + W[2622] * W[181];
-    W[2703] = W[2700] + W[2702];
-    W[2731] = W[2728] + W[2730];
-    W[2736] = W[33] * W[2700];
-    W[2737] = W[33] * W[2728];
-    W[2757] = W[33] * W[2756];
-    W[2802] = W[33] * W[2801];
-    W[2813] = W[2792] + W[2801];
-    W[2821] = W[1] * W[2819] + W[219] * W[2601] + W[437] * W[2383] + W[655] * W[2165] + W[873] * W[1947]
-            + W[1091] * W[1729] + W[1309] * W[1511] + W[1527] * W[1293] + W[1745] * W[1075] + W[1963] * W[857]
-            + W[2181] * W[639] + W[2399] * W[421] + W[2617] * W[203];
-    W[2823] = W[2] * W[2820] + W[220] * W[2602] + W[438] * W[2384] + W[656] * W[2166] + W[874] * W[1948]
-            + W[1092] * W[1730] + W[1310] * W[1512] + W[1528] * W[1294] + W[1746] * W[1076] + W[1964] * W[858]
-            + W[2182] * W[640] + W[2400] * W[422] + W[2618] * W[204];
-    W[2706] = W[2703] + W[2705];
-    W[2734] = W[2731] + W[2733];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+chain5_taylor_run_142(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2803] = W[2677] + W[2802];
     W[2814] = W[2813] - W[2794];
     W[2707] = W[33] * W[2706];
@@ -6067,80 +4703,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[130] = X[125] / 13.0;
     X[131] = X[126] / 13.0;
     X[132] = X[127] / 13.0;
-    X[133] = X[128] / 13.0;
-    X[134] = X[129] / 13.0;
-    W[2829] = W[414] * W[2611] + W[632] * W[2393] + W[850] * W[2175] + W[1068] * W[1957] + W[1286] * W[1739]
-            + W[1504] * W[1521] + W[1722] * W[1303] + W[1940] * W[1085] + W[2158] * W[867] + W[2376] * W[649]
-            + W[2594] * W[431] + W[2812] * W[213] + W[309] * W[2612] + W[527] * W[2394] + W[745] * W[2176]
-            + W[963] * W[1958] + W[1181] * W[1740] + W[1399] * W[1522] + W[1617] * W[1304] + W[1835] * W[1086]
-            + W[2053] * W[868] + W[2271] * W[650] + W[2489] * W[432] + W[2707] * W[214] + W[338] * W[2613]
-            + W[556] * W[2395] + W[774] * W[2177] + W[992] * W[1959] + W[1210] * W[1741] + W[1428] * W[1523]
-            + W[1646] * W[1305] + W[1864] * W[1087] + W[2082] * W[869] + W[2300] * W[651] + W[2518] * W[433]
-            + W[2736] * W[215] + W[360] * W[2614] + W[578] * W[2396] + W[796] * W[2178] + W[1014] * W[1960]
-            + W[1232] * W[1742] + W[1450] * W[1524] + W[1668] * W[1306] + W[1886] * W[1088] + W[2104] * W[870]
-            + W[2322] * W[652] + W[2540] * W[434] + W[2758] * W[216] + W[375] * W[2615] + W[593] * W[2397]
-            + W[811] * W[2179] + W[1029] * W[1961] + W[1247] * W[1743] + W[1465] * W[1525] + W[1683] * W[1307]
-            + W[1901] * W[1089] + W[2119] * W[871] + W[2337] * W[653] + W[2555] * W[435] + W[2773] * W[217]
-            + W[2826];
-    W[2830] = W[309] * W[2611] + W[527] * W[2393] + W[745] * W[2175] + W[963] * W[1957] + W[1181] * W[1739]
-            + W[1399] * W[1521] + W[1617] * W[1303] + W[1835] * W[1085] + W[2053] * W[867] + W[2271] * W[649]
-            + W[2489] * W[431] + W[2707] * W[213] + W[337] * W[2612] + W[555] * W[2394] + W[773] * W[2176]
-            + W[991] * W[1958] + W[1209] * W[1740] + W[1427] * W[1522] + W[1645] * W[1304] + W[1863] * W[1086]
-            + W[2081] * W[868] + W[2299] * W[650] + W[2517] * W[432] + W[2735] * W[214] + W[339] * W[2613]
-            + W[557] * W[2395] + W[775] * W[2177] + W[993] * W[1959] + W[1211] * W[1741] + W[1429] * W[1523]
-            + W[1647] * W[1305] + W[1865] * W[1087] + W[2083] * W[869] + W[2301] * W[651] + W[2519] * W[433]
-            + W[2737] * W[215] + W[361] * W[2614] + W[579] * W[2396] + W[797] * W[2178] + W[1015] * W[1960]
-            + W[1233] * W[1742] + W[1451] * W[1524] + W[1669] * W[1306] + W[1887] * W[1088] + W[2105] * W[870]
-            + W[2323] * W[652] + W[2541] * W[434] + W[2759] * W[216] + W[376] * W[2615] + W[594] * W[2397]
-            + W[812] * W[2179] + W[1030] * W[1961] + W[1248] * W[1743] + W[1466] * W[1525] + W[1684] * W[1307]
-            + W[1902] * W[1089] + W[2120] * W[871] + W[2338] * W[653] + W[2556] * W[435] + W[2774] * W[217]
-            + W[2827];
-    W[2831] = W[338] * W[2611] + W[556] * W[2393] + W[774] * W[2175] + W[992] * W[1957] + W[1210] * W[1739]
-            + W[1428] * W[1521] + W[1646] * W[1303] + W[1864] * W[1085] + W[2082] * W[867] + W[2300] * W[649]
-            + W[2518] * W[431] + W[2736] * W[213] + W[339] * W[2612] + W[557] * W[2394] + W[775] * W[2176]
-            + W[993] * W[1958] + W[1211] * W[1740] + W[1429] * W[1522] + W[1647] * W[1304] + W[1865] * W[1086]
-            + W[2083] * W[868] + W[2301] * W[650] + W[2519] * W[432] + W[2737] * W[214] + W[359] * W[2613]
-            + W[577] * W[2395] + W[795] * W[2177] + W[1013] * W[1959] + W[1231] * W[1741] + W[1449] * W[1523]
-            + W[1667] * W[1305] + W[1885] * W[1087] + W[2103] * W[869] + W[2321] * W[651] + W[2539] * W[433]
-            + W[2757] * W[215] + W[362] * W[2614] + W[580] * W[2396] + W[798] * W[2178] + W[1016] * W[1960]
-            + W[1234] * W[1742] + W[1452] * W[1524] + W[1670] * W[1306] + W[1888] * W[1088] + W[2106] * W[870]
-            + W[2324] * W[652] + W[2542] * W[434] + W[2760] * W[216] + W[377] * W[2615] + W[595] * W[2397]
-            + W[813] * W[2179] + W[1031] * W[1961] + W[1249] * W[1743] + W[1467] * W[1525] + W[1685] * W[1307]
-            + W[1903] * W[1089] + W[2121] * W[871] + W[2339] * W[653] + W[2557] * W[435] + W[2775] * W[217]
-            + W[2828];
-    W[2832] = W[360] * W[2611] + W[578] * W[2393] + W[796] * W[2175] + W[1014] * W[1957] + W[1232] * W[1739]
-            + W[1450] * W[1521] + W[1668] * W[1303] + W[1886] * W[1085] + W[2104] * W[867] + W[2322] * W[649]
-            + W[2540] * W[431] + W[2758] * W[213] + W[361] * W[2612] + W[579] * W[2394] + W[797] * W[2176]
-            + W[1015] * W[1958] + W[1233] * W[1740] + W[1451] * W[1522] + W[1669] * W[1304] + W[1887] * W[1086]
-            + W[2105] * W[868] + W[2323] * W[650] + W[2541] * W[432] + W[2759] * W[214] + W[362] * W[2613]
-            + W[580] * W[2395] + W[798] * W[2177] + W[1016] * W[1959] + W[1234] * W[1741] + W[1452] * W[1523]
-            + W[1670] * W[1305] + W[1888] * W[1087] + W[2106] * W[869] + W[2324] * W[651] + W[2542] * W[433]
-            + W[2760] * W[215] + W[374] * W[2614] + W[592] * W[2396] + W[810] * W[2178] + W[1028] * W[1960]
-            + W[1246] * W[1742] + W[1464] * W[1524] + W[1682] * W[1306] + W[1900] * W[1088] + W[2118] * W[870]
-            + W[2336] * W[652] + W[2554] * W[434] + W[2772] * W[216] + W[378] * W[2615] + W[596] * W[2397]
-            + W[814] * W[2179] + W[1032] * W[1961] + W[1250] * W[1743] + W[1468] * W[1525] + W[1686] * W[1307]
-            + W[1904] * W[1089] + W[2122] * W[871] + W[2340] * W[653] + W[2558] * W[435] + W[2776] * W[217]
-            + W[2803];
-    W[2833] = W[375] * W[2611] + W[593] * W[2393] + W[811] * W[2175] + W[1029] * W[1957] + W[1247] * W[1739]
-            + W[1465] * W[1521] + W[1683] * W[1303] + W[1901] * W[1085] + W[2119] * W[867] + W[2337] * W[649]
-            + W[2555] * W[431] + W[2773] * W[213] + W[376] * W[2612] + W[594] * W[2394] + W[812] * W[2176]
-            + W[1030] * W[1958] + W[1248] * W[1740] + W[1466] * W[1522] + W[1684] * W[1304] + W[1902] * W[1086]
-            + W[2120] * W[868] + W[2338] * W[650] + W[2556] * W[432] + W[2774] * W[214] + W[377] * W[2613]
-            + W[595] * W[2395] + W[813] * W[2177] + W[1031] * W[1959] + W[1249] * W[1741] + W[1467] * W[1523]
-            + W[1685] * W[1305] + W[1903] * W[1087] + W[2121] * W[869] + W[2339] * W[651] + W[2557] * W[433]
-            + W[2775] * W[215] + W[378] * W[2614] + W[596] * W[2396] + W[814] * W[2178] + W[1032] * W[1960]
-            + W[1250] * W[1742] + W[1468] * W[1524] + W[1686] * W[1306] + W[1904] * W[1088] + W[2122] * W[870]
-            + W[2340] * W[652] + W[2558] * W[434] + W[2776] * W[216] + W[2805];
-    if (solve(ctx, 12, NULL, W + 2829))
-        return -1;
-    X[135] = W[2829] / 13.0;
-    X[136] = W[2830] / 13.0;
-    X[137] = W[2831] / 13.0;
-    X[138] = W[2832] / 13.0;
-    X[139] = W[2833] / 13.0;
-    if (K == 13)
-        goto out;
-    /* order 13 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 13. */
+static EOMC_NOINLINE int
+chain5_taylor_run_144(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2835] = (X[10] * W[2618] + 2.0 * X[20] * W[2400] + 3.0 * X[30] * W[2182] + 4.0 * X[40] * W[1964]
             + 5.0 * X[50] * W[1746] + 6.0 * X[60] * W[1528] + 7.0 * X[70] * W[1310] + 8.0 * X[80] * W[1092]
             + 9.0 * X[90] * W[874] + 10.0 * X[100] * W[656] + 11.0 * X[110] * W[438] + 12.0 * X[120] * W[220]
@@ -6186,6 +4758,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2871] = W[6] * W[2870] + W[224] * W[2652] + W[442] * W[2434] + W[660] * W[2216] + W[878] * W[1998]
             + W[1096] * W[1780] + W[1314] * W[1562] + W[1532] * W[1344] + W[1750] * W[1126] + W[1968] * W[908]
             + W[2186] * W[690] + W[2404] * W[472] + W[2622] * W[254] + W[2840] * W[36];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 13. */
+static EOMC_NOINLINE int
+chain5_taylor_run_145(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2872] = W[5] * W[2870] + W[223] * W[2652] + W[441] * W[2434] + W[659] * W[2216] + W[877] * W[1998]
             + W[1095] * W[1780] + W[1313] * W[1562] + W[1531] * W[1344] + W[1749] * W[1126] + W[1967] * W[908]
             + W[2185] * W[690] + W[2403] * W[472] + W[2621] * W[254] + W[2839] * W[36];
@@ -6228,34 +4810,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + 13.0 * W[2856] * W[23])) / 13.0;
     W[2894] = W[57] * W[2851];
     W[2927] = W[2851] + W[2926];
-    W[2931] = W[2852] + W[2930];
-    W[2956] = W[2845] + W[2851];
-    W[2959] = W[2846] + W[2852];
-    W[2995] = W[2868] + W[2873];
-    W[2996] = W[2869] + W[2874];
-    W[2878] = W[41] * W[2877] + W[259] * W[2659] + W[477] * W[2441] + W[695] * W[2223] + W[913] * W[2005]
-            + W[1131] * W[1787] + W[1349] * W[1569] + W[1567] * W[1351] + W[1785] * W[1133] + W[2003] * W[915]
-            + W[2221] * W[697] + W[2439] * W[479] + W[2657] * W[261] + W[2875] * W[43];
-    W[2879] = W[41] * W[2876] + W[259] * W[2658] + W[477] * W[2440] + W[695] * W[2222] + W[913] * W[2004]
-            + W[1131] * W[1786] + W[1349] * W[1568] + W[1567] * W[1350] + W[1785] * W[1132] + W[2003] * W[914]
-            + W[2221] * W[696] + W[2439] * W[478] + W[2657] * W[260] + W[2875] * W[42];
-    W[2881] = W[18] * W[2880] + W[236] * W[2662] + W[454] * W[2444] + W[672] * W[2226] + W[890] * W[2008]
-            + W[1108] * W[1790] + W[1326] * W[1572] + W[1544] * W[1354] + W[1762] * W[1136] + W[1980] * W[918]
-            + W[2198] * W[700] + W[2416] * W[482] + W[2634] * W[264] + W[2852] * W[46];
-    W[2882] = W[17] * W[2880] + W[235] * W[2662] + W[453] * W[2444] + W[671] * W[2226] + W[889] * W[2008]
-            + W[1107] * W[1790] + W[1325] * W[1572] + W[1543] * W[1354] + W[1761] * W[1136] + W[1979] * W[918]
-            + W[2197] * W[700] + W[2415] * W[482] + W[2633] * W[264] + W[2851] * W[46];
-    W[2859] = W[2853] + W[2857];
-    W[2860] = W[2854] + W[2858];
-    W[2892] = W[56] * W[2857];
-    W[2928] = W[2857] + W[2927];
-    W[2932] = W[2858] + W[2931];
-    W[2957] = W[2857] + W[2956];
-    W[2960] = W[2858] + W[2959];
-    W[2979] = W[2852] + W[2858];
-    W[2982] = W[2851] + W[2857];
-    W[2997] = W[2878] + W[2995];
-    W[2998] = W[2879] + W[2996];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 13. */
+static EOMC_NOINLINE int
+chain5_taylor_run_147(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2883] = W[46] * W[2882] + W[264] * W[2664] + W[482] * W[2446] + W[700] * W[2228] + W[918] * W[2010]
             + W[1136] * W[1792] + W[1354] * W[1574] + W[1572] * W[1356] + W[1790] * W[1138] + W[2008] * W[920]
             + W[2226] * W[702] + W[2444] * W[484] + W[2662] * W[266] + W[2880] * W[48];
@@ -6294,40 +4858,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2929] = W[23] * W[2928] + W[241] * W[2710] + W[459] * W[2492] + W[677] * W[2274] + W[895] * W[2056]
             + W[1113] * W[1838] + W[1331] * W[1620] + W[1549] * W[1402] + W[1767] * W[1184] + W[1985] * W[966]
             + W[2203] * W[748] + W[2421] * W[530] + W[2639] * W[312] + W[2857] * W[94];
-    W[2933] = W[24] * W[2932] + W[242] * W[2714] + W[460] * W[2496] + W[678] * W[2278] + W[896] * W[2060]
-            + W[1114] * W[1842] + W[1332] * W[1624] + W[1550] * W[1406] + W[1768] * W[1188] + W[1986] * W[970]
-            + W[2204] * W[752] + W[2422] * W[534] + W[2640] * W[316] + W[2858] * W[98];
-    W[2958] = W[23] * W[2957] + W[241] * W[2739] + W[459] * W[2521] + W[677] * W[2303] + W[895] * W[2085]
-            + W[1113] * W[1867] + W[1331] * W[1649] + W[1549] * W[1431] + W[1767] * W[1213] + W[1985] * W[995]
-            + W[2203] * W[777] + W[2421] * W[559] + W[2639] * W[341] + W[2857] * W[123];
-    W[2961] = W[24] * W[2960] + W[242] * W[2742] + W[460] * W[2524] + W[678] * W[2306] + W[896] * W[2088]
-            + W[1114] * W[1870] + W[1332] * W[1652] + W[1550] * W[1434] + W[1768] * W[1216] + W[1986] * W[998]
-            + W[2204] * W[780] + W[2422] * W[562] + W[2640] * W[344] + W[2858] * W[126];
-    W[2985] = W[23] * W[2982] + W[241] * W[2764] + W[459] * W[2546] + W[677] * W[2328] + W[895] * W[2110]
-            + W[1113] * W[1892] + W[1331] * W[1674] + W[1549] * W[1456] + W[1767] * W[1238] + W[1985] * W[1020]
-            + W[2203] * W[802] + W[2421] * W[584] + W[2639] * W[366] + W[2857] * W[148];
-    W[2986] = W[24] * W[2979] + W[242] * W[2761] + W[460] * W[2543] + W[678] * W[2325] + W[896] * W[2107]
-            + W[1114] * W[1889] + W[1332] * W[1671] + W[1550] * W[1453] + W[1768] * W[1235] + W[1986] * W[1017]
-            + W[2204] * W[799] + W[2422] * W[581] + W[2640] * W[363] + W[2858] * W[145];
-    W[2898] = W[2895] - W[2897];
-    W[2906] = W[2904] + W[2905];
-    W[2913] = W[2847] + W[2907];
-    W[2916] = W[2848] + W[2910];
-    W[2934] = W[2929] + W[2933];
-    W[2941] = W[2926] + W[2935];
-    W[2944] = W[2930] + W[2938];
-    W[2962] = W[2958] + W[2961];
-    W[2969] = W[2845] + W[2963];
-    W[2972] = W[2846] + W[2966];
-    W[2987] = W[2985] + W[2986];
-    W[3001] = W[2888] + W[2999];
-    W[3002] = W[2889] + W[3000];
-    W[2908] = W[17] * W[2907] + W[235] * W[2689] + W[453] * W[2471] + W[671] * W[2253] + W[889] * W[2035]
-            + W[1107] * W[1817] + W[1325] * W[1599] + W[1543] * W[1381] + W[1761] * W[1163] + W[1979] * W[945]
-            + W[2197] * W[727] + W[2415] * W[509] + W[2633] * W[291] + W[2851] * W[73];
-    W[2911] = W[18] * W[2910] + W[236] * W[2692] + W[454] * W[2474] + W[672] * W[2256] + W[890] * W[2038]
-            + W[1108] * W[1820] + W[1326] * W[1602] + W[1544] * W[1384] + W[1762] * W[1166] + W[1980] * W[948]
-            + W[2198] * W[730] + W[2416] * W[512] + W[2634] * W[294] + W[2852] * W[76];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 13. */
+static EOMC_NOINLINE int
+chain5_taylor_run_149(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2936] = W[17] * W[2935] + W[235] * W[2717] + W[453] * W[2499] + W[671] * W[2281] + W[889] * W[2063]
             + W[1107] * W[1845] + W[1325] * W[1627] + W[1543] * W[1409] + W[1761] * W[1191] + W[1979] * W[973]
             + W[2197] * W[755] + W[2415] * W[537] + W[2633] * W[319] + W[2851] * W[101];
@@ -6360,44 +4900,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2993] = W[33] * W[2962];
     W[2994] = W[33] * W[2987];
     W[3005] = W[3000] + W[3002];
-    W[3007] = W[2999] + W[3001];
-    W[2914] = W[11] * W[2913] + W[229] * W[2695] + W[447] * W[2477] + W[665] * W[2259] + W[883] * W[2041]
-            + W[1101] * W[1823] + W[1319] * W[1605] + W[1537] * W[1387] + W[1755] * W[1169] + W[1973] * W[951]
-            + W[2191] * W[733] + W[2409] * W[515] + W[2627] * W[297] + W[2845] * W[79];
-    W[2917] = W[12] * W[2916] + W[230] * W[2698] + W[448] * W[2480] + W[666] * W[2262] + W[884] * W[2044]
-            + W[1102] * W[1826] + W[1320] * W[1608] + W[1538] * W[1390] + W[1756] * W[1172] + W[1974] * W[954]
-            + W[2192] * W[736] + W[2410] * W[518] + W[2628] * W[300] + W[2846] * W[82];
-    W[2942] = W[11] * W[2941] + W[229] * W[2723] + W[447] * W[2505] + W[665] * W[2287] + W[883] * W[2069]
-            + W[1101] * W[1851] + W[1319] * W[1633] + W[1537] * W[1415] + W[1755] * W[1197] + W[1973] * W[979]
-            + W[2191] * W[761] + W[2409] * W[543] + W[2627] * W[325] + W[2845] * W[107];
-    W[2945] = W[12] * W[2944] + W[230] * W[2726] + W[448] * W[2508] + W[666] * W[2290] + W[884] * W[2072]
-            + W[1102] * W[1854] + W[1320] * W[1636] + W[1538] * W[1418] + W[1756] * W[1200] + W[1974] * W[982]
-            + W[2192] * W[764] + W[2410] * W[546] + W[2628] * W[328] + W[2846] * W[110];
-    W[2970] = W[11] * W[2969] + W[229] * W[2751] + W[447] * W[2533] + W[665] * W[2315] + W[883] * W[2097]
-            + W[1101] * W[1879] + W[1319] * W[1661] + W[1537] * W[1443] + W[1755] * W[1225] + W[1973] * W[1007]
-            + W[2191] * W[789] + W[2409] * W[571] + W[2627] * W[353] + W[2845] * W[135];
-    W[2973] = W[12] * W[2972] + W[230] * W[2754] + W[448] * W[2536] + W[666] * W[2318] + W[884] * W[2100]
-            + W[1102] * W[1882] + W[1320] * W[1664] + W[1538] * W[1446] + W[1756] * W[1228] + W[1974] * W[1010]
-            + W[2192] * W[792] + W[2410] * W[574] + W[2628] * W[356] + W[2846] * W[138];
-    W[3003] = W[23] * W[3002] + W[241] * W[2784] + W[459] * W[2566] + W[677] * W[2348] + W[895] * W[2130]
-            + W[1113] * W[1912] + W[1331] * W[1694] + W[1549] * W[1476] + W[1767] * W[1258] + W[1985] * W[1040]
-            + W[2203] * W[822] + W[2421] * W[604] + W[2639] * W[386] + W[2857] * W[168];
-    W[3004] = W[24] * W[3001] + W[242] * W[2783] + W[460] * W[2565] + W[678] * W[2347] + W[896] * W[2129]
-            + W[1114] * W[1911] + W[1332] * W[1693] + W[1550] * W[1475] + W[1768] * W[1257] + W[1986] * W[1039]
-            + W[2204] * W[821] + W[2422] * W[603] + W[2640] * W[385] + W[2858] * W[167];
-    W[2903] = W[2901] - W[2902];
-    W[2912] = W[2909] + W[2911];
-    W[2940] = W[2937] + W[2939];
-    W[2968] = W[2965] + W[2967];
-    W[2989] = W[2981] + W[2988];
-    W[3009] = W[2998] + W[3005];
-    W[3011] = W[2997] + W[3007];
-    W[3017] = W[3003] - W[3004];
-    W[3024] = W[2835] + W[2919];
-    W[3027] = W[2836] + W[2922];
-    W[2920] = W[5] * W[2919] + W[223] * W[2701] + W[441] * W[2483] + W[659] * W[2265] + W[877] * W[2047]
-            + W[1095] * W[1829] + W[1313] * W[1611] + W[1531] * W[1393] + W[1749] * W[1175] + W[1967] * W[957]
-            + W[2185] * W[739] + W[2403] * W[521] + W[2621] * W[303] + W[2839] * W[85];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 13. */
+static EOMC_NOINLINE int
+chain5_taylor_run_151(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2923] = W[6] * W[2922] + W[224] * W[2704] + W[442] * W[2486] + W[660] * W[2268] + W[878] * W[2050]
             + W[1096] * W[1832] + W[1314] * W[1614] + W[1532] * W[1396] + W[1750] * W[1178] + W[1968] * W[960]
             + W[2186] * W[742] + W[2404] * W[524] + W[2622] * W[306] + W[2840] * W[88];
@@ -6436,54 +4948,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3028] = W[2] * W[3027] + W[220] * W[2809] + W[438] * W[2591] + W[656] * W[2373] + W[874] * W[2155]
             + W[1092] * W[1937] + W[1310] * W[1719] + W[1528] * W[1501] + W[1746] * W[1283] + W[1964] * W[1065]
             + W[2182] * W[847] + W[2400] * W[629] + W[2618] * W[411] + W[2836] * W[193];
-    W[2918] = W[2915] + W[2917];
-    W[2946] = W[2943] + W[2945];
-    W[2974] = W[2971] + W[2973];
-    W[3019] = W[3018] - W[3008];
-    W[3023] = W[2892] + W[3022];
-    W[3037] = W[2869] + W[3013];
-    W[3038] = W[2868] + W[3015];
-    W[3014] = W[5] * W[3013] + W[223] * W[2795] + W[441] * W[2577] + W[659] * W[2359] + W[877] * W[2141]
-            + W[1095] * W[1923] + W[1313] * W[1705] + W[1531] * W[1487] + W[1749] * W[1269] + W[1967] * W[1051]
-            + W[2185] * W[833] + W[2403] * W[615] + W[2621] * W[397] + W[2839] * W[179];
-    W[3016] = W[6] * W[3015] + W[224] * W[2797] + W[442] * W[2579] + W[660] * W[2361] + W[878] * W[2143]
-            + W[1096] * W[1925] + W[1314] * W[1707] + W[1532] * W[1489] + W[1750] * W[1271] + W[1968] * W[1053]
-            + W[2186] * W[835] + W[2404] * W[617] + W[2622] * W[399] + W[2840] * W[181];
-    W[2921] = W[2918] + W[2920];
-    W[2949] = W[2946] + W[2948];
-    W[2954] = W[33] * W[2918];
-    W[2955] = W[33] * W[2946];
-    W[2975] = W[33] * W[2974];
-    W[3020] = W[33] * W[3019];
-    W[3031] = W[3010] + W[3019];
-    W[3039] = W[1] * W[3037] + W[219] * W[2819] + W[437] * W[2601] + W[655] * W[2383] + W[873] * W[2165]
-            + W[1091] * W[1947] + W[1309] * W[1729] + W[1527] * W[1511] + W[1745] * W[1293] + W[1963] * W[1075]
-            + W[2181] * W[857] + W[2399] * W[639] + W[2617] * W[421] + W[2835] * W[203];
-    W[3041] = W[2] * W[3038] + W[220] * W[2820] + W[438] * W[2602] + W[656] * W[2384] + W[874] * W[2166]
-            + W[1092] * W[1948] + W[1310] * W[1730] + W[1528] * W[1512] + W[1746] * W[1294] + W[1964] * W[1076]
-            + W[2182] * W[858] + W[2400] * W[640] + W[2618] * W[422] + W[2836] * W[204];
-    W[2924] = W[2921] + W[2923];
-    W[2952] = W[2949] + W[2951];
-    W[3021] = W[2895] + W[3020];
-    W[3032] = W[3031] - W[3012];
-    W[2925] = W[33] * W[2924];
-    W[2953] = W[33] * W[2952];
-    W[3026] = W[2924] + W[3025];
-    W[3033] = W[33] * W[3032];
-    W[3034] = W[3014] + W[3032];
-    W[3029] = W[3026] + W[3028];
-    W[3035] = W[3034] - W[3016];
-    W[3046] = W[2898] + W[3033];
-    W[3030] = W[33] * W[3029];
-    W[3036] = W[33] * W[3035];
-    W[3040] = W[3035] + W[3039];
-    W[3042] = W[3040] - W[3041];
-    W[3045] = W[2901] + W[3036];
-    W[3043] = W[33] * W[3042];
-    W[3044] = W[2903] + W[3043];
-    X[140] = X[135] / 14.0;
-    X[141] = X[136] / 14.0;
-    X[142] = X[137] / 14.0;
+    return 0;
+}
+
+/* Lines 200 .. 212 of taylor_run's order 13. */
+static EOMC_NOINLINE int
+chain5_taylor_run_154(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[143] = X[138] / 14.0;
     X[144] = X[139] / 14.0;
     W[3047] = W[414] * W[2829] + W[632] * W[2611] + W[850] * W[2393] + W[1068] * W[2175] + W[1286] * W[1957]
@@ -6560,96 +5034,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[147] = W[3049] / 14.0;
     X[148] = W[3050] / 14.0;
     X[149] = W[3051] / 14.0;
-    if (K == 14)
-        goto out;
-    /* order 14 */
-    W[3053] = (X[10] * W[2836] + 2.0 * X[20] * W[2618] + 3.0 * X[30] * W[2400] + 4.0 * X[40] * W[2182]
-            + 5.0 * X[50] * W[1964] + 6.0 * X[60] * W[1746] + 7.0 * X[70] * W[1528] + 8.0 * X[80] * W[1310]
-            + 9.0 * X[90] * W[1092] + 10.0 * X[100] * W[874] + 11.0 * X[110] * W[656] + 12.0 * X[120] * W[438]
-            + 13.0 * X[130] * W[220] + 14.0 * X[140] * W[2]) / 14.0;
-    W[3054] = -((X[10] * W[2835] + 2.0 * X[20] * W[2617] + 3.0 * X[30] * W[2399] + 4.0 * X[40] * W[2181]
-            + 5.0 * X[50] * W[1963] + 6.0 * X[60] * W[1745] + 7.0 * X[70] * W[1527] + 8.0 * X[80] * W[1309]
-            + 9.0 * X[90] * W[1091] + 10.0 * X[100] * W[873] + 11.0 * X[110] * W[655] + 12.0 * X[120] * W[437]
-            + 13.0 * X[130] * W[219] + 14.0 * X[140] * W[1])) / 14.0;
-    W[3056] = X[140] + X[141];
-    W[3084] = (X[5] * X[145] + X[15] * X[135] + X[25] * X[125] + X[35] * X[115] + X[45] * X[105]
-            + X[55] * X[95] + X[65] * X[85]) * 2.0 + X[75] * X[75];
-    W[3088] = X[145] + X[146];
-    W[3057] = (W[222] * W[2840] + 2.0 * W[440] * W[2622] + 3.0 * W[658] * W[2404] + 4.0 * W[876] * W[2186]
-            + 5.0 * W[1094] * W[1968] + 6.0 * W[1312] * W[1750] + 7.0 * W[1530] * W[1532] + 8.0 * W[1748] * W[1314]
-            + 9.0 * W[1966] * W[1096] + 10.0 * W[2184] * W[878] + 11.0 * W[2402] * W[660] + 12.0 * W[2620] * W[442]
-            + 13.0 * W[2838] * W[224] + 14.0 * W[3056] * W[6]) / 14.0;
-    W[3058] = -((W[222] * W[2839] + 2.0 * W[440] * W[2621] + 3.0 * W[658] * W[2403] + 4.0 * W[876] * W[2185]
-            + 5.0 * W[1094] * W[1967] + 6.0 * W[1312] * W[1749] + 7.0 * W[1530] * W[1531] + 8.0 * W[1748] * W[1313]
-            + 9.0 * W[1966] * W[1095] + 10.0 * W[2184] * W[877] + 11.0 * W[2402] * W[659] + 12.0 * W[2620] * W[441]
-            + 13.0 * W[2838] * W[223] + 14.0 * W[3056] * W[5])) / 14.0;
-    W[3062] = W[3056] + X[142];
-    W[3093] = X[147] + W[3088];
-    W[3120] = W[65] * W[3053];
-    W[3086] = W[1] * W[3084] + W[219] * W[2866] + W[437] * W[2648] + W[655] * W[2430] + W[873] * W[2212]
-            + W[1091] * W[1994] + W[1309] * W[1776] + W[1527] * W[1558] + W[1745] * W[1340] + W[1963] * W[1122]
-            + W[2181] * W[904] + W[2399] * W[686] + W[2617] * W[468] + W[2835] * W[250] + W[3053] * W[32];
-    W[3087] = W[2] * W[3084] + W[220] * W[2866] + W[438] * W[2648] + W[656] * W[2430] + W[874] * W[2212]
-            + W[1092] * W[1994] + W[1310] * W[1776] + W[1528] * W[1558] + W[1746] * W[1340] + W[1964] * W[1122]
-            + W[2182] * W[904] + W[2400] * W[686] + W[2618] * W[468] + W[2836] * W[250] + W[3054] * W[32];
-    W[3059] = W[3053] + W[3057];
-    W[3060] = W[3054] + W[3058];
-    W[3063] = (W[228] * W[2846] + 2.0 * W[446] * W[2628] + 3.0 * W[664] * W[2410] + 4.0 * W[882] * W[2192]
-            + 5.0 * W[1100] * W[1974] + 6.0 * W[1318] * W[1756] + 7.0 * W[1536] * W[1538] + 8.0 * W[1754] * W[1320]
-            + 9.0 * W[1972] * W[1102] + 10.0 * W[2190] * W[884] + 11.0 * W[2408] * W[666] + 12.0 * W[2626] * W[448]
-            + 13.0 * W[2844] * W[230] + 14.0 * W[3062] * W[12]) / 14.0;
-    W[3064] = -((W[228] * W[2845] + 2.0 * W[446] * W[2627] + 3.0 * W[664] * W[2409] + 4.0 * W[882] * W[2191]
-            + 5.0 * W[1100] * W[1973] + 6.0 * W[1318] * W[1755] + 7.0 * W[1536] * W[1537] + 8.0 * W[1754] * W[1319]
-            + 9.0 * W[1972] * W[1101] + 10.0 * W[2190] * W[883] + 11.0 * W[2408] * W[665] + 12.0 * W[2626] * W[447]
-            + 13.0 * W[2844] * W[229] + 14.0 * W[3062] * W[11])) / 14.0;
-    W[3068] = W[3062] + X[143];
-    W[3098] = X[148] + W[3093];
-    W[3118] = W[62] * W[3057];
-    W[3089] = W[6] * W[3088] + W[224] * W[2870] + W[442] * W[2652] + W[660] * W[2434] + W[878] * W[2216]
-            + W[1096] * W[1998] + W[1314] * W[1780] + W[1532] * W[1562] + W[1750] * W[1344] + W[1968] * W[1126]
-            + W[2186] * W[908] + W[2404] * W[690] + W[2622] * W[472] + W[2840] * W[254] + W[3058] * W[36];
-    W[3090] = W[5] * W[3088] + W[223] * W[2870] + W[441] * W[2652] + W[659] * W[2434] + W[877] * W[2216]
-            + W[1095] * W[1998] + W[1313] * W[1780] + W[1531] * W[1562] + W[1749] * W[1344] + W[1967] * W[1126]
-            + W[2185] * W[908] + W[2403] * W[690] + W[2621] * W[472] + W[2839] * W[254] + W[3057] * W[36];
-    W[3065] = W[3059] + W[3063];
-    W[3066] = W[3060] + W[3064];
-    W[3069] = (W[234] * W[2852] + 2.0 * W[452] * W[2634] + 3.0 * W[670] * W[2416] + 4.0 * W[888] * W[2198]
-            + 5.0 * W[1106] * W[1980] + 6.0 * W[1324] * W[1762] + 7.0 * W[1542] * W[1544] + 8.0 * W[1760] * W[1326]
-            + 9.0 * W[1978] * W[1108] + 10.0 * W[2196] * W[890] + 11.0 * W[2414] * W[672] + 12.0 * W[2632] * W[454]
-            + 13.0 * W[2850] * W[236] + 14.0 * W[3068] * W[18]) / 14.0;
-    W[3070] = -((W[234] * W[2851] + 2.0 * W[452] * W[2633] + 3.0 * W[670] * W[2415] + 4.0 * W[888] * W[2197]
-            + 5.0 * W[1106] * W[1979] + 6.0 * W[1324] * W[1761] + 7.0 * W[1542] * W[1543] + 8.0 * W[1760] * W[1325]
-            + 9.0 * W[1978] * W[1107] + 10.0 * W[2196] * W[889] + 11.0 * W[2414] * W[671] + 12.0 * W[2632] * W[453]
-            + 13.0 * W[2850] * W[235] + 14.0 * W[3068] * W[17])) / 14.0;
-    W[3074] = W[3068] + X[144];
-    W[3103] = X[149] + W[3098];
-    W[3115] = W[59] * W[3063];
-    W[3144] = W[3057] + W[3063];
-    W[3148] = W[3058] + W[3064];
-    W[3091] = W[36] * W[3090] + W[254] * W[2872] + W[472] * W[2654] + W[690] * W[2436] + W[908] * W[2218]
-            + W[1126] * W[2000] + W[1344] * W[1782] + W[1562] * W[1564] + W[1780] * W[1346] + W[1998] * W[1128]
-            + W[2216] * W[910] + W[2434] * W[692] + W[2652] * W[474] + W[2870] * W[256] + W[3088] * W[38];
-    W[3092] = W[36] * W[3089] + W[254] * W[2871] + W[472] * W[2653] + W[690] * W[2435] + W[908] * W[2217]
-            + W[1126] * W[1999] + W[1344] * W[1781] + W[1562] * W[1563] + W[1780] * W[1345] + W[1998] * W[1127]
-            + W[2216] * W[909] + W[2434] * W[691] + W[2652] * W[473] + W[2870] * W[255] + W[3088] * W[37];
-    W[3094] = W[12] * W[3093] + W[230] * W[2875] + W[448] * W[2657] + W[666] * W[2439] + W[884] * W[2221]
-            + W[1102] * W[2003] + W[1320] * W[1785] + W[1538] * W[1567] + W[1756] * W[1349] + W[1974] * W[1131]
-            + W[2192] * W[913] + W[2410] * W[695] + W[2628] * W[477] + W[2846] * W[259] + W[3064] * W[41];
-    W[3095] = W[11] * W[3093] + W[229] * W[2875] + W[447] * W[2657] + W[665] * W[2439] + W[883] * W[2221]
-            + W[1101] * W[2003] + W[1319] * W[1785] + W[1537] * W[1567] + W[1755] * W[1349] + W[1973] * W[1131]
-            + W[2191] * W[913] + W[2409] * W[695] + W[2627] * W[477] + W[2845] * W[259] + W[3063] * W[41];
-    W[3071] = W[3065] + W[3069];
-    W[3072] = W[3066] + W[3070];
-    W[3075] = (W[240] * W[2858] + 2.0 * W[458] * W[2640] + 3.0 * W[676] * W[2422] + 4.0 * W[894] * W[2204]
-            + 5.0 * W[1112] * W[1986] + 6.0 * W[1330] * W[1768] + 7.0 * W[1548] * W[1550] + 8.0 * W[1766] * W[1332]
-            + 9.0 * W[1984] * W[1114] + 10.0 * W[2202] * W[896] + 11.0 * W[2420] * W[678] + 12.0 * W[2638] * W[460]
-            + 13.0 * W[2856] * W[242] + 14.0 * W[3074] * W[24]) / 14.0;
-    W[3076] = -((W[240] * W[2857] + 2.0 * W[458] * W[2639] + 3.0 * W[676] * W[2421] + 4.0 * W[894] * W[2203]
-            + 5.0 * W[1112] * W[1985] + 6.0 * W[1330] * W[1767] + 7.0 * W[1548] * W[1549] + 8.0 * W[1766] * W[1331]
-            + 9.0 * W[1984] * W[1113] + 10.0 * W[2202] * W[895] + 11.0 * W[2420] * W[677] + 12.0 * W[2638] * W[459]
-            + 13.0 * W[2856] * W[241] + 14.0 * W[3074] * W[23])) / 14.0;
-    W[3112] = W[57] * W[3069];
-    W[3145] = W[3069] + W[3144];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 14. */
+static EOMC_NOINLINE int
+chain5_taylor_run_157(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3149] = W[3070] + W[3148];
     W[3174] = W[3063] + W[3069];
     W[3177] = W[3064] + W[3070];
@@ -6678,44 +5072,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3200] = W[3069] + W[3075];
     W[3215] = W[3096] + W[3213];
     W[3216] = W[3097] + W[3214];
-    W[3101] = W[46] * W[3100] + W[264] * W[2882] + W[482] * W[2664] + W[700] * W[2446] + W[918] * W[2228]
-            + W[1136] * W[2010] + W[1354] * W[1792] + W[1572] * W[1574] + W[1790] * W[1356] + W[2008] * W[1138]
-            + W[2226] * W[920] + W[2444] * W[702] + W[2662] * W[484] + W[2880] * W[266] + W[3098] * W[48];
-    W[3102] = W[46] * W[3099] + W[264] * W[2881] + W[482] * W[2663] + W[700] * W[2445] + W[918] * W[2227]
-            + W[1136] * W[2009] + W[1354] * W[1791] + W[1572] * W[1573] + W[1790] * W[1355] + W[2008] * W[1137]
-            + W[2226] * W[919] + W[2444] * W[701] + W[2662] * W[483] + W[2880] * W[265] + W[3098] * W[47];
-    W[3104] = W[24] * W[3103] + W[242] * W[2885] + W[460] * W[2667] + W[678] * W[2449] + W[896] * W[2231]
-            + W[1114] * W[2013] + W[1332] * W[1795] + W[1550] * W[1577] + W[1768] * W[1359] + W[1986] * W[1141]
-            + W[2204] * W[923] + W[2422] * W[705] + W[2640] * W[487] + W[2858] * W[269] + W[3076] * W[51];
-    W[3105] = W[23] * W[3103] + W[241] * W[2885] + W[459] * W[2667] + W[677] * W[2449] + W[895] * W[2231]
-            + W[1113] * W[2013] + W[1331] * W[1795] + W[1549] * W[1577] + W[1767] * W[1359] + W[1985] * W[1141]
-            + W[2203] * W[923] + W[2421] * W[705] + W[2639] * W[487] + W[2857] * W[269] + W[3075] * W[51];
-    W[3113] = W[3110] - W[3112];
-    W[3125] = W[3071] + W[3077];
-    W[3128] = W[3072] + W[3078];
-    W[3153] = W[3145] + W[3146];
-    W[3156] = W[3149] + W[3150];
-    W[3181] = W[3174] + W[3175];
-    W[3184] = W[3177] + W[3178];
-    W[3198] = W[3070] + W[3197];
-    W[3201] = W[3069] + W[3200];
-    W[3217] = W[3101] + W[3215];
-    W[3218] = W[3102] + W[3216];
-    W[3106] = W[51] * W[3105] + W[269] * W[2887] + W[487] * W[2669] + W[705] * W[2451] + W[923] * W[2233]
-            + W[1141] * W[2015] + W[1359] * W[1797] + W[1577] * W[1579] + W[1795] * W[1361] + W[2013] * W[1143]
-            + W[2231] * W[925] + W[2449] * W[707] + W[2667] * W[489] + W[2885] * W[271] + W[3103] * W[53];
-    W[3107] = W[51] * W[3104] + W[269] * W[2886] + W[487] * W[2668] + W[705] * W[2450] + W[923] * W[2232]
-            + W[1141] * W[2014] + W[1359] * W[1796] + W[1577] * W[1578] + W[1795] * W[1360] + W[2013] * W[1142]
-            + W[2231] * W[924] + W[2449] * W[706] + W[2667] * W[488] + W[2885] * W[270] + W[3103] * W[52];
-    W[3122] = W[23] * W[3077] + W[241] * W[2859] + W[459] * W[2641] + W[677] * W[2423] + W[895] * W[2205]
-            + W[1113] * W[1987] + W[1331] * W[1769] + W[1549] * W[1551] + W[1767] * W[1333] + W[1985] * W[1115]
-            + W[2203] * W[897] + W[2421] * W[679] + W[2639] * W[461] + W[2857] * W[243] + W[3075] * W[25];
-    W[3123] = W[24] * W[3078] + W[242] * W[2860] + W[460] * W[2642] + W[678] * W[2424] + W[896] * W[2206]
-            + W[1114] * W[1988] + W[1332] * W[1770] + W[1550] * W[1552] + W[1768] * W[1334] + W[1986] * W[1116]
-            + W[2204] * W[898] + W[2422] * W[680] + W[2640] * W[462] + W[2858] * W[244] + W[3076] * W[26];
-    W[3147] = W[23] * W[3146] + W[241] * W[2928] + W[459] * W[2710] + W[677] * W[2492] + W[895] * W[2274]
-            + W[1113] * W[2056] + W[1331] * W[1838] + W[1549] * W[1620] + W[1767] * W[1402] + W[1985] * W[1184]
-            + W[2203] * W[966] + W[2421] * W[748] + W[2639] * W[530] + W[2857] * W[312] + W[3075] * W[94];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 14. */
+static EOMC_NOINLINE int
+chain5_taylor_run_159(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3151] = W[24] * W[3150] + W[242] * W[2932] + W[460] * W[2714] + W[678] * W[2496] + W[896] * W[2278]
             + W[1114] * W[2060] + W[1332] * W[1842] + W[1550] * W[1624] + W[1768] * W[1406] + W[1986] * W[1188]
             + W[2204] * W[970] + W[2422] * W[752] + W[2640] * W[534] + W[2858] * W[316] + W[3076] * W[98];
@@ -6750,38 +5116,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3129] = W[18] * W[3128] + W[236] * W[2910] + W[454] * W[2692] + W[672] * W[2474] + W[890] * W[2256]
             + W[1108] * W[2038] + W[1326] * W[1820] + W[1544] * W[1602] + W[1762] * W[1384] + W[1980] * W[1166]
             + W[2198] * W[948] + W[2416] * W[730] + W[2634] * W[512] + W[2852] * W[294] + W[3070] * W[76];
-    W[3154] = W[17] * W[3153] + W[235] * W[2935] + W[453] * W[2717] + W[671] * W[2499] + W[889] * W[2281]
-            + W[1107] * W[2063] + W[1325] * W[1845] + W[1543] * W[1627] + W[1761] * W[1409] + W[1979] * W[1191]
-            + W[2197] * W[973] + W[2415] * W[755] + W[2633] * W[537] + W[2851] * W[319] + W[3069] * W[101];
-    W[3157] = W[18] * W[3156] + W[236] * W[2938] + W[454] * W[2720] + W[672] * W[2502] + W[890] * W[2284]
-            + W[1108] * W[2066] + W[1326] * W[1848] + W[1544] * W[1630] + W[1762] * W[1412] + W[1980] * W[1194]
-            + W[2198] * W[976] + W[2416] * W[758] + W[2634] * W[540] + W[2852] * W[322] + W[3070] * W[104];
-    W[3182] = W[17] * W[3181] + W[235] * W[2963] + W[453] * W[2745] + W[671] * W[2527] + W[889] * W[2309]
-            + W[1107] * W[2091] + W[1325] * W[1873] + W[1543] * W[1655] + W[1761] * W[1437] + W[1979] * W[1219]
-            + W[2197] * W[1001] + W[2415] * W[783] + W[2633] * W[565] + W[2851] * W[347] + W[3069] * W[129];
-    W[3185] = W[18] * W[3184] + W[236] * W[2966] + W[454] * W[2748] + W[672] * W[2530] + W[890] * W[2312]
-            + W[1108] * W[2094] + W[1326] * W[1876] + W[1544] * W[1658] + W[1762] * W[1440] + W[1980] * W[1222]
-            + W[2198] * W[1004] + W[2416] * W[786] + W[2634] * W[568] + W[2852] * W[350] + W[3070] * W[132];
-    W[3199] = W[18] * W[3198] + W[236] * W[2980] + W[454] * W[2762] + W[672] * W[2544] + W[890] * W[2326]
-            + W[1108] * W[2108] + W[1326] * W[1890] + W[1544] * W[1672] + W[1762] * W[1454] + W[1980] * W[1236]
-            + W[2198] * W[1018] + W[2416] * W[800] + W[2634] * W[582] + W[2852] * W[364] + W[3070] * W[146];
-    W[3202] = W[17] * W[3201] + W[235] * W[2983] + W[453] * W[2765] + W[671] * W[2547] + W[889] * W[2329]
-            + W[1107] * W[2111] + W[1325] * W[1893] + W[1543] * W[1675] + W[1761] * W[1457] + W[1979] * W[1239]
-            + W[2197] * W[1021] + W[2415] * W[803] + W[2633] * W[585] + W[2851] * W[367] + W[3069] * W[149];
-    W[3119] = W[3116] - W[3118];
-    W[3127] = W[3124] + W[3126];
-    W[3137] = W[3059] + W[3131];
-    W[3140] = W[3060] + W[3134];
-    W[3155] = W[3152] + W[3154];
-    W[3165] = W[3057] + W[3159];
-    W[3168] = W[3058] + W[3162];
-    W[3183] = W[3180] + W[3182];
-    W[3206] = W[3202] + W[3205];
-    W[3209] = W[33] * W[3124];
-    W[3210] = W[33] * W[3152];
-    W[3211] = W[33] * W[3180];
-    W[3212] = W[33] * W[3205];
-    W[3223] = W[3218] + W[3220];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 14. */
+static EOMC_NOINLINE int
+chain5_taylor_run_161(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3225] = W[3217] + W[3219];
     W[3132] = W[11] * W[3131] + W[229] * W[2913] + W[447] * W[2695] + W[665] * W[2477] + W[883] * W[2259]
             + W[1101] * W[2041] + W[1319] * W[1823] + W[1537] * W[1605] + W[1755] * W[1387] + W[1973] * W[1169]
@@ -6820,44 +5164,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3138] = W[5] * W[3137] + W[223] * W[2919] + W[441] * W[2701] + W[659] * W[2483] + W[877] * W[2265]
             + W[1095] * W[2047] + W[1313] * W[1829] + W[1531] * W[1611] + W[1749] * W[1393] + W[1967] * W[1175]
             + W[2185] * W[957] + W[2403] * W[739] + W[2621] * W[521] + W[2839] * W[303] + W[3057] * W[85];
-    W[3141] = W[6] * W[3140] + W[224] * W[2922] + W[442] * W[2704] + W[660] * W[2486] + W[878] * W[2268]
-            + W[1096] * W[2050] + W[1314] * W[1832] + W[1532] * W[1614] + W[1750] * W[1396] + W[1968] * W[1178]
-            + W[2186] * W[960] + W[2404] * W[742] + W[2622] * W[524] + W[2840] * W[306] + W[3058] * W[88];
-    W[3166] = W[5] * W[3165] + W[223] * W[2947] + W[441] * W[2729] + W[659] * W[2511] + W[877] * W[2293]
-            + W[1095] * W[2075] + W[1313] * W[1857] + W[1531] * W[1639] + W[1749] * W[1421] + W[1967] * W[1203]
-            + W[2185] * W[985] + W[2403] * W[767] + W[2621] * W[549] + W[2839] * W[331] + W[3057] * W[113];
-    W[3169] = W[6] * W[3168] + W[224] * W[2950] + W[442] * W[2732] + W[660] * W[2514] + W[878] * W[2296]
-            + W[1096] * W[2078] + W[1314] * W[1860] + W[1532] * W[1642] + W[1750] * W[1424] + W[1968] * W[1206]
-            + W[2186] * W[988] + W[2404] * W[770] + W[2622] * W[552] + W[2840] * W[334] + W[3058] * W[116];
-    W[3224] = W[17] * W[3223] + W[235] * W[3005] + W[453] * W[2787] + W[671] * W[2569] + W[889] * W[2351]
-            + W[1107] * W[2133] + W[1325] * W[1915] + W[1543] * W[1697] + W[1761] * W[1479] + W[1979] * W[1261]
-            + W[2197] * W[1043] + W[2415] * W[825] + W[2633] * W[607] + W[2851] * W[389] + W[3069] * W[171];
-    W[3226] = W[18] * W[3225] + W[236] * W[3007] + W[454] * W[2789] + W[672] * W[2571] + W[890] * W[2353]
-            + W[1108] * W[2135] + W[1326] * W[1917] + W[1544] * W[1699] + W[1762] * W[1481] + W[1980] * W[1263]
-            + W[2198] * W[1045] + W[2416] * W[827] + W[2634] * W[609] + W[2852] * W[391] + W[3070] * W[173];
-    W[3133] = W[3130] + W[3132];
-    W[3161] = W[3158] + W[3160];
-    W[3189] = W[3186] + W[3188];
-    W[3194] = W[33] * W[3130];
-    W[3195] = W[33] * W[3158];
-    W[3196] = W[33] * W[3186];
-    W[3208] = W[33] * W[3207];
-    W[3231] = W[3214] + W[3227];
-    W[3233] = W[3213] + W[3229];
-    W[3236] = W[3224] + W[3235];
-    W[3240] = W[33] * W[3235];
-    W[3228] = W[11] * W[3227] + W[229] * W[3009] + W[447] * W[2791] + W[665] * W[2573] + W[883] * W[2355]
-            + W[1101] * W[2137] + W[1319] * W[1919] + W[1537] * W[1701] + W[1755] * W[1483] + W[1973] * W[1265]
-            + W[2191] * W[1047] + W[2409] * W[829] + W[2627] * W[611] + W[2845] * W[393] + W[3063] * W[175];
-    W[3230] = W[12] * W[3229] + W[230] * W[3011] + W[448] * W[2793] + W[666] * W[2575] + W[884] * W[2357]
-            + W[1102] * W[2139] + W[1320] * W[1921] + W[1538] * W[1703] + W[1756] * W[1485] + W[1974] * W[1267]
-            + W[2192] * W[1049] + W[2410] * W[831] + W[2628] * W[613] + W[2846] * W[395] + W[3064] * W[177];
-    W[3243] = W[1] * W[3242] + W[219] * W[3024] + W[437] * W[2806] + W[655] * W[2588] + W[873] * W[2370]
-            + W[1091] * W[2152] + W[1309] * W[1934] + W[1527] * W[1716] + W[1745] * W[1498] + W[1963] * W[1280]
-            + W[2181] * W[1062] + W[2399] * W[844] + W[2617] * W[626] + W[2835] * W[408] + W[3053] * W[190];
-    W[3246] = W[2] * W[3245] + W[220] * W[3027] + W[438] * W[2809] + W[656] * W[2591] + W[874] * W[2373]
-            + W[1092] * W[2155] + W[1310] * W[1937] + W[1528] * W[1719] + W[1746] * W[1501] + W[1964] * W[1283]
-            + W[2182] * W[1065] + W[2400] * W[847] + W[2618] * W[629] + W[2836] * W[411] + W[3054] * W[193];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 14. */
+static EOMC_NOINLINE int
+chain5_taylor_run_163(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3136] = W[3133] + W[3135];
     W[3164] = W[3161] + W[3163];
     W[3192] = W[3189] + W[3191];
@@ -6886,26 +5202,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2182] * W[1076] + W[2400] * W[858] + W[2618] * W[640] + W[2836] * W[422] + W[3054] * W[204];
     W[3142] = W[3139] + W[3141];
     W[3170] = W[3167] + W[3169];
-    W[3239] = W[3113] + W[3238];
-    W[3250] = W[3249] - W[3230];
-    W[3143] = W[33] * W[3142];
-    W[3171] = W[33] * W[3170];
-    W[3244] = W[3142] + W[3243];
-    W[3251] = W[33] * W[3250];
-    W[3252] = W[3232] + W[3250];
-    W[3247] = W[3244] + W[3246];
-    W[3253] = W[3252] - W[3234];
-    W[3264] = W[3116] + W[3251];
-    W[3248] = W[33] * W[3247];
-    W[3254] = W[33] * W[3253];
-    W[3258] = W[3253] + W[3257];
-    W[3260] = W[3258] - W[3259];
-    W[3263] = W[3119] + W[3254];
-    W[3261] = W[33] * W[3260];
-    W[3262] = W[3121] + W[3261];
-    X[150] = X[145] / 15.0;
-    X[151] = X[146] / 15.0;
-    X[152] = X[147] / 15.0;
+    return 0;
+}
+
+/* Lines 200 .. 212 of taylor_run's order 14. */
+static EOMC_NOINLINE int
+chain5_taylor_run_165(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[153] = X[148] / 15.0;
     X[154] = X[149] / 15.0;
     W[3265] = W[414] * W[3047] + W[632] * W[2829] + W[850] * W[2611] + W[1068] * W[2393] + W[1286] * W[2175]
@@ -6987,104 +5293,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[157] = W[3267] / 15.0;
     X[158] = W[3268] / 15.0;
     X[159] = W[3269] / 15.0;
-    if (K == 15)
-        goto out;
-    /* order 15 */
-    W[3271] = (X[10] * W[3054] + 2.0 * X[20] * W[2836] + 3.0 * X[30] * W[2618] + 4.0 * X[40] * W[2400]
-            + 5.0 * X[50] * W[2182] + 6.0 * X[60] * W[1964] + 7.0 * X[70] * W[1746] + 8.0 * X[80] * W[1528]
-            + 9.0 * X[90] * W[1310] + 10.0 * X[100] * W[1092] + 11.0 * X[110] * W[874] + 12.0 * X[120] * W[656]
-            + 13.0 * X[130] * W[438] + 14.0 * X[140] * W[220] + 15.0 * X[150] * W[2]) / 15.0;
-    W[3272] = -((X[10] * W[3053] + 2.0 * X[20] * W[2835] + 3.0 * X[30] * W[2617] + 4.0 * X[40] * W[2399]
-            + 5.0 * X[50] * W[2181] + 6.0 * X[60] * W[1963] + 7.0 * X[70] * W[1745] + 8.0 * X[80] * W[1527]
-            + 9.0 * X[90] * W[1309] + 10.0 * X[100] * W[1091] + 11.0 * X[110] * W[873] + 12.0 * X[120] * W[655]
-            + 13.0 * X[130] * W[437] + 14.0 * X[140] * W[219] + 15.0 * X[150] * W[1])) / 15.0;
-    W[3274] = X[150] + X[151];
-    W[3302] = (X[5] * X[155] + X[15] * X[145] + X[25] * X[135] + X[35] * X[125] + X[45] * X[115]
-            + X[55] * X[105] + X[65] * X[95] + X[75] * X[85]) * 2.0;
-    W[3306] = X[155] + X[156];
-    W[3275] = (W[222] * W[3058] + 2.0 * W[440] * W[2840] + 3.0 * W[658] * W[2622] + 4.0 * W[876] * W[2404]
-            + 5.0 * W[1094] * W[2186] + 6.0 * W[1312] * W[1968] + 7.0 * W[1530] * W[1750] + 8.0 * W[1748] * W[1532]
-            + 9.0 * W[1966] * W[1314] + 10.0 * W[2184] * W[1096] + 11.0 * W[2402] * W[878] + 12.0 * W[2620] * W[660]
-            + 13.0 * W[2838] * W[442] + 14.0 * W[3056] * W[224] + 15.0 * W[3274] * W[6]) / 15.0;
-    W[3276] = -((W[222] * W[3057] + 2.0 * W[440] * W[2839] + 3.0 * W[658] * W[2621] + 4.0 * W[876] * W[2403]
-            + 5.0 * W[1094] * W[2185] + 6.0 * W[1312] * W[1967] + 7.0 * W[1530] * W[1749] + 8.0 * W[1748] * W[1531]
-            + 9.0 * W[1966] * W[1313] + 10.0 * W[2184] * W[1095] + 11.0 * W[2402] * W[877] + 12.0 * W[2620] * W[659]
-            + 13.0 * W[2838] * W[441] + 14.0 * W[3056] * W[223] + 15.0 * W[3274] * W[5])) / 15.0;
-    W[3280] = W[3274] + X[152];
-    W[3311] = X[157] + W[3306];
-    W[3338] = W[65] * W[3271];
-    W[3304] = W[1] * W[3302] + W[219] * W[3084] + W[437] * W[2866] + W[655] * W[2648] + W[873] * W[2430]
-            + W[1091] * W[2212] + W[1309] * W[1994] + W[1527] * W[1776] + W[1745] * W[1558] + W[1963] * W[1340]
-            + W[2181] * W[1122] + W[2399] * W[904] + W[2617] * W[686] + W[2835] * W[468] + W[3053] * W[250]
-            + W[3271] * W[32];
-    W[3305] = W[2] * W[3302] + W[220] * W[3084] + W[438] * W[2866] + W[656] * W[2648] + W[874] * W[2430]
-            + W[1092] * W[2212] + W[1310] * W[1994] + W[1528] * W[1776] + W[1746] * W[1558] + W[1964] * W[1340]
-            + W[2182] * W[1122] + W[2400] * W[904] + W[2618] * W[686] + W[2836] * W[468] + W[3054] * W[250]
-            + W[3272] * W[32];
-    W[3277] = W[3271] + W[3275];
-    W[3278] = W[3272] + W[3276];
-    W[3281] = (W[228] * W[3064] + 2.0 * W[446] * W[2846] + 3.0 * W[664] * W[2628] + 4.0 * W[882] * W[2410]
-            + 5.0 * W[1100] * W[2192] + 6.0 * W[1318] * W[1974] + 7.0 * W[1536] * W[1756] + 8.0 * W[1754] * W[1538]
-            + 9.0 * W[1972] * W[1320] + 10.0 * W[2190] * W[1102] + 11.0 * W[2408] * W[884] + 12.0 * W[2626] * W[666]
-            + 13.0 * W[2844] * W[448] + 14.0 * W[3062] * W[230] + 15.0 * W[3280] * W[12]) / 15.0;
-    W[3282] = -((W[228] * W[3063] + 2.0 * W[446] * W[2845] + 3.0 * W[664] * W[2627] + 4.0 * W[882] * W[2409]
-            + 5.0 * W[1100] * W[2191] + 6.0 * W[1318] * W[1973] + 7.0 * W[1536] * W[1755] + 8.0 * W[1754] * W[1537]
-            + 9.0 * W[1972] * W[1319] + 10.0 * W[2190] * W[1101] + 11.0 * W[2408] * W[883] + 12.0 * W[2626] * W[665]
-            + 13.0 * W[2844] * W[447] + 14.0 * W[3062] * W[229] + 15.0 * W[3280] * W[11])) / 15.0;
-    W[3286] = W[3280] + X[153];
-    W[3316] = X[158] + W[3311];
-    W[3336] = W[62] * W[3275];
-    W[3307] = W[6] * W[3306] + W[224] * W[3088] + W[442] * W[2870] + W[660] * W[2652] + W[878] * W[2434]
-            + W[1096] * W[2216] + W[1314] * W[1998] + W[1532] * W[1780] + W[1750] * W[1562] + W[1968] * W[1344]
-            + W[2186] * W[1126] + W[2404] * W[908] + W[2622] * W[690] + W[2840] * W[472] + W[3058] * W[254]
-            + W[3276] * W[36];
-    W[3308] = W[5] * W[3306] + W[223] * W[3088] + W[441] * W[2870] + W[659] * W[2652] + W[877] * W[2434]
-            + W[1095] * W[2216] + W[1313] * W[1998] + W[1531] * W[1780] + W[1749] * W[1562] + W[1967] * W[1344]
-            + W[2185] * W[1126] + W[2403] * W[908] + W[2621] * W[690] + W[2839] * W[472] + W[3057] * W[254]
-            + W[3275] * W[36];
-    W[3283] = W[3277] + W[3281];
-    W[3284] = W[3278] + W[3282];
-    W[3287] = (W[234] * W[3070] + 2.0 * W[452] * W[2852] + 3.0 * W[670] * W[2634] + 4.0 * W[888] * W[2416]
-            + 5.0 * W[1106] * W[2198] + 6.0 * W[1324] * W[1980] + 7.0 * W[1542] * W[1762] + 8.0 * W[1760] * W[1544]
-            + 9.0 * W[1978] * W[1326] + 10.0 * W[2196] * W[1108] + 11.0 * W[2414] * W[890] + 12.0 * W[2632] * W[672]
-            + 13.0 * W[2850] * W[454] + 14.0 * W[3068] * W[236] + 15.0 * W[3286] * W[18]) / 15.0;
-    W[3288] = -((W[234] * W[3069] + 2.0 * W[452] * W[2851] + 3.0 * W[670] * W[2633] + 4.0 * W[888] * W[2415]
-            + 5.0 * W[1106] * W[2197] + 6.0 * W[1324] * W[1979] + 7.0 * W[1542] * W[1761] + 8.0 * W[1760] * W[1543]
-            + 9.0 * W[1978] * W[1325] + 10.0 * W[2196] * W[1107] + 11.0 * W[2414] * W[889] + 12.0 * W[2632] * W[671]
-            + 13.0 * W[2850] * W[453] + 14.0 * W[3068] * W[235] + 15.0 * W[3286] * W[17])) / 15.0;
-    W[3292] = W[3286] + X[154];
-    W[3321] = X[159] + W[3316];
-    W[3333] = W[59] * W[3281];
-    W[3362] = W[3275] + W[3281];
-    W[3366] = W[3276] + W[3282];
-    W[3309] = W[36] * W[3308] + W[254] * W[3090] + W[472] * W[2872] + W[690] * W[2654] + W[908] * W[2436]
-            + W[1126] * W[2218] + W[1344] * W[2000] + W[1562] * W[1782] + W[1780] * W[1564] + W[1998] * W[1346]
-            + W[2216] * W[1128] + W[2434] * W[910] + W[2652] * W[692] + W[2870] * W[474] + W[3088] * W[256]
-            + W[3306] * W[38];
-    W[3310] = W[36] * W[3307] + W[254] * W[3089] + W[472] * W[2871] + W[690] * W[2653] + W[908] * W[2435]
-            + W[1126] * W[2217] + W[1344] * W[1999] + W[1562] * W[1781] + W[1780] * W[1563] + W[1998] * W[1345]
-            + W[2216] * W[1127] + W[2434] * W[909] + W[2652] * W[691] + W[2870] * W[473] + W[3088] * W[255]
-            + W[3306] * W[37];
-    W[3312] = W[12] * W[3311] + W[230] * W[3093] + W[448] * W[2875] + W[666] * W[2657] + W[884] * W[2439]
-            + W[1102] * W[2221] + W[1320] * W[2003] + W[1538] * W[1785] + W[1756] * W[1567] + W[1974] * W[1349]
-            + W[2192] * W[1131] + W[2410] * W[913] + W[2628] * W[695] + W[2846] * W[477] + W[3064] * W[259]
-            + W[3282] * W[41];
-    W[3313] = W[11] * W[3311] + W[229] * W[3093] + W[447] * W[2875] + W[665] * W[2657] + W[883] * W[2439]
-            + W[1101] * W[2221] + W[1319] * W[2003] + W[1537] * W[1785] + W[1755] * W[1567] + W[1973] * W[1349]
-            + W[2191] * W[1131] + W[2409] * W[913] + W[2627] * W[695] + W[2845] * W[477] + W[3063] * W[259]
-            + W[3281] * W[41];
-    W[3289] = W[3283] + W[3287];
-    W[3290] = W[3284] + W[3288];
-    W[3293] = (W[240] * W[3076] + 2.0 * W[458] * W[2858] + 3.0 * W[676] * W[2640] + 4.0 * W[894] * W[2422]
-            + 5.0 * W[1112] * W[2204] + 6.0 * W[1330] * W[1986] + 7.0 * W[1548] * W[1768] + 8.0 * W[1766] * W[1550]
-            + 9.0 * W[1984] * W[1332] + 10.0 * W[2202] * W[1114] + 11.0 * W[2420] * W[896] + 12.0 * W[2638] * W[678]
-            + 13.0 * W[2856] * W[460] + 14.0 * W[3074] * W[242] + 15.0 * W[3292] * W[24]) / 15.0;
-    W[3294] = -((W[240] * W[3075] + 2.0 * W[458] * W[2857] + 3.0 * W[676] * W[2639] + 4.0 * W[894] * W[2421]
-            + 5.0 * W[1112] * W[2203] + 6.0 * W[1330] * W[1985] + 7.0 * W[1548] * W[1767] + 8.0 * W[1766] * W[1549]
-            + 9.0 * W[1984] * W[1331] + 10.0 * W[2202] * W[1113] + 11.0 * W[2420] * W[895] + 12.0 * W[2638] * W[677]
-            + 13.0 * W[2856] * W[459] + 14.0 * W[3074] * W[241] + 15.0 * W[3292] * W[23])) / 15.0;
-    W[3330] = W[57] * W[3287];
-    W[3363] = W[3287] + W[3362];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+chain5_taylor_run_168(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3367] = W[3288] + W[3366];
     W[3392] = W[3281] + W[3287];
     W[3395] = W[3282] + W[3288];
@@ -7117,53 +5335,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3418] = W[3287] + W[3293];
     W[3433] = W[3314] + W[3431];
     W[3434] = W[3315] + W[3432];
-    W[3319] = W[46] * W[3318] + W[264] * W[3100] + W[482] * W[2882] + W[700] * W[2664] + W[918] * W[2446]
-            + W[1136] * W[2228] + W[1354] * W[2010] + W[1572] * W[1792] + W[1790] * W[1574] + W[2008] * W[1356]
-            + W[2226] * W[1138] + W[2444] * W[920] + W[2662] * W[702] + W[2880] * W[484] + W[3098] * W[266]
-            + W[3316] * W[48];
-    W[3320] = W[46] * W[3317] + W[264] * W[3099] + W[482] * W[2881] + W[700] * W[2663] + W[918] * W[2445]
-            + W[1136] * W[2227] + W[1354] * W[2009] + W[1572] * W[1791] + W[1790] * W[1573] + W[2008] * W[1355]
-            + W[2226] * W[1137] + W[2444] * W[919] + W[2662] * W[701] + W[2880] * W[483] + W[3098] * W[265]
-            + W[3316] * W[47];
-    W[3322] = W[24] * W[3321] + W[242] * W[3103] + W[460] * W[2885] + W[678] * W[2667] + W[896] * W[2449]
-            + W[1114] * W[2231] + W[1332] * W[2013] + W[1550] * W[1795] + W[1768] * W[1577] + W[1986] * W[1359]
-            + W[2204] * W[1141] + W[2422] * W[923] + W[2640] * W[705] + W[2858] * W[487] + W[3076] * W[269]
-            + W[3294] * W[51];
-    W[3323] = W[23] * W[3321] + W[241] * W[3103] + W[459] * W[2885] + W[677] * W[2667] + W[895] * W[2449]
-            + W[1113] * W[2231] + W[1331] * W[2013] + W[1549] * W[1795] + W[1767] * W[1577] + W[1985] * W[1359]
-            + W[2203] * W[1141] + W[2421] * W[923] + W[2639] * W[705] + W[2857] * W[487] + W[3075] * W[269]
-            + W[3293] * W[51];
-    W[3331] = W[3328] - W[3330];
-    W[3343] = W[3289] + W[3295];
-    W[3346] = W[3290] + W[3296];
-    W[3371] = W[3363] + W[3364];
-    W[3374] = W[3367] + W[3368];
-    W[3399] = W[3392] + W[3393];
-    W[3402] = W[3395] + W[3396];
-    W[3416] = W[3288] + W[3415];
-    W[3419] = W[3287] + W[3418];
-    W[3435] = W[3319] + W[3433];
-    W[3436] = W[3320] + W[3434];
-    W[3324] = W[51] * W[3323] + W[269] * W[3105] + W[487] * W[2887] + W[705] * W[2669] + W[923] * W[2451]
-            + W[1141] * W[2233] + W[1359] * W[2015] + W[1577] * W[1797] + W[1795] * W[1579] + W[2013] * W[1361]
-            + W[2231] * W[1143] + W[2449] * W[925] + W[2667] * W[707] + W[2885] * W[489] + W[3103] * W[271]
-            + W[3321] * W[53];
-    W[3325] = W[51] * W[3322] + W[269] * W[3104] + W[487] * W[2886] + W[705] * W[2668] + W[923] * W[2450]
-            + W[1141] * W[2232] + W[1359] * W[2014] + W[1577] * W[1796] + W[1795] * W[1578] + W[2013] * W[1360]
-            + W[2231] * W[1142] + W[2449] * W[924] + W[2667] * W[706] + W[2885] * W[488] + W[3103] * W[270]
-            + W[3321] * W[52];
-    W[3340] = W[23] * W[3295] + W[241] * W[3077] + W[459] * W[2859] + W[677] * W[2641] + W[895] * W[2423]
-            + W[1113] * W[2205] + W[1331] * W[1987] + W[1549] * W[1769] + W[1767] * W[1551] + W[1985] * W[1333]
-            + W[2203] * W[1115] + W[2421] * W[897] + W[2639] * W[679] + W[2857] * W[461] + W[3075] * W[243]
-            + W[3293] * W[25];
-    W[3341] = W[24] * W[3296] + W[242] * W[3078] + W[460] * W[2860] + W[678] * W[2642] + W[896] * W[2424]
-            + W[1114] * W[2206] + W[1332] * W[1988] + W[1550] * W[1770] + W[1768] * W[1552] + W[1986] * W[1334]
-            + W[2204] * W[1116] + W[2422] * W[898] + W[2640] * W[680] + W[2858] * W[462] + W[3076] * W[244]
-            + W[3294] * W[26];
-    W[3365] = W[23] * W[3364] + W[241] * W[3146] + W[459] * W[2928] + W[677] * W[2710] + W[895] * W[2492]
-            + W[1113] * W[2274] + W[1331] * W[2056] + W[1549] * W[1838] + W[1767] * W[1620] + W[1985] * W[1402]
-            + W[2203] * W[1184] + W[2421] * W[966] + W[2639] * W[748] + W[2857] * W[530] + W[3075] * W[312]
-            + W[3293] * W[94];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+chain5_taylor_run_170(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3369] = W[24] * W[3368] + W[242] * W[3150] + W[460] * W[2932] + W[678] * W[2714] + W[896] * W[2496]
             + W[1114] * W[2278] + W[1332] * W[2060] + W[1550] * W[1842] + W[1768] * W[1624] + W[1986] * W[1406]
             + W[2204] * W[1188] + W[2422] * W[970] + W[2640] * W[752] + W[2858] * W[534] + W[3076] * W[316]
@@ -7205,44 +5386,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1108] * W[2256] + W[1326] * W[2038] + W[1544] * W[1820] + W[1762] * W[1602] + W[1980] * W[1384]
             + W[2198] * W[1166] + W[2416] * W[948] + W[2634] * W[730] + W[2852] * W[512] + W[3070] * W[294]
             + W[3288] * W[76];
-    W[3372] = W[17] * W[3371] + W[235] * W[3153] + W[453] * W[2935] + W[671] * W[2717] + W[889] * W[2499]
-            + W[1107] * W[2281] + W[1325] * W[2063] + W[1543] * W[1845] + W[1761] * W[1627] + W[1979] * W[1409]
-            + W[2197] * W[1191] + W[2415] * W[973] + W[2633] * W[755] + W[2851] * W[537] + W[3069] * W[319]
-            + W[3287] * W[101];
-    W[3375] = W[18] * W[3374] + W[236] * W[3156] + W[454] * W[2938] + W[672] * W[2720] + W[890] * W[2502]
-            + W[1108] * W[2284] + W[1326] * W[2066] + W[1544] * W[1848] + W[1762] * W[1630] + W[1980] * W[1412]
-            + W[2198] * W[1194] + W[2416] * W[976] + W[2634] * W[758] + W[2852] * W[540] + W[3070] * W[322]
-            + W[3288] * W[104];
-    W[3400] = W[17] * W[3399] + W[235] * W[3181] + W[453] * W[2963] + W[671] * W[2745] + W[889] * W[2527]
-            + W[1107] * W[2309] + W[1325] * W[2091] + W[1543] * W[1873] + W[1761] * W[1655] + W[1979] * W[1437]
-            + W[2197] * W[1219] + W[2415] * W[1001] + W[2633] * W[783] + W[2851] * W[565] + W[3069] * W[347]
-            + W[3287] * W[129];
-    W[3403] = W[18] * W[3402] + W[236] * W[3184] + W[454] * W[2966] + W[672] * W[2748] + W[890] * W[2530]
-            + W[1108] * W[2312] + W[1326] * W[2094] + W[1544] * W[1876] + W[1762] * W[1658] + W[1980] * W[1440]
-            + W[2198] * W[1222] + W[2416] * W[1004] + W[2634] * W[786] + W[2852] * W[568] + W[3070] * W[350]
-            + W[3288] * W[132];
-    W[3417] = W[18] * W[3416] + W[236] * W[3198] + W[454] * W[2980] + W[672] * W[2762] + W[890] * W[2544]
-            + W[1108] * W[2326] + W[1326] * W[2108] + W[1544] * W[1890] + W[1762] * W[1672] + W[1980] * W[1454]
-            + W[2198] * W[1236] + W[2416] * W[1018] + W[2634] * W[800] + W[2852] * W[582] + W[3070] * W[364]
-            + W[3288] * W[146];
-    W[3420] = W[17] * W[3419] + W[235] * W[3201] + W[453] * W[2983] + W[671] * W[2765] + W[889] * W[2547]
-            + W[1107] * W[2329] + W[1325] * W[2111] + W[1543] * W[1893] + W[1761] * W[1675] + W[1979] * W[1457]
-            + W[2197] * W[1239] + W[2415] * W[1021] + W[2633] * W[803] + W[2851] * W[585] + W[3069] * W[367]
-            + W[3287] * W[149];
-    W[3337] = W[3334] - W[3336];
-    W[3345] = W[3342] + W[3344];
-    W[3355] = W[3277] + W[3349];
-    W[3358] = W[3278] + W[3352];
-    W[3373] = W[3370] + W[3372];
-    W[3383] = W[3275] + W[3377];
-    W[3386] = W[3276] + W[3380];
-    W[3401] = W[3398] + W[3400];
-    W[3424] = W[3420] + W[3423];
-    W[3427] = W[33] * W[3342];
-    W[3428] = W[33] * W[3370];
-    W[3429] = W[33] * W[3398];
-    W[3430] = W[33] * W[3423];
-    W[3441] = W[3436] + W[3438];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+chain5_taylor_run_172(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3443] = W[3435] + W[3437];
     W[3350] = W[11] * W[3349] + W[229] * W[3131] + W[447] * W[2913] + W[665] * W[2695] + W[883] * W[2477]
             + W[1101] * W[2259] + W[1319] * W[2041] + W[1537] * W[1823] + W[1755] * W[1605] + W[1973] * W[1387]
@@ -7290,53 +5443,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1095] * W[2265] + W[1313] * W[2047] + W[1531] * W[1829] + W[1749] * W[1611] + W[1967] * W[1393]
             + W[2185] * W[1175] + W[2403] * W[957] + W[2621] * W[739] + W[2839] * W[521] + W[3057] * W[303]
             + W[3275] * W[85];
-    W[3359] = W[6] * W[3358] + W[224] * W[3140] + W[442] * W[2922] + W[660] * W[2704] + W[878] * W[2486]
-            + W[1096] * W[2268] + W[1314] * W[2050] + W[1532] * W[1832] + W[1750] * W[1614] + W[1968] * W[1396]
-            + W[2186] * W[1178] + W[2404] * W[960] + W[2622] * W[742] + W[2840] * W[524] + W[3058] * W[306]
-            + W[3276] * W[88];
-    W[3384] = W[5] * W[3383] + W[223] * W[3165] + W[441] * W[2947] + W[659] * W[2729] + W[877] * W[2511]
-            + W[1095] * W[2293] + W[1313] * W[2075] + W[1531] * W[1857] + W[1749] * W[1639] + W[1967] * W[1421]
-            + W[2185] * W[1203] + W[2403] * W[985] + W[2621] * W[767] + W[2839] * W[549] + W[3057] * W[331]
-            + W[3275] * W[113];
-    W[3387] = W[6] * W[3386] + W[224] * W[3168] + W[442] * W[2950] + W[660] * W[2732] + W[878] * W[2514]
-            + W[1096] * W[2296] + W[1314] * W[2078] + W[1532] * W[1860] + W[1750] * W[1642] + W[1968] * W[1424]
-            + W[2186] * W[1206] + W[2404] * W[988] + W[2622] * W[770] + W[2840] * W[552] + W[3058] * W[334]
-            + W[3276] * W[116];
-    W[3442] = W[17] * W[3441] + W[235] * W[3223] + W[453] * W[3005] + W[671] * W[2787] + W[889] * W[2569]
-            + W[1107] * W[2351] + W[1325] * W[2133] + W[1543] * W[1915] + W[1761] * W[1697] + W[1979] * W[1479]
-            + W[2197] * W[1261] + W[2415] * W[1043] + W[2633] * W[825] + W[2851] * W[607] + W[3069] * W[389]
-            + W[3287] * W[171];
-    W[3444] = W[18] * W[3443] + W[236] * W[3225] + W[454] * W[3007] + W[672] * W[2789] + W[890] * W[2571]
-            + W[1108] * W[2353] + W[1326] * W[2135] + W[1544] * W[1917] + W[1762] * W[1699] + W[1980] * W[1481]
-            + W[2198] * W[1263] + W[2416] * W[1045] + W[2634] * W[827] + W[2852] * W[609] + W[3070] * W[391]
-            + W[3288] * W[173];
-    W[3351] = W[3348] + W[3350];
-    W[3379] = W[3376] + W[3378];
-    W[3407] = W[3404] + W[3406];
-    W[3412] = W[33] * W[3348];
-    W[3413] = W[33] * W[3376];
-    W[3414] = W[33] * W[3404];
-    W[3426] = W[33] * W[3425];
-    W[3449] = W[3432] + W[3445];
-    W[3451] = W[3431] + W[3447];
-    W[3454] = W[3442] + W[3453];
-    W[3458] = W[33] * W[3453];
-    W[3446] = W[11] * W[3445] + W[229] * W[3227] + W[447] * W[3009] + W[665] * W[2791] + W[883] * W[2573]
-            + W[1101] * W[2355] + W[1319] * W[2137] + W[1537] * W[1919] + W[1755] * W[1701] + W[1973] * W[1483]
-            + W[2191] * W[1265] + W[2409] * W[1047] + W[2627] * W[829] + W[2845] * W[611] + W[3063] * W[393]
-            + W[3281] * W[175];
-    W[3448] = W[12] * W[3447] + W[230] * W[3229] + W[448] * W[3011] + W[666] * W[2793] + W[884] * W[2575]
-            + W[1102] * W[2357] + W[1320] * W[2139] + W[1538] * W[1921] + W[1756] * W[1703] + W[1974] * W[1485]
-            + W[2192] * W[1267] + W[2410] * W[1049] + W[2628] * W[831] + W[2846] * W[613] + W[3064] * W[395]
-            + W[3282] * W[177];
-    W[3461] = W[1] * W[3460] + W[219] * W[3242] + W[437] * W[3024] + W[655] * W[2806] + W[873] * W[2588]
-            + W[1091] * W[2370] + W[1309] * W[2152] + W[1527] * W[1934] + W[1745] * W[1716] + W[1963] * W[1498]
-            + W[2181] * W[1280] + W[2399] * W[1062] + W[2617] * W[844] + W[2835] * W[626] + W[3053] * W[408]
-            + W[3271] * W[190];
-    W[3464] = W[2] * W[3463] + W[220] * W[3245] + W[438] * W[3027] + W[656] * W[2809] + W[874] * W[2591]
-            + W[1092] * W[2373] + W[1310] * W[2155] + W[1528] * W[1937] + W[1746] * W[1719] + W[1964] * W[1501]
-            + W[2182] * W[1283] + W[2400] * W[1065] + W[2618] * W[847] + W[2836] * W[629] + W[3054] * W[411]
-            + W[3272] * W[193];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+chain5_taylor_run_174(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3354] = W[3351] + W[3353];
     W[3382] = W[3379] + W[3381];
     W[3410] = W[3407] + W[3409];
@@ -7369,26 +5485,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[3272] * W[204];
     W[3360] = W[3357] + W[3359];
     W[3388] = W[3385] + W[3387];
-    W[3457] = W[3331] + W[3456];
-    W[3468] = W[3467] - W[3448];
-    W[3361] = W[33] * W[3360];
-    W[3389] = W[33] * W[3388];
-    W[3462] = W[3360] + W[3461];
-    W[3469] = W[33] * W[3468];
-    W[3470] = W[3450] + W[3468];
-    W[3465] = W[3462] + W[3464];
-    W[3471] = W[3470] - W[3452];
-    W[3482] = W[3334] + W[3469];
-    W[3466] = W[33] * W[3465];
-    W[3472] = W[33] * W[3471];
-    W[3476] = W[3471] + W[3475];
-    W[3478] = W[3476] - W[3477];
-    W[3481] = W[3337] + W[3472];
-    W[3479] = W[33] * W[3478];
-    W[3480] = W[3339] + W[3479];
-    X[160] = X[155] / 16.0;
-    X[161] = X[156] / 16.0;
-    X[162] = X[157] / 16.0;
+    return 0;
+}
+
+/* Lines 200 .. 212 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+chain5_taylor_run_176(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[163] = X[158] / 16.0;
     X[164] = X[159] / 16.0;
     W[3483] = W[414] * W[3265] + W[632] * W[3047] + W[850] * W[2829] + W[1068] * W[2611] + W[1286] * W[2393]
@@ -7475,104 +5581,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[167] = W[3485] / 16.0;
     X[168] = W[3486] / 16.0;
     X[169] = W[3487] / 16.0;
-    if (K == 16)
-        goto out;
-    /* order 16 */
-    W[3489] = (X[10] * W[3272] + 2.0 * X[20] * W[3054] + 3.0 * X[30] * W[2836] + 4.0 * X[40] * W[2618]
-            + 5.0 * X[50] * W[2400] + 6.0 * X[60] * W[2182] + 7.0 * X[70] * W[1964] + 8.0 * X[80] * W[1746]
-            + 9.0 * X[90] * W[1528] + 10.0 * X[100] * W[1310] + 11.0 * X[110] * W[1092] + 12.0 * X[120] * W[874]
-            + 13.0 * X[130] * W[656] + 14.0 * X[140] * W[438] + 15.0 * X[150] * W[220] + 16.0 * X[160] * W[2]) / 16.0;
-    W[3490] = -((X[10] * W[3271] + 2.0 * X[20] * W[3053] + 3.0 * X[30] * W[2835] + 4.0 * X[40] * W[2617]
-            + 5.0 * X[50] * W[2399] + 6.0 * X[60] * W[2181] + 7.0 * X[70] * W[1963] + 8.0 * X[80] * W[1745]
-            + 9.0 * X[90] * W[1527] + 10.0 * X[100] * W[1309] + 11.0 * X[110] * W[1091] + 12.0 * X[120] * W[873]
-            + 13.0 * X[130] * W[655] + 14.0 * X[140] * W[437] + 15.0 * X[150] * W[219] + 16.0 * X[160] * W[1])) / 16.0;
-    W[3492] = X[160] + X[161];
-    W[3520] = (X[5] * X[165] + X[15] * X[155] + X[25] * X[145] + X[35] * X[135] + X[45] * X[125]
-            + X[55] * X[115] + X[65] * X[105] + X[75] * X[95]) * 2.0 + X[85] * X[85];
-    W[3524] = X[165] + X[166];
-    W[3493] = (W[222] * W[3276] + 2.0 * W[440] * W[3058] + 3.0 * W[658] * W[2840] + 4.0 * W[876] * W[2622]
-            + 5.0 * W[1094] * W[2404] + 6.0 * W[1312] * W[2186] + 7.0 * W[1530] * W[1968] + 8.0 * W[1748] * W[1750]
-            + 9.0 * W[1966] * W[1532] + 10.0 * W[2184] * W[1314] + 11.0 * W[2402] * W[1096] + 12.0 * W[2620] * W[878]
-            + 13.0 * W[2838] * W[660] + 14.0 * W[3056] * W[442] + 15.0 * W[3274] * W[224] + 16.0 * W[3492] * W[6]) / 16.0;
-    W[3494] = -((W[222] * W[3275] + 2.0 * W[440] * W[3057] + 3.0 * W[658] * W[2839] + 4.0 * W[876] * W[2621]
-            + 5.0 * W[1094] * W[2403] + 6.0 * W[1312] * W[2185] + 7.0 * W[1530] * W[1967] + 8.0 * W[1748] * W[1749]
-            + 9.0 * W[1966] * W[1531] + 10.0 * W[2184] * W[1313] + 11.0 * W[2402] * W[1095] + 12.0 * W[2620] * W[877]
-            + 13.0 * W[2838] * W[659] + 14.0 * W[3056] * W[441] + 15.0 * W[3274] * W[223] + 16.0 * W[3492] * W[5])) / 16.0;
-    W[3498] = W[3492] + X[162];
-    W[3529] = X[167] + W[3524];
-    W[3556] = W[65] * W[3489];
-    W[3522] = W[1] * W[3520] + W[219] * W[3302] + W[437] * W[3084] + W[655] * W[2866] + W[873] * W[2648]
-            + W[1091] * W[2430] + W[1309] * W[2212] + W[1527] * W[1994] + W[1745] * W[1776] + W[1963] * W[1558]
-            + W[2181] * W[1340] + W[2399] * W[1122] + W[2617] * W[904] + W[2835] * W[686] + W[3053] * W[468]
-            + W[3271] * W[250] + W[3489] * W[32];
-    W[3523] = W[2] * W[3520] + W[220] * W[3302] + W[438] * W[3084] + W[656] * W[2866] + W[874] * W[2648]
-            + W[1092] * W[2430] + W[1310] * W[2212] + W[1528] * W[1994] + W[1746] * W[1776] + W[1964] * W[1558]
-            + W[2182] * W[1340] + W[2400] * W[1122] + W[2618] * W[904] + W[2836] * W[686] + W[3054] * W[468]
-            + W[3272] * W[250] + W[3490] * W[32];
-    W[3495] = W[3489] + W[3493];
-    W[3496] = W[3490] + W[3494];
-    W[3499] = (W[228] * W[3282] + 2.0 * W[446] * W[3064] + 3.0 * W[664] * W[2846] + 4.0 * W[882] * W[2628]
-            + 5.0 * W[1100] * W[2410] + 6.0 * W[1318] * W[2192] + 7.0 * W[1536] * W[1974] + 8.0 * W[1754] * W[1756]
-            + 9.0 * W[1972] * W[1538] + 10.0 * W[2190] * W[1320] + 11.0 * W[2408] * W[1102] + 12.0 * W[2626] * W[884]
-            + 13.0 * W[2844] * W[666] + 14.0 * W[3062] * W[448] + 15.0 * W[3280] * W[230] + 16.0 * W[3498] * W[12]) / 16.0;
-    W[3500] = -((W[228] * W[3281] + 2.0 * W[446] * W[3063] + 3.0 * W[664] * W[2845] + 4.0 * W[882] * W[2627]
-            + 5.0 * W[1100] * W[2409] + 6.0 * W[1318] * W[2191] + 7.0 * W[1536] * W[1973] + 8.0 * W[1754] * W[1755]
-            + 9.0 * W[1972] * W[1537] + 10.0 * W[2190] * W[1319] + 11.0 * W[2408] * W[1101] + 12.0 * W[2626] * W[883]
-            + 13.0 * W[2844] * W[665] + 14.0 * W[3062] * W[447] + 15.0 * W[3280] * W[229] + 16.0 * W[3498] * W[11])) / 16.0;
-    W[3504] = W[3498] + X[163];
-    W[3534] = X[168] + W[3529];
-    W[3554] = W[62] * W[3493];
-    W[3525] = W[6] * W[3524] + W[224] * W[3306] + W[442] * W[3088] + W[660] * W[2870] + W[878] * W[2652]
-            + W[1096] * W[2434] + W[1314] * W[2216] + W[1532] * W[1998] + W[1750] * W[1780] + W[1968] * W[1562]
-            + W[2186] * W[1344] + W[2404] * W[1126] + W[2622] * W[908] + W[2840] * W[690] + W[3058] * W[472]
-            + W[3276] * W[254] + W[3494] * W[36];
-    W[3526] = W[5] * W[3524] + W[223] * W[3306] + W[441] * W[3088] + W[659] * W[2870] + W[877] * W[2652]
-            + W[1095] * W[2434] + W[1313] * W[2216] + W[1531] * W[1998] + W[1749] * W[1780] + W[1967] * W[1562]
-            + W[2185] * W[1344] + W[2403] * W[1126] + W[2621] * W[908] + W[2839] * W[690] + W[3057] * W[472]
-            + W[3275] * W[254] + W[3493] * W[36];
-    W[3501] = W[3495] + W[3499];
-    W[3502] = W[3496] + W[3500];
-    W[3505] = (W[234] * W[3288] + 2.0 * W[452] * W[3070] + 3.0 * W[670] * W[2852] + 4.0 * W[888] * W[2634]
-            + 5.0 * W[1106] * W[2416] + 6.0 * W[1324] * W[2198] + 7.0 * W[1542] * W[1980] + 8.0 * W[1760] * W[1762]
-            + 9.0 * W[1978] * W[1544] + 10.0 * W[2196] * W[1326] + 11.0 * W[2414] * W[1108] + 12.0 * W[2632] * W[890]
-            + 13.0 * W[2850] * W[672] + 14.0 * W[3068] * W[454] + 15.0 * W[3286] * W[236] + 16.0 * W[3504] * W[18]) / 16.0;
-    W[3506] = -((W[234] * W[3287] + 2.0 * W[452] * W[3069] + 3.0 * W[670] * W[2851] + 4.0 * W[888] * W[2633]
-            + 5.0 * W[1106] * W[2415] + 6.0 * W[1324] * W[2197] + 7.0 * W[1542] * W[1979] + 8.0 * W[1760] * W[1761]
-            + 9.0 * W[1978] * W[1543] + 10.0 * W[2196] * W[1325] + 11.0 * W[2414] * W[1107] + 12.0 * W[2632] * W[889]
-            + 13.0 * W[2850] * W[671] + 14.0 * W[3068] * W[453] + 15.0 * W[3286] * W[235] + 16.0 * W[3504] * W[17])) / 16.0;
-    W[3510] = W[3504] + X[164];
-    W[3539] = X[169] + W[3534];
-    W[3551] = W[59] * W[3499];
-    W[3580] = W[3493] + W[3499];
-    W[3584] = W[3494] + W[3500];
-    W[3527] = W[36] * W[3526] + W[254] * W[3308] + W[472] * W[3090] + W[690] * W[2872] + W[908] * W[2654]
-            + W[1126] * W[2436] + W[1344] * W[2218] + W[1562] * W[2000] + W[1780] * W[1782] + W[1998] * W[1564]
-            + W[2216] * W[1346] + W[2434] * W[1128] + W[2652] * W[910] + W[2870] * W[692] + W[3088] * W[474]
-            + W[3306] * W[256] + W[3524] * W[38];
-    W[3528] = W[36] * W[3525] + W[254] * W[3307] + W[472] * W[3089] + W[690] * W[2871] + W[908] * W[2653]
-            + W[1126] * W[2435] + W[1344] * W[2217] + W[1562] * W[1999] + W[1780] * W[1781] + W[1998] * W[1563]
-            + W[2216] * W[1345] + W[2434] * W[1127] + W[2652] * W[909] + W[2870] * W[691] + W[3088] * W[473]
-            + W[3306] * W[255] + W[3524] * W[37];
-    W[3530] = W[12] * W[3529] + W[230] * W[3311] + W[448] * W[3093] + W[666] * W[2875] + W[884] * W[2657]
-            + W[1102] * W[2439] + W[1320] * W[2221] + W[1538] * W[2003] + W[1756] * W[1785] + W[1974] * W[1567]
-            + W[2192] * W[1349] + W[2410] * W[1131] + W[2628] * W[913] + W[2846] * W[695] + W[3064] * W[477]
-            + W[3282] * W[259] + W[3500] * W[41];
-    W[3531] = W[11] * W[3529] + W[229] * W[3311] + W[447] * W[3093] + W[665] * W[2875] + W[883] * W[2657]
-            + W[1101] * W[2439] + W[1319] * W[2221] + W[1537] * W[2003] + W[1755] * W[1785] + W[1973] * W[1567]
-            + W[2191] * W[1349] + W[2409] * W[1131] + W[2627] * W[913] + W[2845] * W[695] + W[3063] * W[477]
-            + W[3281] * W[259] + W[3499] * W[41];
-    W[3507] = W[3501] + W[3505];
-    W[3508] = W[3502] + W[3506];
-    W[3511] = (W[240] * W[3294] + 2.0 * W[458] * W[3076] + 3.0 * W[676] * W[2858] + 4.0 * W[894] * W[2640]
-            + 5.0 * W[1112] * W[2422] + 6.0 * W[1330] * W[2204] + 7.0 * W[1548] * W[1986] + 8.0 * W[1766] * W[1768]
-            + 9.0 * W[1984] * W[1550] + 10.0 * W[2202] * W[1332] + 11.0 * W[2420] * W[1114] + 12.0 * W[2638] * W[896]
-            + 13.0 * W[2856] * W[678] + 14.0 * W[3074] * W[460] + 15.0 * W[3292] * W[242] + 16.0 * W[3510] * W[24]) / 16.0;
-    W[3512] = -((W[240] * W[3293] + 2.0 * W[458] * W[3075] + 3.0 * W[676] * W[2857] + 4.0 * W[894] * W[2639]
-            + 5.0 * W[1112] * W[2421] + 6.0 * W[1330] * W[2203] + 7.0 * W[1548] * W[1985] + 8.0 * W[1766] * W[1767]
-            + 9.0 * W[1984] * W[1549] + 10.0 * W[2202] * W[1331] + 11.0 * W[2420] * W[1113] + 12.0 * W[2638] * W[895]
-            + 13.0 * W[2856] * W[677] + 14.0 * W[3074] * W[459] + 15.0 * W[3292] * W[241] + 16.0 * W[3510] * W[23])) / 16.0;
-    W[3548] = W[57] * W[3505];
-    W[3581] = W[3505] + W[3580];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+chain5_taylor_run_179(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3585] = W[3506] + W[3584];
     W[3610] = W[3499] + W[3505];
     W[3613] = W[3500] + W[3506];
@@ -7605,53 +5623,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3636] = W[3505] + W[3511];
     W[3651] = W[3532] + W[3649];
     W[3652] = W[3533] + W[3650];
-    W[3537] = W[46] * W[3536] + W[264] * W[3318] + W[482] * W[3100] + W[700] * W[2882] + W[918] * W[2664]
-            + W[1136] * W[2446] + W[1354] * W[2228] + W[1572] * W[2010] + W[1790] * W[1792] + W[2008] * W[1574]
-            + W[2226] * W[1356] + W[2444] * W[1138] + W[2662] * W[920] + W[2880] * W[702] + W[3098] * W[484]
-            + W[3316] * W[266] + W[3534] * W[48];
-    W[3538] = W[46] * W[3535] + W[264] * W[3317] + W[482] * W[3099] + W[700] * W[2881] + W[918] * W[2663]
-            + W[1136] * W[2445] + W[1354] * W[2227] + W[1572] * W[2009] + W[1790] * W[1791] + W[2008] * W[1573]
-            + W[2226] * W[1355] + W[2444] * W[1137] + W[2662] * W[919] + W[2880] * W[701] + W[3098] * W[483]
-            + W[3316] * W[265] + W[3534] * W[47];
-    W[3540] = W[24] * W[3539] + W[242] * W[3321] + W[460] * W[3103] + W[678] * W[2885] + W[896] * W[2667]
-            + W[1114] * W[2449] + W[1332] * W[2231] + W[1550] * W[2013] + W[1768] * W[1795] + W[1986] * W[1577]
-            + W[2204] * W[1359] + W[2422] * W[1141] + W[2640] * W[923] + W[2858] * W[705] + W[3076] * W[487]
-            + W[3294] * W[269] + W[3512] * W[51];
-    W[3541] = W[23] * W[3539] + W[241] * W[3321] + W[459] * W[3103] + W[677] * W[2885] + W[895] * W[2667]
-            + W[1113] * W[2449] + W[1331] * W[2231] + W[1549] * W[2013] + W[1767] * W[1795] + W[1985] * W[1577]
-            + W[2203] * W[1359] + W[2421] * W[1141] + W[2639] * W[923] + W[2857] * W[705] + W[3075] * W[487]
-            + W[3293] * W[269] + W[3511] * W[51];
-    W[3549] = W[3546] - W[3548];
-    W[3561] = W[3507] + W[3513];
-    W[3564] = W[3508] + W[3514];
-    W[3589] = W[3581] + W[3582];
-    W[3592] = W[3585] + W[3586];
-    W[3617] = W[3610] + W[3611];
-    W[3620] = W[3613] + W[3614];
-    W[3634] = W[3506] + W[3633];
-    W[3637] = W[3505] + W[3636];
-    W[3653] = W[3537] + W[3651];
-    W[3654] = W[3538] + W[3652];
-    W[3542] = W[51] * W[3541] + W[269] * W[3323] + W[487] * W[3105] + W[705] * W[2887] + W[923] * W[2669]
-            + W[1141] * W[2451] + W[1359] * W[2233] + W[1577] * W[2015] + W[1795] * W[1797] + W[2013] * W[1579]
-            + W[2231] * W[1361] + W[2449] * W[1143] + W[2667] * W[925] + W[2885] * W[707] + W[3103] * W[489]
-            + W[3321] * W[271] + W[3539] * W[53];
-    W[3543] = W[51] * W[3540] + W[269] * W[3322] + W[487] * W[3104] + W[705] * W[2886] + W[923] * W[2668]
-            + W[1141] * W[2450] + W[1359] * W[2232] + W[1577] * W[2014] + W[1795] * W[1796] + W[2013] * W[1578]
-            + W[2231] * W[1360] + W[2449] * W[1142] + W[2667] * W[924] + W[2885] * W[706] + W[3103] * W[488]
-            + W[3321] * W[270] + W[3539] * W[52];
-    W[3558] = W[23] * W[3513] + W[241] * W[3295] + W[459] * W[3077] + W[677] * W[2859] + W[895] * W[2641]
-            + W[1113] * W[2423] + W[1331] * W[2205] + W[1549] * W[1987] + W[1767] * W[1769] + W[1985] * W[1551]
-            + W[2203] * W[1333] + W[2421] * W[1115] + W[2639] * W[897] + W[2857] * W[679] + W[3075] * W[461]
-            + W[3293] * W[243] + W[3511] * W[25];
-    W[3559] = W[24] * W[3514] + W[242] * W[3296] + W[460] * W[3078] + W[678] * W[2860] + W[896] * W[2642]
-            + W[1114] * W[2424] + W[1332] * W[2206] + W[1550] * W[1988] + W[1768] * W[1770] + W[1986] * W[1552]
-            + W[2204] * W[1334] + W[2422] * W[1116] + W[2640] * W[898] + W[2858] * W[680] + W[3076] * W[462]
-            + W[3294] * W[244] + W[3512] * W[26];
-    W[3583] = W[23] * W[3582] + W[241] * W[3364] + W[459] * W[3146] + W[677] * W[2928] + W[895] * W[2710]
-            + W[1113] * W[2492] + W[1331] * W[2274] + W[1549] * W[2056] + W[1767] * W[1838] + W[1985] * W[1620]
-            + W[2203] * W[1402] + W[2421] * W[1184] + W[2639] * W[966] + W[2857] * W[748] + W[3075] * W[530]
-            + W[3293] * W[312] + W[3511] * W[94];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+chain5_taylor_run_181(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3587] = W[24] * W[3586] + W[242] * W[3368] + W[460] * W[3150] + W[678] * W[2932] + W[896] * W[2714]
             + W[1114] * W[2496] + W[1332] * W[2278] + W[1550] * W[2060] + W[1768] * W[1842] + W[1986] * W[1624]
             + W[2204] * W[1406] + W[2422] * W[1188] + W[2640] * W[970] + W[2858] * W[752] + W[3076] * W[534]
@@ -7693,44 +5674,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1108] * W[2474] + W[1326] * W[2256] + W[1544] * W[2038] + W[1762] * W[1820] + W[1980] * W[1602]
             + W[2198] * W[1384] + W[2416] * W[1166] + W[2634] * W[948] + W[2852] * W[730] + W[3070] * W[512]
             + W[3288] * W[294] + W[3506] * W[76];
-    W[3590] = W[17] * W[3589] + W[235] * W[3371] + W[453] * W[3153] + W[671] * W[2935] + W[889] * W[2717]
-            + W[1107] * W[2499] + W[1325] * W[2281] + W[1543] * W[2063] + W[1761] * W[1845] + W[1979] * W[1627]
-            + W[2197] * W[1409] + W[2415] * W[1191] + W[2633] * W[973] + W[2851] * W[755] + W[3069] * W[537]
-            + W[3287] * W[319] + W[3505] * W[101];
-    W[3593] = W[18] * W[3592] + W[236] * W[3374] + W[454] * W[3156] + W[672] * W[2938] + W[890] * W[2720]
-            + W[1108] * W[2502] + W[1326] * W[2284] + W[1544] * W[2066] + W[1762] * W[1848] + W[1980] * W[1630]
-            + W[2198] * W[1412] + W[2416] * W[1194] + W[2634] * W[976] + W[2852] * W[758] + W[3070] * W[540]
-            + W[3288] * W[322] + W[3506] * W[104];
-    W[3618] = W[17] * W[3617] + W[235] * W[3399] + W[453] * W[3181] + W[671] * W[2963] + W[889] * W[2745]
-            + W[1107] * W[2527] + W[1325] * W[2309] + W[1543] * W[2091] + W[1761] * W[1873] + W[1979] * W[1655]
-            + W[2197] * W[1437] + W[2415] * W[1219] + W[2633] * W[1001] + W[2851] * W[783] + W[3069] * W[565]
-            + W[3287] * W[347] + W[3505] * W[129];
-    W[3621] = W[18] * W[3620] + W[236] * W[3402] + W[454] * W[3184] + W[672] * W[2966] + W[890] * W[2748]
-            + W[1108] * W[2530] + W[1326] * W[2312] + W[1544] * W[2094] + W[1762] * W[1876] + W[1980] * W[1658]
-            + W[2198] * W[1440] + W[2416] * W[1222] + W[2634] * W[1004] + W[2852] * W[786] + W[3070] * W[568]
-            + W[3288] * W[350] + W[3506] * W[132];
-    W[3635] = W[18] * W[3634] + W[236] * W[3416] + W[454] * W[3198] + W[672] * W[2980] + W[890] * W[2762]
-            + W[1108] * W[2544] + W[1326] * W[2326] + W[1544] * W[2108] + W[1762] * W[1890] + W[1980] * W[1672]
-            + W[2198] * W[1454] + W[2416] * W[1236] + W[2634] * W[1018] + W[2852] * W[800] + W[3070] * W[582]
-            + W[3288] * W[364] + W[3506] * W[146];
-    W[3638] = W[17] * W[3637] + W[235] * W[3419] + W[453] * W[3201] + W[671] * W[2983] + W[889] * W[2765]
-            + W[1107] * W[2547] + W[1325] * W[2329] + W[1543] * W[2111] + W[1761] * W[1893] + W[1979] * W[1675]
-            + W[2197] * W[1457] + W[2415] * W[1239] + W[2633] * W[1021] + W[2851] * W[803] + W[3069] * W[585]
-            + W[3287] * W[367] + W[3505] * W[149];
-    W[3555] = W[3552] - W[3554];
-    W[3563] = W[3560] + W[3562];
-    W[3573] = W[3495] + W[3567];
-    W[3576] = W[3496] + W[3570];
-    W[3591] = W[3588] + W[3590];
-    W[3601] = W[3493] + W[3595];
-    W[3604] = W[3494] + W[3598];
-    W[3619] = W[3616] + W[3618];
-    W[3642] = W[3638] + W[3641];
-    W[3645] = W[33] * W[3560];
-    W[3646] = W[33] * W[3588];
-    W[3647] = W[33] * W[3616];
-    W[3648] = W[33] * W[3641];
-    W[3659] = W[3654] + W[3656];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+chain5_taylor_run_183(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3661] = W[3653] + W[3655];
     W[3568] = W[11] * W[3567] + W[229] * W[3349] + W[447] * W[3131] + W[665] * W[2913] + W[883] * W[2695]
             + W[1101] * W[2477] + W[1319] * W[2259] + W[1537] * W[2041] + W[1755] * W[1823] + W[1973] * W[1605]
@@ -7778,53 +5731,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1095] * W[2483] + W[1313] * W[2265] + W[1531] * W[2047] + W[1749] * W[1829] + W[1967] * W[1611]
             + W[2185] * W[1393] + W[2403] * W[1175] + W[2621] * W[957] + W[2839] * W[739] + W[3057] * W[521]
             + W[3275] * W[303] + W[3493] * W[85];
-    W[3577] = W[6] * W[3576] + W[224] * W[3358] + W[442] * W[3140] + W[660] * W[2922] + W[878] * W[2704]
-            + W[1096] * W[2486] + W[1314] * W[2268] + W[1532] * W[2050] + W[1750] * W[1832] + W[1968] * W[1614]
-            + W[2186] * W[1396] + W[2404] * W[1178] + W[2622] * W[960] + W[2840] * W[742] + W[3058] * W[524]
-            + W[3276] * W[306] + W[3494] * W[88];
-    W[3602] = W[5] * W[3601] + W[223] * W[3383] + W[441] * W[3165] + W[659] * W[2947] + W[877] * W[2729]
-            + W[1095] * W[2511] + W[1313] * W[2293] + W[1531] * W[2075] + W[1749] * W[1857] + W[1967] * W[1639]
-            + W[2185] * W[1421] + W[2403] * W[1203] + W[2621] * W[985] + W[2839] * W[767] + W[3057] * W[549]
-            + W[3275] * W[331] + W[3493] * W[113];
-    W[3605] = W[6] * W[3604] + W[224] * W[3386] + W[442] * W[3168] + W[660] * W[2950] + W[878] * W[2732]
-            + W[1096] * W[2514] + W[1314] * W[2296] + W[1532] * W[2078] + W[1750] * W[1860] + W[1968] * W[1642]
-            + W[2186] * W[1424] + W[2404] * W[1206] + W[2622] * W[988] + W[2840] * W[770] + W[3058] * W[552]
-            + W[3276] * W[334] + W[3494] * W[116];
-    W[3660] = W[17] * W[3659] + W[235] * W[3441] + W[453] * W[3223] + W[671] * W[3005] + W[889] * W[2787]
-            + W[1107] * W[2569] + W[1325] * W[2351] + W[1543] * W[2133] + W[1761] * W[1915] + W[1979] * W[1697]
-            + W[2197] * W[1479] + W[2415] * W[1261] + W[2633] * W[1043] + W[2851] * W[825] + W[3069] * W[607]
-            + W[3287] * W[389] + W[3505] * W[171];
-    W[3662] = W[18] * W[3661] + W[236] * W[3443] + W[454] * W[3225] + W[672] * W[3007] + W[890] * W[2789]
-            + W[1108] * W[2571] + W[1326] * W[2353] + W[1544] * W[2135] + W[1762] * W[1917] + W[1980] * W[1699]
-            + W[2198] * W[1481] + W[2416] * W[1263] + W[2634] * W[1045] + W[2852] * W[827] + W[3070] * W[609]
-            + W[3288] * W[391] + W[3506] * W[173];
-    W[3569] = W[3566] + W[3568];
-    W[3597] = W[3594] + W[3596];
-    W[3625] = W[3622] + W[3624];
-    W[3630] = W[33] * W[3566];
-    W[3631] = W[33] * W[3594];
-    W[3632] = W[33] * W[3622];
-    W[3644] = W[33] * W[3643];
-    W[3667] = W[3650] + W[3663];
-    W[3669] = W[3649] + W[3665];
-    W[3672] = W[3660] + W[3671];
-    W[3676] = W[33] * W[3671];
-    W[3664] = W[11] * W[3663] + W[229] * W[3445] + W[447] * W[3227] + W[665] * W[3009] + W[883] * W[2791]
-            + W[1101] * W[2573] + W[1319] * W[2355] + W[1537] * W[2137] + W[1755] * W[1919] + W[1973] * W[1701]
-            + W[2191] * W[1483] + W[2409] * W[1265] + W[2627] * W[1047] + W[2845] * W[829] + W[3063] * W[611]
-            + W[3281] * W[393] + W[3499] * W[175];
-    W[3666] = W[12] * W[3665] + W[230] * W[3447] + W[448] * W[3229] + W[666] * W[3011] + W[884] * W[2793]
-            + W[1102] * W[2575] + W[1320] * W[2357] + W[1538] * W[2139] + W[1756] * W[1921] + W[1974] * W[1703]
-            + W[2192] * W[1485] + W[2410] * W[1267] + W[2628] * W[1049] + W[2846] * W[831] + W[3064] * W[613]
-            + W[3282] * W[395] + W[3500] * W[177];
-    W[3679] = W[1] * W[3678] + W[219] * W[3460] + W[437] * W[3242] + W[655] * W[3024] + W[873] * W[2806]
-            + W[1091] * W[2588] + W[1309] * W[2370] + W[1527] * W[2152] + W[1745] * W[1934] + W[1963] * W[1716]
-            + W[2181] * W[1498] + W[2399] * W[1280] + W[2617] * W[1062] + W[2835] * W[844] + W[3053] * W[626]
-            + W[3271] * W[408] + W[3489] * W[190];
-    W[3682] = W[2] * W[3681] + W[220] * W[3463] + W[438] * W[3245] + W[656] * W[3027] + W[874] * W[2809]
-            + W[1092] * W[2591] + W[1310] * W[2373] + W[1528] * W[2155] + W[1746] * W[1937] + W[1964] * W[1719]
-            + W[2182] * W[1501] + W[2400] * W[1283] + W[2618] * W[1065] + W[2836] * W[847] + W[3054] * W[629]
-            + W[3272] * W[411] + W[3490] * W[193];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+chain5_taylor_run_185(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3572] = W[3569] + W[3571];
     W[3600] = W[3597] + W[3599];
     W[3628] = W[3625] + W[3627];
@@ -7857,26 +5773,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[3272] * W[422] + W[3490] * W[204];
     W[3578] = W[3575] + W[3577];
     W[3606] = W[3603] + W[3605];
-    W[3675] = W[3549] + W[3674];
-    W[3686] = W[3685] - W[3666];
-    W[3579] = W[33] * W[3578];
-    W[3607] = W[33] * W[3606];
-    W[3680] = W[3578] + W[3679];
-    W[3687] = W[33] * W[3686];
-    W[3688] = W[3668] + W[3686];
-    W[3683] = W[3680] + W[3682];
-    W[3689] = W[3688] - W[3670];
-    W[3700] = W[3552] + W[3687];
-    W[3684] = W[33] * W[3683];
-    W[3690] = W[33] * W[3689];
-    W[3694] = W[3689] + W[3693];
-    W[3696] = W[3694] - W[3695];
-    W[3699] = W[3555] + W[3690];
-    W[3697] = W[33] * W[3696];
-    W[3698] = W[3557] + W[3697];
-    X[170] = X[165] / 17.0;
-    X[171] = X[166] / 17.0;
-    X[172] = X[167] / 17.0;
+    return 0;
+}
+
+/* Lines 200 .. 212 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+chain5_taylor_run_187(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[173] = X[168] / 17.0;
     X[174] = X[169] / 17.0;
     W[3701] = W[414] * W[3483] + W[632] * W[3265] + W[850] * W[3047] + W[1068] * W[2829] + W[1286] * W[2611]
@@ -7967,114 +5873,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[177] = W[3703] / 17.0;
     X[178] = W[3704] / 17.0;
     X[179] = W[3705] / 17.0;
-    if (K == 17)
-        goto out;
-    /* order 17 */
-    W[3707] = (X[10] * W[3490] + 2.0 * X[20] * W[3272] + 3.0 * X[30] * W[3054] + 4.0 * X[40] * W[2836]
-            + 5.0 * X[50] * W[2618] + 6.0 * X[60] * W[2400] + 7.0 * X[70] * W[2182] + 8.0 * X[80] * W[1964]
-            + 9.0 * X[90] * W[1746] + 10.0 * X[100] * W[1528] + 11.0 * X[110] * W[1310] + 12.0 * X[120] * W[1092]
-            + 13.0 * X[130] * W[874] + 14.0 * X[140] * W[656] + 15.0 * X[150] * W[438] + 16.0 * X[160] * W[220]
-            + 17.0 * X[170] * W[2]) / 17.0;
-    W[3708] = -((X[10] * W[3489] + 2.0 * X[20] * W[3271] + 3.0 * X[30] * W[3053] + 4.0 * X[40] * W[2835]
-            + 5.0 * X[50] * W[2617] + 6.0 * X[60] * W[2399] + 7.0 * X[70] * W[2181] + 8.0 * X[80] * W[1963]
-            + 9.0 * X[90] * W[1745] + 10.0 * X[100] * W[1527] + 11.0 * X[110] * W[1309] + 12.0 * X[120] * W[1091]
-            + 13.0 * X[130] * W[873] + 14.0 * X[140] * W[655] + 15.0 * X[150] * W[437] + 16.0 * X[160] * W[219]
-            + 17.0 * X[170] * W[1])) / 17.0;
-    W[3710] = X[170] + X[171];
-    W[3738] = (X[5] * X[175] + X[15] * X[165] + X[25] * X[155] + X[35] * X[145] + X[45] * X[135]
-            + X[55] * X[125] + X[65] * X[115] + X[75] * X[105] + X[85] * X[95]) * 2.0;
-    W[3742] = X[175] + X[176];
-    W[3711] = (W[222] * W[3494] + 2.0 * W[440] * W[3276] + 3.0 * W[658] * W[3058] + 4.0 * W[876] * W[2840]
-            + 5.0 * W[1094] * W[2622] + 6.0 * W[1312] * W[2404] + 7.0 * W[1530] * W[2186] + 8.0 * W[1748] * W[1968]
-            + 9.0 * W[1966] * W[1750] + 10.0 * W[2184] * W[1532] + 11.0 * W[2402] * W[1314] + 12.0 * W[2620] * W[1096]
-            + 13.0 * W[2838] * W[878] + 14.0 * W[3056] * W[660] + 15.0 * W[3274] * W[442] + 16.0 * W[3492] * W[224]
-            + 17.0 * W[3710] * W[6]) / 17.0;
-    W[3712] = -((W[222] * W[3493] + 2.0 * W[440] * W[3275] + 3.0 * W[658] * W[3057] + 4.0 * W[876] * W[2839]
-            + 5.0 * W[1094] * W[2621] + 6.0 * W[1312] * W[2403] + 7.0 * W[1530] * W[2185] + 8.0 * W[1748] * W[1967]
-            + 9.0 * W[1966] * W[1749] + 10.0 * W[2184] * W[1531] + 11.0 * W[2402] * W[1313] + 12.0 * W[2620] * W[1095]
-            + 13.0 * W[2838] * W[877] + 14.0 * W[3056] * W[659] + 15.0 * W[3274] * W[441] + 16.0 * W[3492] * W[223]
-            + 17.0 * W[3710] * W[5])) / 17.0;
-    W[3716] = W[3710] + X[172];
-    W[3747] = X[177] + W[3742];
-    W[3774] = W[65] * W[3707];
-    W[3740] = W[1] * W[3738] + W[219] * W[3520] + W[437] * W[3302] + W[655] * W[3084] + W[873] * W[2866]
-            + W[1091] * W[2648] + W[1309] * W[2430] + W[1527] * W[2212] + W[1745] * W[1994] + W[1963] * W[1776]
-            + W[2181] * W[1558] + W[2399] * W[1340] + W[2617] * W[1122] + W[2835] * W[904] + W[3053] * W[686]
-            + W[3271] * W[468] + W[3489] * W[250] + W[3707] * W[32];
-    W[3741] = W[2] * W[3738] + W[220] * W[3520] + W[438] * W[3302] + W[656] * W[3084] + W[874] * W[2866]
-            + W[1092] * W[2648] + W[1310] * W[2430] + W[1528] * W[2212] + W[1746] * W[1994] + W[1964] * W[1776]
-            + W[2182] * W[1558] + W[2400] * W[1340] + W[2618] * W[1122] + W[2836] * W[904] + W[3054] * W[686]
-            + W[3272] * W[468] + W[3490] * W[250] + W[3708] * W[32];
-    W[3713] = W[3707] + W[3711];
-    W[3714] = W[3708] + W[3712];
-    W[3717] = (W[228] * W[3500] + 2.0 * W[446] * W[3282] + 3.0 * W[664] * W[3064] + 4.0 * W[882] * W[2846]
-            + 5.0 * W[1100] * W[2628] + 6.0 * W[1318] * W[2410] + 7.0 * W[1536] * W[2192] + 8.0 * W[1754] * W[1974]
-            + 9.0 * W[1972] * W[1756] + 10.0 * W[2190] * W[1538] + 11.0 * W[2408] * W[1320] + 12.0 * W[2626] * W[1102]
-            + 13.0 * W[2844] * W[884] + 14.0 * W[3062] * W[666] + 15.0 * W[3280] * W[448] + 16.0 * W[3498] * W[230]
-            + 17.0 * W[3716] * W[12]) / 17.0;
-    W[3718] = -((W[228] * W[3499] + 2.0 * W[446] * W[3281] + 3.0 * W[664] * W[3063] + 4.0 * W[882] * W[2845]
-            + 5.0 * W[1100] * W[2627] + 6.0 * W[1318] * W[2409] + 7.0 * W[1536] * W[2191] + 8.0 * W[1754] * W[1973]
-            + 9.0 * W[1972] * W[1755] + 10.0 * W[2190] * W[1537] + 11.0 * W[2408] * W[1319] + 12.0 * W[2626] * W[1101]
-            + 13.0 * W[2844] * W[883] + 14.0 * W[3062] * W[665] + 15.0 * W[3280] * W[447] + 16.0 * W[3498] * W[229]
-            + 17.0 * W[3716] * W[11])) / 17.0;
-    W[3722] = W[3716] + X[173];
-    W[3752] = X[178] + W[3747];
-    W[3772] = W[62] * W[3711];
-    W[3743] = W[6] * W[3742] + W[224] * W[3524] + W[442] * W[3306] + W[660] * W[3088] + W[878] * W[2870]
-            + W[1096] * W[2652] + W[1314] * W[2434] + W[1532] * W[2216] + W[1750] * W[1998] + W[1968] * W[1780]
-            + W[2186] * W[1562] + W[2404] * W[1344] + W[2622] * W[1126] + W[2840] * W[908] + W[3058] * W[690]
-            + W[3276] * W[472] + W[3494] * W[254] + W[3712] * W[36];
-    W[3744] = W[5] * W[3742] + W[223] * W[3524] + W[441] * W[3306] + W[659] * W[3088] + W[877] * W[2870]
-            + W[1095] * W[2652] + W[1313] * W[2434] + W[1531] * W[2216] + W[1749] * W[1998] + W[1967] * W[1780]
-            + W[2185] * W[1562] + W[2403] * W[1344] + W[2621] * W[1126] + W[2839] * W[908] + W[3057] * W[690]
-            + W[3275] * W[472] + W[3493] * W[254] + W[3711] * W[36];
-    W[3719] = W[3713] + W[3717];
-    W[3720] = W[3714] + W[3718];
-    W[3723] = (W[234] * W[3506] + 2.0 * W[452] * W[3288] + 3.0 * W[670] * W[3070] + 4.0 * W[888] * W[2852]
-            + 5.0 * W[1106] * W[2634] + 6.0 * W[1324] * W[2416] + 7.0 * W[1542] * W[2198] + 8.0 * W[1760] * W[1980]
-            + 9.0 * W[1978] * W[1762] + 10.0 * W[2196] * W[1544] + 11.0 * W[2414] * W[1326] + 12.0 * W[2632] * W[1108]
-            + 13.0 * W[2850] * W[890] + 14.0 * W[3068] * W[672] + 15.0 * W[3286] * W[454] + 16.0 * W[3504] * W[236]
-            + 17.0 * W[3722] * W[18]) / 17.0;
-    W[3724] = -((W[234] * W[3505] + 2.0 * W[452] * W[3287] + 3.0 * W[670] * W[3069] + 4.0 * W[888] * W[2851]
-            + 5.0 * W[1106] * W[2633] + 6.0 * W[1324] * W[2415] + 7.0 * W[1542] * W[2197] + 8.0 * W[1760] * W[1979]
-            + 9.0 * W[1978] * W[1761] + 10.0 * W[2196] * W[1543] + 11.0 * W[2414] * W[1325] + 12.0 * W[2632] * W[1107]
-            + 13.0 * W[2850] * W[889] + 14.0 * W[3068] * W[671] + 15.0 * W[3286] * W[453] + 16.0 * W[3504] * W[235]
-            + 17.0 * W[3722] * W[17])) / 17.0;
-    W[3728] = W[3722] + X[174];
-    W[3757] = X[179] + W[3752];
-    W[3769] = W[59] * W[3717];
-    W[3798] = W[3711] + W[3717];
-    W[3802] = W[3712] + W[3718];
-    W[3745] = W[36] * W[3744] + W[254] * W[3526] + W[472] * W[3308] + W[690] * W[3090] + W[908] * W[2872]
-            + W[1126] * W[2654] + W[1344] * W[2436] + W[1562] * W[2218] + W[1780] * W[2000] + W[1998] * W[1782]
-            + W[2216] * W[1564] + W[2434] * W[1346] + W[2652] * W[1128] + W[2870] * W[910] + W[3088] * W[692]
-            + W[3306] * W[474] + W[3524] * W[256] + W[3742] * W[38];
-    W[3746] = W[36] * W[3743] + W[254] * W[3525] + W[472] * W[3307] + W[690] * W[3089] + W[908] * W[2871]
-            + W[1126] * W[2653] + W[1344] * W[2435] + W[1562] * W[2217] + W[1780] * W[1999] + W[1998] * W[1781]
-            + W[2216] * W[1563] + W[2434] * W[1345] + W[2652] * W[1127] + W[2870] * W[909] + W[3088] * W[691]
-            + W[3306] * W[473] + W[3524] * W[255] + W[3742] * W[37];
-    W[3748] = W[12] * W[3747] + W[230] * W[3529] + W[448] * W[3311] + W[666] * W[3093] + W[884] * W[2875]
-            + W[1102] * W[2657] + W[1320] * W[2439] + W[1538] * W[2221] + W[1756] * W[2003] + W[1974] * W[1785]
-            + W[2192] * W[1567] + W[2410] * W[1349] + W[2628] * W[1131] + W[2846] * W[913] + W[3064] * W[695]
-            + W[3282] * W[477] + W[3500] * W[259] + W[3718] * W[41];
-    W[3749] = W[11] * W[3747] + W[229] * W[3529] + W[447] * W[3311] + W[665] * W[3093] + W[883] * W[2875]
-            + W[1101] * W[2657] + W[1319] * W[2439] + W[1537] * W[2221] + W[1755] * W[2003] + W[1973] * W[1785]
-            + W[2191] * W[1567] + W[2409] * W[1349] + W[2627] * W[1131] + W[2845] * W[913] + W[3063] * W[695]
-            + W[3281] * W[477] + W[3499] * W[259] + W[3717] * W[41];
-    W[3725] = W[3719] + W[3723];
-    W[3726] = W[3720] + W[3724];
-    W[3729] = (W[240] * W[3512] + 2.0 * W[458] * W[3294] + 3.0 * W[676] * W[3076] + 4.0 * W[894] * W[2858]
-            + 5.0 * W[1112] * W[2640] + 6.0 * W[1330] * W[2422] + 7.0 * W[1548] * W[2204] + 8.0 * W[1766] * W[1986]
-            + 9.0 * W[1984] * W[1768] + 10.0 * W[2202] * W[1550] + 11.0 * W[2420] * W[1332] + 12.0 * W[2638] * W[1114]
-            + 13.0 * W[2856] * W[896] + 14.0 * W[3074] * W[678] + 15.0 * W[3292] * W[460] + 16.0 * W[3510] * W[242]
-            + 17.0 * W[3728] * W[24]) / 17.0;
-    W[3730] = -((W[240] * W[3511] + 2.0 * W[458] * W[3293] + 3.0 * W[676] * W[3075] + 4.0 * W[894] * W[2857]
-            + 5.0 * W[1112] * W[2639] + 6.0 * W[1330] * W[2421] + 7.0 * W[1548] * W[2203] + 8.0 * W[1766] * W[1985]
-            + 9.0 * W[1984] * W[1767] + 10.0 * W[2202] * W[1549] + 11.0 * W[2420] * W[1331] + 12.0 * W[2638] * W[1113]
-            + 13.0 * W[2856] * W[895] + 14.0 * W[3074] * W[677] + 15.0 * W[3292] * W[459] + 16.0 * W[3510] * W[241]
-            + 17.0 * W[3728] * W[23])) / 17.0;
-    W[3766] = W[57] * W[3723];
-    W[3799] = W[3723] + W[3798];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 17. */
+static EOMC_NOINLINE int
+chain5_taylor_run_190(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3803] = W[3724] + W[3802];
     W[3828] = W[3717] + W[3723];
     W[3831] = W[3718] + W[3724];
@@ -8107,53 +5915,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3854] = W[3723] + W[3729];
     W[3869] = W[3750] + W[3867];
     W[3870] = W[3751] + W[3868];
-    W[3755] = W[46] * W[3754] + W[264] * W[3536] + W[482] * W[3318] + W[700] * W[3100] + W[918] * W[2882]
-            + W[1136] * W[2664] + W[1354] * W[2446] + W[1572] * W[2228] + W[1790] * W[2010] + W[2008] * W[1792]
-            + W[2226] * W[1574] + W[2444] * W[1356] + W[2662] * W[1138] + W[2880] * W[920] + W[3098] * W[702]
-            + W[3316] * W[484] + W[3534] * W[266] + W[3752] * W[48];
-    W[3756] = W[46] * W[3753] + W[264] * W[3535] + W[482] * W[3317] + W[700] * W[3099] + W[918] * W[2881]
-            + W[1136] * W[2663] + W[1354] * W[2445] + W[1572] * W[2227] + W[1790] * W[2009] + W[2008] * W[1791]
-            + W[2226] * W[1573] + W[2444] * W[1355] + W[2662] * W[1137] + W[2880] * W[919] + W[3098] * W[701]
-            + W[3316] * W[483] + W[3534] * W[265] + W[3752] * W[47];
-    W[3758] = W[24] * W[3757] + W[242] * W[3539] + W[460] * W[3321] + W[678] * W[3103] + W[896] * W[2885]
-            + W[1114] * W[2667] + W[1332] * W[2449] + W[1550] * W[2231] + W[1768] * W[2013] + W[1986] * W[1795]
-            + W[2204] * W[1577] + W[2422] * W[1359] + W[2640] * W[1141] + W[2858] * W[923] + W[3076] * W[705]
-            + W[3294] * W[487] + W[3512] * W[269] + W[3730] * W[51];
-    W[3759] = W[23] * W[3757] + W[241] * W[3539] + W[459] * W[3321] + W[677] * W[3103] + W[895] * W[2885]
-            + W[1113] * W[2667] + W[1331] * W[2449] + W[1549] * W[2231] + W[1767] * W[2013] + W[1985] * W[1795]
-            + W[2203] * W[1577] + W[2421] * W[1359] + W[2639] * W[1141] + W[2857] * W[923] + W[3075] * W[705]
-            + W[3293] * W[487] + W[3511] * W[269] + W[3729] * W[51];
-    W[3767] = W[3764] - W[3766];
-    W[3779] = W[3725] + W[3731];
-    W[3782] = W[3726] + W[3732];
-    W[3807] = W[3799] + W[3800];
-    W[3810] = W[3803] + W[3804];
-    W[3835] = W[3828] + W[3829];
-    W[3838] = W[3831] + W[3832];
-    W[3852] = W[3724] + W[3851];
-    W[3855] = W[3723] + W[3854];
-    W[3871] = W[3755] + W[3869];
-    W[3872] = W[3756] + W[3870];
-    W[3760] = W[51] * W[3759] + W[269] * W[3541] + W[487] * W[3323] + W[705] * W[3105] + W[923] * W[2887]
-            + W[1141] * W[2669] + W[1359] * W[2451] + W[1577] * W[2233] + W[1795] * W[2015] + W[2013] * W[1797]
-            + W[2231] * W[1579] + W[2449] * W[1361] + W[2667] * W[1143] + W[2885] * W[925] + W[3103] * W[707]
-            + W[3321] * W[489] + W[3539] * W[271] + W[3757] * W[53];
-    W[3761] = W[51] * W[3758] + W[269] * W[3540] + W[487] * W[3322] + W[705] * W[3104] + W[923] * W[2886]
-            + W[1141] * W[2668] + W[1359] * W[2450] + W[1577] * W[2232] + W[1795] * W[2014] + W[2013] * W[1796]
-            + W[2231] * W[1578] + W[2449] * W[1360] + W[2667] * W[1142] + W[2885] * W[924] + W[3103] * W[706]
-            + W[3321] * W[488] + W[3539] * W[270] + W[3757] * W[52];
-    W[3776] = W[23] * W[3731] + W[241] * W[3513] + W[459] * W[3295] + W[677] * W[3077] + W[895] * W[2859]
-            + W[1113] * W[2641] + W[1331] * W[2423] + W[1549] * W[2205] + W[1767] * W[1987] + W[1985] * W[1769]
-            + W[2203] * W[1551] + W[2421] * W[1333] + W[2639] * W[1115] + W[2857] * W[897] + W[3075] * W[679]
-            + W[3293] * W[461] + W[3511] * W[243] + W[3729] * W[25];
-    W[3777] = W[24] * W[3732] + W[242] * W[3514] + W[460] * W[3296] + W[678] * W[3078] + W[896] * W[2860]
-            + W[1114] * W[2642] + W[1332] * W[2424] + W[1550] * W[2206] + W[1768] * W[1988] + W[1986] * W[1770]
-            + W[2204] * W[1552] + W[2422] * W[1334] + W[2640] * W[1116] + W[2858] * W[898] + W[3076] * W[680]
-            + W[3294] * W[462] + W[3512] * W[244] + W[3730] * W[26];
-    W[3801] = W[23] * W[3800] + W[241] * W[3582] + W[459] * W[3364] + W[677] * W[3146] + W[895] * W[2928]
-            + W[1113] * W[2710] + W[1331] * W[2492] + W[1549] * W[2274] + W[1767] * W[2056] + W[1985] * W[1838]
-            + W[2203] * W[1620] + W[2421] * W[1402] + W[2639] * W[1184] + W[2857] * W[966] + W[3075] * W[748]
-            + W[3293] * W[530] + W[3511] * W[312] + W[3729] * W[94];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 17. */
+static EOMC_NOINLINE int
+chain5_taylor_run_192(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3805] = W[24] * W[3804] + W[242] * W[3586] + W[460] * W[3368] + W[678] * W[3150] + W[896] * W[2932]
             + W[1114] * W[2714] + W[1332] * W[2496] + W[1550] * W[2278] + W[1768] * W[2060] + W[1986] * W[1842]
             + W[2204] * W[1624] + W[2422] * W[1406] + W[2640] * W[1188] + W[2858] * W[970] + W[3076] * W[752]
@@ -8195,44 +5966,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1108] * W[2692] + W[1326] * W[2474] + W[1544] * W[2256] + W[1762] * W[2038] + W[1980] * W[1820]
             + W[2198] * W[1602] + W[2416] * W[1384] + W[2634] * W[1166] + W[2852] * W[948] + W[3070] * W[730]
             + W[3288] * W[512] + W[3506] * W[294] + W[3724] * W[76];
-    W[3808] = W[17] * W[3807] + W[235] * W[3589] + W[453] * W[3371] + W[671] * W[3153] + W[889] * W[2935]
-            + W[1107] * W[2717] + W[1325] * W[2499] + W[1543] * W[2281] + W[1761] * W[2063] + W[1979] * W[1845]
-            + W[2197] * W[1627] + W[2415] * W[1409] + W[2633] * W[1191] + W[2851] * W[973] + W[3069] * W[755]
-            + W[3287] * W[537] + W[3505] * W[319] + W[3723] * W[101];
-    W[3811] = W[18] * W[3810] + W[236] * W[3592] + W[454] * W[3374] + W[672] * W[3156] + W[890] * W[2938]
-            + W[1108] * W[2720] + W[1326] * W[2502] + W[1544] * W[2284] + W[1762] * W[2066] + W[1980] * W[1848]
-            + W[2198] * W[1630] + W[2416] * W[1412] + W[2634] * W[1194] + W[2852] * W[976] + W[3070] * W[758]
-            + W[3288] * W[540] + W[3506] * W[322] + W[3724] * W[104];
-    W[3836] = W[17] * W[3835] + W[235] * W[3617] + W[453] * W[3399] + W[671] * W[3181] + W[889] * W[2963]
-            + W[1107] * W[2745] + W[1325] * W[2527] + W[1543] * W[2309] + W[1761] * W[2091] + W[1979] * W[1873]
-            + W[2197] * W[1655] + W[2415] * W[1437] + W[2633] * W[1219] + W[2851] * W[1001] + W[3069] * W[783]
-            + W[3287] * W[565] + W[3505] * W[347] + W[3723] * W[129];
-    W[3839] = W[18] * W[3838] + W[236] * W[3620] + W[454] * W[3402] + W[672] * W[3184] + W[890] * W[2966]
-            + W[1108] * W[2748] + W[1326] * W[2530] + W[1544] * W[2312] + W[1762] * W[2094] + W[1980] * W[1876]
-            + W[2198] * W[1658] + W[2416] * W[1440] + W[2634] * W[1222] + W[2852] * W[1004] + W[3070] * W[786]
-            + W[3288] * W[568] + W[3506] * W[350] + W[3724] * W[132];
-    W[3853] = W[18] * W[3852] + W[236] * W[3634] + W[454] * W[3416] + W[672] * W[3198] + W[890] * W[2980]
-            + W[1108] * W[2762] + W[1326] * W[2544] + W[1544] * W[2326] + W[1762] * W[2108] + W[1980] * W[1890]
-            + W[2198] * W[1672] + W[2416] * W[1454] + W[2634] * W[1236] + W[2852] * W[1018] + W[3070] * W[800]
-            + W[3288] * W[582] + W[3506] * W[364] + W[3724] * W[146];
-    W[3856] = W[17] * W[3855] + W[235] * W[3637] + W[453] * W[3419] + W[671] * W[3201] + W[889] * W[2983]
-            + W[1107] * W[2765] + W[1325] * W[2547] + W[1543] * W[2329] + W[1761] * W[2111] + W[1979] * W[1893]
-            + W[2197] * W[1675] + W[2415] * W[1457] + W[2633] * W[1239] + W[2851] * W[1021] + W[3069] * W[803]
-            + W[3287] * W[585] + W[3505] * W[367] + W[3723] * W[149];
-    W[3773] = W[3770] - W[3772];
-    W[3781] = W[3778] + W[3780];
-    W[3791] = W[3713] + W[3785];
-    W[3794] = W[3714] + W[3788];
-    W[3809] = W[3806] + W[3808];
-    W[3819] = W[3711] + W[3813];
-    W[3822] = W[3712] + W[3816];
-    W[3837] = W[3834] + W[3836];
-    W[3860] = W[3856] + W[3859];
-    W[3863] = W[33] * W[3778];
-    W[3864] = W[33] * W[3806];
-    W[3865] = W[33] * W[3834];
-    W[3866] = W[33] * W[3859];
-    W[3877] = W[3872] + W[3874];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 17. */
+static EOMC_NOINLINE int
+chain5_taylor_run_194(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3879] = W[3871] + W[3873];
     W[3786] = W[11] * W[3785] + W[229] * W[3567] + W[447] * W[3349] + W[665] * W[3131] + W[883] * W[2913]
             + W[1101] * W[2695] + W[1319] * W[2477] + W[1537] * W[2259] + W[1755] * W[2041] + W[1973] * W[1823]
@@ -8280,53 +6023,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1095] * W[2701] + W[1313] * W[2483] + W[1531] * W[2265] + W[1749] * W[2047] + W[1967] * W[1829]
             + W[2185] * W[1611] + W[2403] * W[1393] + W[2621] * W[1175] + W[2839] * W[957] + W[3057] * W[739]
             + W[3275] * W[521] + W[3493] * W[303] + W[3711] * W[85];
-    W[3795] = W[6] * W[3794] + W[224] * W[3576] + W[442] * W[3358] + W[660] * W[3140] + W[878] * W[2922]
-            + W[1096] * W[2704] + W[1314] * W[2486] + W[1532] * W[2268] + W[1750] * W[2050] + W[1968] * W[1832]
-            + W[2186] * W[1614] + W[2404] * W[1396] + W[2622] * W[1178] + W[2840] * W[960] + W[3058] * W[742]
-            + W[3276] * W[524] + W[3494] * W[306] + W[3712] * W[88];
-    W[3820] = W[5] * W[3819] + W[223] * W[3601] + W[441] * W[3383] + W[659] * W[3165] + W[877] * W[2947]
-            + W[1095] * W[2729] + W[1313] * W[2511] + W[1531] * W[2293] + W[1749] * W[2075] + W[1967] * W[1857]
-            + W[2185] * W[1639] + W[2403] * W[1421] + W[2621] * W[1203] + W[2839] * W[985] + W[3057] * W[767]
-            + W[3275] * W[549] + W[3493] * W[331] + W[3711] * W[113];
-    W[3823] = W[6] * W[3822] + W[224] * W[3604] + W[442] * W[3386] + W[660] * W[3168] + W[878] * W[2950]
-            + W[1096] * W[2732] + W[1314] * W[2514] + W[1532] * W[2296] + W[1750] * W[2078] + W[1968] * W[1860]
-            + W[2186] * W[1642] + W[2404] * W[1424] + W[2622] * W[1206] + W[2840] * W[988] + W[3058] * W[770]
-            + W[3276] * W[552] + W[3494] * W[334] + W[3712] * W[116];
-    W[3878] = W[17] * W[3877] + W[235] * W[3659] + W[453] * W[3441] + W[671] * W[3223] + W[889] * W[3005]
-            + W[1107] * W[2787] + W[1325] * W[2569] + W[1543] * W[2351] + W[1761] * W[2133] + W[1979] * W[1915]
-            + W[2197] * W[1697] + W[2415] * W[1479] + W[2633] * W[1261] + W[2851] * W[1043] + W[3069] * W[825]
-            + W[3287] * W[607] + W[3505] * W[389] + W[3723] * W[171];
-    W[3880] = W[18] * W[3879] + W[236] * W[3661] + W[454] * W[3443] + W[672] * W[3225] + W[890] * W[3007]
-            + W[1108] * W[2789] + W[1326] * W[2571] + W[1544] * W[2353] + W[1762] * W[2135] + W[1980] * W[1917]
-            + W[2198] * W[1699] + W[2416] * W[1481] + W[2634] * W[1263] + W[2852] * W[1045] + W[3070] * W[827]
-            + W[3288] * W[609] + W[3506] * W[391] + W[3724] * W[173];
-    W[3787] = W[3784] + W[3786];
-    W[3815] = W[3812] + W[3814];
-    W[3843] = W[3840] + W[3842];
-    W[3848] = W[33] * W[3784];
-    W[3849] = W[33] * W[3812];
-    W[3850] = W[33] * W[3840];
-    W[3862] = W[33] * W[3861];
-    W[3885] = W[3868] + W[3881];
-    W[3887] = W[3867] + W[3883];
-    W[3890] = W[3878] + W[3889];
-    W[3894] = W[33] * W[3889];
-    W[3882] = W[11] * W[3881] + W[229] * W[3663] + W[447] * W[3445] + W[665] * W[3227] + W[883] * W[3009]
-            + W[1101] * W[2791] + W[1319] * W[2573] + W[1537] * W[2355] + W[1755] * W[2137] + W[1973] * W[1919]
-            + W[2191] * W[1701] + W[2409] * W[1483] + W[2627] * W[1265] + W[2845] * W[1047] + W[3063] * W[829]
-            + W[3281] * W[611] + W[3499] * W[393] + W[3717] * W[175];
-    W[3884] = W[12] * W[3883] + W[230] * W[3665] + W[448] * W[3447] + W[666] * W[3229] + W[884] * W[3011]
-            + W[1102] * W[2793] + W[1320] * W[2575] + W[1538] * W[2357] + W[1756] * W[2139] + W[1974] * W[1921]
-            + W[2192] * W[1703] + W[2410] * W[1485] + W[2628] * W[1267] + W[2846] * W[1049] + W[3064] * W[831]
-            + W[3282] * W[613] + W[3500] * W[395] + W[3718] * W[177];
-    W[3897] = W[1] * W[3896] + W[219] * W[3678] + W[437] * W[3460] + W[655] * W[3242] + W[873] * W[3024]
-            + W[1091] * W[2806] + W[1309] * W[2588] + W[1527] * W[2370] + W[1745] * W[2152] + W[1963] * W[1934]
-            + W[2181] * W[1716] + W[2399] * W[1498] + W[2617] * W[1280] + W[2835] * W[1062] + W[3053] * W[844]
-            + W[3271] * W[626] + W[3489] * W[408] + W[3707] * W[190];
-    W[3900] = W[2] * W[3899] + W[220] * W[3681] + W[438] * W[3463] + W[656] * W[3245] + W[874] * W[3027]
-            + W[1092] * W[2809] + W[1310] * W[2591] + W[1528] * W[2373] + W[1746] * W[2155] + W[1964] * W[1937]
-            + W[2182] * W[1719] + W[2400] * W[1501] + W[2618] * W[1283] + W[2836] * W[1065] + W[3054] * W[847]
-            + W[3272] * W[629] + W[3490] * W[411] + W[3708] * W[193];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 17. */
+static EOMC_NOINLINE int
+chain5_taylor_run_196(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3790] = W[3787] + W[3789];
     W[3818] = W[3815] + W[3817];
     W[3846] = W[3843] + W[3845];
@@ -8359,26 +6065,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[3272] * W[640] + W[3490] * W[422] + W[3708] * W[204];
     W[3796] = W[3793] + W[3795];
     W[3824] = W[3821] + W[3823];
-    W[3893] = W[3767] + W[3892];
-    W[3904] = W[3903] - W[3884];
-    W[3797] = W[33] * W[3796];
-    W[3825] = W[33] * W[3824];
-    W[3898] = W[3796] + W[3897];
-    W[3905] = W[33] * W[3904];
-    W[3906] = W[3886] + W[3904];
-    W[3901] = W[3898] + W[3900];
-    W[3907] = W[3906] - W[3888];
-    W[3918] = W[3770] + W[3905];
-    W[3902] = W[33] * W[3901];
-    W[3908] = W[33] * W[3907];
-    W[3912] = W[3907] + W[3911];
-    W[3914] = W[3912] - W[3913];
-    W[3917] = W[3773] + W[3908];
-    W[3915] = W[33] * W[3914];
-    W[3916] = W[3775] + W[3915];
-    X[180] = X[175] / 18.0;
-    X[181] = X[176] / 18.0;
-    X[182] = X[177] / 18.0;
+    return 0;
+}
+
+/* Lines 200 .. 212 of taylor_run's order 17. */
+static EOMC_NOINLINE int
+chain5_taylor_run_198(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[183] = X[178] / 18.0;
     X[184] = X[179] / 18.0;
     W[3919] = W[414] * W[3701] + W[632] * W[3483] + W[850] * W[3265] + W[1068] * W[3047] + W[1286] * W[2829]
@@ -8474,114 +6170,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[187] = W[3921] / 18.0;
     X[188] = W[3922] / 18.0;
     X[189] = W[3923] / 18.0;
-    if (K == 18)
-        goto out;
-    /* order 18 */
-    W[3925] = (X[10] * W[3708] + 2.0 * X[20] * W[3490] + 3.0 * X[30] * W[3272] + 4.0 * X[40] * W[3054]
-            + 5.0 * X[50] * W[2836] + 6.0 * X[60] * W[2618] + 7.0 * X[70] * W[2400] + 8.0 * X[80] * W[2182]
-            + 9.0 * X[90] * W[1964] + 10.0 * X[100] * W[1746] + 11.0 * X[110] * W[1528] + 12.0 * X[120] * W[1310]
-            + 13.0 * X[130] * W[1092] + 14.0 * X[140] * W[874] + 15.0 * X[150] * W[656] + 16.0 * X[160] * W[438]
-            + 17.0 * X[170] * W[220] + 18.0 * X[180] * W[2]) / 18.0;
-    W[3926] = -((X[10] * W[3707] + 2.0 * X[20] * W[3489] + 3.0 * X[30] * W[3271] + 4.0 * X[40] * W[3053]
-            + 5.0 * X[50] * W[2835] + 6.0 * X[60] * W[2617] + 7.0 * X[70] * W[2399] + 8.0 * X[80] * W[2181]
-            + 9.0 * X[90] * W[1963] + 10.0 * X[100] * W[1745] + 11.0 * X[110] * W[1527] + 12.0 * X[120] * W[1309]
-            + 13.0 * X[130] * W[1091] + 14.0 * X[140] * W[873] + 15.0 * X[150] * W[655] + 16.0 * X[160] * W[437]
-            + 17.0 * X[170] * W[219] + 18.0 * X[180] * W[1])) / 18.0;
-    W[3928] = X[180] + X[181];
-    W[3956] = (X[5] * X[185] + X[15] * X[175] + X[25] * X[165] + X[35] * X[155] + X[45] * X[145]
-            + X[55] * X[135] + X[65] * X[125] + X[75] * X[115] + X[85] * X[105]) * 2.0 + X[95] * X[95];
-    W[3960] = X[185] + X[186];
-    W[3929] = (W[222] * W[3712] + 2.0 * W[440] * W[3494] + 3.0 * W[658] * W[3276] + 4.0 * W[876] * W[3058]
-            + 5.0 * W[1094] * W[2840] + 6.0 * W[1312] * W[2622] + 7.0 * W[1530] * W[2404] + 8.0 * W[1748] * W[2186]
-            + 9.0 * W[1966] * W[1968] + 10.0 * W[2184] * W[1750] + 11.0 * W[2402] * W[1532] + 12.0 * W[2620] * W[1314]
-            + 13.0 * W[2838] * W[1096] + 14.0 * W[3056] * W[878] + 15.0 * W[3274] * W[660] + 16.0 * W[3492] * W[442]
-            + 17.0 * W[3710] * W[224] + 18.0 * W[3928] * W[6]) / 18.0;
-    W[3930] = -((W[222] * W[3711] + 2.0 * W[440] * W[3493] + 3.0 * W[658] * W[3275] + 4.0 * W[876] * W[3057]
-            + 5.0 * W[1094] * W[2839] + 6.0 * W[1312] * W[2621] + 7.0 * W[1530] * W[2403] + 8.0 * W[1748] * W[2185]
-            + 9.0 * W[1966] * W[1967] + 10.0 * W[2184] * W[1749] + 11.0 * W[2402] * W[1531] + 12.0 * W[2620] * W[1313]
-            + 13.0 * W[2838] * W[1095] + 14.0 * W[3056] * W[877] + 15.0 * W[3274] * W[659] + 16.0 * W[3492] * W[441]
-            + 17.0 * W[3710] * W[223] + 18.0 * W[3928] * W[5])) / 18.0;
-    W[3934] = W[3928] + X[182];
-    W[3965] = X[187] + W[3960];
-    W[3992] = W[65] * W[3925];
-    W[3958] = W[1] * W[3956] + W[219] * W[3738] + W[437] * W[3520] + W[655] * W[3302] + W[873] * W[3084]
-            + W[1091] * W[2866] + W[1309] * W[2648] + W[1527] * W[2430] + W[1745] * W[2212] + W[1963] * W[1994]
-            + W[2181] * W[1776] + W[2399] * W[1558] + W[2617] * W[1340] + W[2835] * W[1122] + W[3053] * W[904]
-            + W[3271] * W[686] + W[3489] * W[468] + W[3707] * W[250] + W[3925] * W[32];
-    W[3959] = W[2] * W[3956] + W[220] * W[3738] + W[438] * W[3520] + W[656] * W[3302] + W[874] * W[3084]
-            + W[1092] * W[2866] + W[1310] * W[2648] + W[1528] * W[2430] + W[1746] * W[2212] + W[1964] * W[1994]
-            + W[2182] * W[1776] + W[2400] * W[1558] + W[2618] * W[1340] + W[2836] * W[1122] + W[3054] * W[904]
-            + W[3272] * W[686] + W[3490] * W[468] + W[3708] * W[250] + W[3926] * W[32];
-    W[3931] = W[3925] + W[3929];
-    W[3932] = W[3926] + W[3930];
-    W[3935] = (W[228] * W[3718] + 2.0 * W[446] * W[3500] + 3.0 * W[664] * W[3282] + 4.0 * W[882] * W[3064]
-            + 5.0 * W[1100] * W[2846] + 6.0 * W[1318] * W[2628] + 7.0 * W[1536] * W[2410] + 8.0 * W[1754] * W[2192]
-            + 9.0 * W[1972] * W[1974] + 10.0 * W[2190] * W[1756] + 11.0 * W[2408] * W[1538] + 12.0 * W[2626] * W[1320]
-            + 13.0 * W[2844] * W[1102] + 14.0 * W[3062] * W[884] + 15.0 * W[3280] * W[666] + 16.0 * W[3498] * W[448]
-            + 17.0 * W[3716] * W[230] + 18.0 * W[3934] * W[12]) / 18.0;
-    W[3936] = -((W[228] * W[3717] + 2.0 * W[446] * W[3499] + 3.0 * W[664] * W[3281] + 4.0 * W[882] * W[3063]
-            + 5.0 * W[1100] * W[2845] + 6.0 * W[1318] * W[2627] + 7.0 * W[1536] * W[2409] + 8.0 * W[1754] * W[2191]
-            + 9.0 * W[1972] * W[1973] + 10.0 * W[2190] * W[1755] + 11.0 * W[2408] * W[1537] + 12.0 * W[2626] * W[1319]
-            + 13.0 * W[2844] * W[1101] + 14.0 * W[3062] * W[883] + 15.0 * W[3280] * W[665] + 16.0 * W[3498] * W[447]
-            + 17.0 * W[3716] * W[229] + 18.0 * W[3934] * W[11])) / 18.0;
-    W[3940] = W[3934] + X[183];
-    W[3970] = X[188] + W[3965];
-    W[3990] = W[62] * W[3929];
-    W[3961] = W[6] * W[3960] + W[224] * W[3742] + W[442] * W[3524] + W[660] * W[3306] + W[878] * W[3088]
-            + W[1096] * W[2870] + W[1314] * W[2652] + W[1532] * W[2434] + W[1750] * W[2216] + W[1968] * W[1998]
-            + W[2186] * W[1780] + W[2404] * W[1562] + W[2622] * W[1344] + W[2840] * W[1126] + W[3058] * W[908]
-            + W[3276] * W[690] + W[3494] * W[472] + W[3712] * W[254] + W[3930] * W[36];
-    W[3962] = W[5] * W[3960] + W[223] * W[3742] + W[441] * W[3524] + W[659] * W[3306] + W[877] * W[3088]
-            + W[1095] * W[2870] + W[1313] * W[2652] + W[1531] * W[2434] + W[1749] * W[2216] + W[1967] * W[1998]
-            + W[2185] * W[1780] + W[2403] * W[1562] + W[2621] * W[1344] + W[2839] * W[1126] + W[3057] * W[908]
-            + W[3275] * W[690] + W[3493] * W[472] + W[3711] * W[254] + W[3929] * W[36];
-    W[3937] = W[3931] + W[3935];
-    W[3938] = W[3932] + W[3936];
-    W[3941] = (W[234] * W[3724] + 2.0 * W[452] * W[3506] + 3.0 * W[670] * W[3288] + 4.0 * W[888] * W[3070]
-            + 5.0 * W[1106] * W[2852] + 6.0 * W[1324] * W[2634] + 7.0 * W[1542] * W[2416] + 8.0 * W[1760] * W[2198]
-            + 9.0 * W[1978] * W[1980] + 10.0 * W[2196] * W[1762] + 11.0 * W[2414] * W[1544] + 12.0 * W[2632] * W[1326]
-            + 13.0 * W[2850] * W[1108] + 14.0 * W[3068] * W[890] + 15.0 * W[3286] * W[672] + 16.0 * W[3504] * W[454]
-            + 17.0 * W[3722] * W[236] + 18.0 * W[3940] * W[18]) / 18.0;
-    W[3942] = -((W[234] * W[3723] + 2.0 * W[452] * W[3505] + 3.0 * W[670] * W[3287] + 4.0 * W[888] * W[3069]
-            + 5.0 * W[1106] * W[2851] + 6.0 * W[1324] * W[2633] + 7.0 * W[1542] * W[2415] + 8.0 * W[1760] * W[2197]
-            + 9.0 * W[1978] * W[1979] + 10.0 * W[2196] * W[1761] + 11.0 * W[2414] * W[1543] + 12.0 * W[2632] * W[1325]
-            + 13.0 * W[2850] * W[1107] + 14.0 * W[3068] * W[889] + 15.0 * W[3286] * W[671] + 16.0 * W[3504] * W[453]
-            + 17.0 * W[3722] * W[235] + 18.0 * W[3940] * W[17])) / 18.0;
-    W[3946] = W[3940] + X[184];
-    W[3975] = X[189] + W[3970];
-    W[3987] = W[59] * W[3935];
-    W[4016] = W[3929] + W[3935];
-    W[4020] = W[3930] + W[3936];
-    W[3963] = W[36] * W[3962] + W[254] * W[3744] + W[472] * W[3526] + W[690] * W[3308] + W[908] * W[3090]
-            + W[1126] * W[2872] + W[1344] * W[2654] + W[1562] * W[2436] + W[1780] * W[2218] + W[1998] * W[2000]
-            + W[2216] * W[1782] + W[2434] * W[1564] + W[2652] * W[1346] + W[2870] * W[1128] + W[3088] * W[910]
-            + W[3306] * W[692] + W[3524] * W[474] + W[3742] * W[256] + W[3960] * W[38];
-    W[3964] = W[36] * W[3961] + W[254] * W[3743] + W[472] * W[3525] + W[690] * W[3307] + W[908] * W[3089]
-            + W[1126] * W[2871] + W[1344] * W[2653] + W[1562] * W[2435] + W[1780] * W[2217] + W[1998] * W[1999]
-            + W[2216] * W[1781] + W[2434] * W[1563] + W[2652] * W[1345] + W[2870] * W[1127] + W[3088] * W[909]
-            + W[3306] * W[691] + W[3524] * W[473] + W[3742] * W[255] + W[3960] * W[37];
-    W[3966] = W[12] * W[3965] + W[230] * W[3747] + W[448] * W[3529] + W[666] * W[3311] + W[884] * W[3093]
-            + W[1102] * W[2875] + W[1320] * W[2657] + W[1538] * W[2439] + W[1756] * W[2221] + W[1974] * W[2003]
-            + W[2192] * W[1785] + W[2410] * W[1567] + W[2628] * W[1349] + W[2846] * W[1131] + W[3064] * W[913]
-            + W[3282] * W[695] + W[3500] * W[477] + W[3718] * W[259] + W[3936] * W[41];
-    W[3967] = W[11] * W[3965] + W[229] * W[3747] + W[447] * W[3529] + W[665] * W[3311] + W[883] * W[3093]
-            + W[1101] * W[2875] + W[1319] * W[2657] + W[1537] * W[2439] + W[1755] * W[2221] + W[1973] * W[2003]
-            + W[2191] * W[1785] + W[2409] * W[1567] + W[2627] * W[1349] + W[2845] * W[1131] + W[3063] * W[913]
-            + W[3281] * W[695] + W[3499] * W[477] + W[3717] * W[259] + W[3935] * W[41];
-    W[3943] = W[3937] + W[3941];
-    W[3944] = W[3938] + W[3942];
-    W[3947] = (W[240] * W[3730] + 2.0 * W[458] * W[3512] + 3.0 * W[676] * W[3294] + 4.0 * W[894] * W[3076]
-            + 5.0 * W[1112] * W[2858] + 6.0 * W[1330] * W[2640] + 7.0 * W[1548] * W[2422] + 8.0 * W[1766] * W[2204]
-            + 9.0 * W[1984] * W[1986] + 10.0 * W[2202] * W[1768] + 11.0 * W[2420] * W[1550] + 12.0 * W[2638] * W[1332]
-            + 13.0 * W[2856] * W[1114] + 14.0 * W[3074] * W[896] + 15.0 * W[3292] * W[678] + 16.0 * W[3510] * W[460]
-            + 17.0 * W[3728] * W[242] + 18.0 * W[3946] * W[24]) / 18.0;
-    W[3948] = -((W[240] * W[3729] + 2.0 * W[458] * W[3511] + 3.0 * W[676] * W[3293] + 4.0 * W[894] * W[3075]
-            + 5.0 * W[1112] * W[2857] + 6.0 * W[1330] * W[2639] + 7.0 * W[1548] * W[2421] + 8.0 * W[1766] * W[2203]
-            + 9.0 * W[1984] * W[1985] + 10.0 * W[2202] * W[1767] + 11.0 * W[2420] * W[1549] + 12.0 * W[2638] * W[1331]
-            + 13.0 * W[2856] * W[1113] + 14.0 * W[3074] * W[895] + 15.0 * W[3292] * W[677] + 16.0 * W[3510] * W[459]
-            + 17.0 * W[3728] * W[241] + 18.0 * W[3946] * W[23])) / 18.0;
-    W[3984] = W[57] * W[3941];
-    W[4017] = W[3941] + W[4016];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 18. */
+static EOMC_NOINLINE int
+chain5_taylor_run_201(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4021] = W[3942] + W[4020];
     W[4046] = W[3935] + W[3941];
     W[4049] = W[3936] + W[3942];
@@ -8614,53 +6212,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[4072] = W[3941] + W[3947];
     W[4087] = W[3968] + W[4085];
     W[4088] = W[3969] + W[4086];
-    W[3973] = W[46] * W[3972] + W[264] * W[3754] + W[482] * W[3536] + W[700] * W[3318] + W[918] * W[3100]
-            + W[1136] * W[2882] + W[1354] * W[2664] + W[1572] * W[2446] + W[1790] * W[2228] + W[2008] * W[2010]
-            + W[2226] * W[1792] + W[2444] * W[1574] + W[2662] * W[1356] + W[2880] * W[1138] + W[3098] * W[920]
-            + W[3316] * W[702] + W[3534] * W[484] + W[3752] * W[266] + W[3970] * W[48];
-    W[3974] = W[46] * W[3971] + W[264] * W[3753] + W[482] * W[3535] + W[700] * W[3317] + W[918] * W[3099]
-            + W[1136] * W[2881] + W[1354] * W[2663] + W[1572] * W[2445] + W[1790] * W[2227] + W[2008] * W[2009]
-            + W[2226] * W[1791] + W[2444] * W[1573] + W[2662] * W[1355] + W[2880] * W[1137] + W[3098] * W[919]
-            + W[3316] * W[701] + W[3534] * W[483] + W[3752] * W[265] + W[3970] * W[47];
-    W[3976] = W[24] * W[3975] + W[242] * W[3757] + W[460] * W[3539] + W[678] * W[3321] + W[896] * W[3103]
-            + W[1114] * W[2885] + W[1332] * W[2667] + W[1550] * W[2449] + W[1768] * W[2231] + W[1986] * W[2013]
-            + W[2204] * W[1795] + W[2422] * W[1577] + W[2640] * W[1359] + W[2858] * W[1141] + W[3076] * W[923]
-            + W[3294] * W[705] + W[3512] * W[487] + W[3730] * W[269] + W[3948] * W[51];
-    W[3977] = W[23] * W[3975] + W[241] * W[3757] + W[459] * W[3539] + W[677] * W[3321] + W[895] * W[3103]
-            + W[1113] * W[2885] + W[1331] * W[2667] + W[1549] * W[2449] + W[1767] * W[2231] + W[1985] * W[2013]
-            + W[2203] * W[1795] + W[2421] * W[1577] + W[2639] * W[1359] + W[2857] * W[1141] + W[3075] * W[923]
-            + W[3293] * W[705] + W[3511] * W[487] + W[3729] * W[269] + W[3947] * W[51];
-    W[3985] = W[3982] - W[3984];
-    W[3997] = W[3943] + W[3949];
-    W[4000] = W[3944] + W[3950];
-    W[4025] = W[4017] + W[4018];
-    W[4028] = W[4021] + W[4022];
-    W[4053] = W[4046] + W[4047];
-    W[4056] = W[4049] + W[4050];
-    W[4070] = W[3942] + W[4069];
-    W[4073] = W[3941] + W[4072];
-    W[4089] = W[3973] + W[4087];
-    W[4090] = W[3974] + W[4088];
-    W[3978] = W[51] * W[3977] + W[269] * W[3759] + W[487] * W[3541] + W[705] * W[3323] + W[923] * W[3105]
-            + W[1141] * W[2887] + W[1359] * W[2669] + W[1577] * W[2451] + W[1795] * W[2233] + W[2013] * W[2015]
-            + W[2231] * W[1797] + W[2449] * W[1579] + W[2667] * W[1361] + W[2885] * W[1143] + W[3103] * W[925]
-            + W[3321] * W[707] + W[3539] * W[489] + W[3757] * W[271] + W[3975] * W[53];
-    W[3979] = W[51] * W[3976] + W[269] * W[3758] + W[487] * W[3540] + W[705] * W[3322] + W[923] * W[3104]
-            + W[1141] * W[2886] + W[1359] * W[2668] + W[1577] * W[2450] + W[1795] * W[2232] + W[2013] * W[2014]
-            + W[2231] * W[1796] + W[2449] * W[1578] + W[2667] * W[1360] + W[2885] * W[1142] + W[3103] * W[924]
-            + W[3321] * W[706] + W[3539] * W[488] + W[3757] * W[270] + W[3975] * W[52];
-    W[3994] = W[23] * W[3949] + W[241] * W[3731] + W[459] * W[3513] + W[677] * W[3295] + W[895] * W[3077]
-            + W[1113] * W[2859] + W[1331] * W[2641] + W[1549] * W[2423] + W[1767] * W[2205] + W[1985] * W[1987]
-            + W[2203] * W[1769] + W[2421] * W[1551] + W[2639] * W[1333] + W[2857] * W[1115] + W[3075] * W[897]
-            + W[3293] * W[679] + W[3511] * W[461] + W[3729] * W[243] + W[3947] * W[25];
-    W[3995] = W[24] * W[3950] + W[242] * W[3732] + W[460] * W[3514] + W[678] * W[3296] + W[896] * W[3078]
-            + W[1114] * W[2860] + W[1332] * W[2642] + W[1550] * W[2424] + W[1768] * W[2206] + W[1986] * W[1988]
-            + W[2204] * W[1770] + W[2422] * W[1552] + W[2640] * W[1334] + W[2858] * W[1116] + W[3076] * W[898]
-            + W[3294] * W[680] + W[3512] * W[462] + W[3730] * W[244] + W[3948] * W[26];
-    W[4019] = W[23] * W[4018] + W[241] * W[3800] + W[459] * W[3582] + W[677] * W[3364] + W[895] * W[3146]
-            + W[1113] * W[2928] + W[1331] * W[2710] + W[1549] * W[2492] + W[1767] * W[2274] + W[1985] * W[2056]
-            + W[2203] * W[1838] + W[2421] * W[1620] + W[2639] * W[1402] + W[2857] * W[1184] + W[3075] * W[966]
-            + W[3293] * W[748] + W[3511] * W[530] + W[3729] * W[312] + W[3947] * W[94];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 18. */
+static EOMC_NOINLINE int
+chain5_taylor_run_203(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4023] = W[24] * W[4022] + W[242] * W[3804] + W[460] * W[3586] + W[678] * W[3368] + W[896] * W[3150]
             + W[1114] * W[2932] + W[1332] * W[2714] + W[1550] * W[2496] + W[1768] * W[2278] + W[1986] * W[2060]
             + W[2204] * W[1842] + W[2422] * W[1624] + W[2640] * W[1406] + W[2858] * W[1188] + W[3076] * W[970]
@@ -8702,44 +6263,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1108] * W[2910] + W[1326] * W[2692] + W[1544] * W[2474] + W[1762] * W[2256] + W[1980] * W[2038]
             + W[2198] * W[1820] + W[2416] * W[1602] + W[2634] * W[1384] + W[2852] * W[1166] + W[3070] * W[948]
             + W[3288] * W[730] + W[3506] * W[512] + W[3724] * W[294] + W[3942] * W[76];
-    W[4026] = W[17] * W[4025] + W[235] * W[3807] + W[453] * W[3589] + W[671] * W[3371] + W[889] * W[3153]
-            + W[1107] * W[2935] + W[1325] * W[2717] + W[1543] * W[2499] + W[1761] * W[2281] + W[1979] * W[2063]
-            + W[2197] * W[1845] + W[2415] * W[1627] + W[2633] * W[1409] + W[2851] * W[1191] + W[3069] * W[973]
-            + W[3287] * W[755] + W[3505] * W[537] + W[3723] * W[319] + W[3941] * W[101];
-    W[4029] = W[18] * W[4028] + W[236] * W[3810] + W[454] * W[3592] + W[672] * W[3374] + W[890] * W[3156]
-            + W[1108] * W[2938] + W[1326] * W[2720] + W[1544] * W[2502] + W[1762] * W[2284] + W[1980] * W[2066]
-            + W[2198] * W[1848] + W[2416] * W[1630] + W[2634] * W[1412] + W[2852] * W[1194] + W[3070] * W[976]
-            + W[3288] * W[758] + W[3506] * W[540] + W[3724] * W[322] + W[3942] * W[104];
-    W[4054] = W[17] * W[4053] + W[235] * W[3835] + W[453] * W[3617] + W[671] * W[3399] + W[889] * W[3181]
-            + W[1107] * W[2963] + W[1325] * W[2745] + W[1543] * W[2527] + W[1761] * W[2309] + W[1979] * W[2091]
-            + W[2197] * W[1873] + W[2415] * W[1655] + W[2633] * W[1437] + W[2851] * W[1219] + W[3069] * W[1001]
-            + W[3287] * W[783] + W[3505] * W[565] + W[3723] * W[347] + W[3941] * W[129];
-    W[4057] = W[18] * W[4056] + W[236] * W[3838] + W[454] * W[3620] + W[672] * W[3402] + W[890] * W[3184]
-            + W[1108] * W[2966] + W[1326] * W[2748] + W[1544] * W[2530] + W[1762] * W[2312] + W[1980] * W[2094]
-            + W[2198] * W[1876] + W[2416] * W[1658] + W[2634] * W[1440] + W[2852] * W[1222] + W[3070] * W[1004]
-            + W[3288] * W[786] + W[3506] * W[568] + W[3724] * W[350] + W[3942] * W[132];
-    W[4071] = W[18] * W[4070] + W[236] * W[3852] + W[454] * W[3634] + W[672] * W[3416] + W[890] * W[3198]
-            + W[1108] * W[2980] + W[1326] * W[2762] + W[1544] * W[2544] + W[1762] * W[2326] + W[1980] * W[2108]
-            + W[2198] * W[1890] + W[2416] * W[1672] + W[2634] * W[1454] + W[2852] * W[1236] + W[3070] * W[1018]
-            + W[3288] * W[800] + W[3506] * W[582] + W[3724] * W[364] + W[3942] * W[146];
-    W[4074] = W[17] * W[4073] + W[235] * W[3855] + W[453] * W[3637] + W[671] * W[3419] + W[889] * W[3201]
-            + W[1107] * W[2983] + W[1325] * W[2765] + W[1543] * W[2547] + W[1761] * W[2329] + W[1979] * W[2111]
-            + W[2197] * W[1893] + W[2415] * W[1675] + W[2633] * W[1457] + W[2851] * W[1239] + W[3069] * W[1021]
-            + W[3287] * W[803] + W[3505] * W[585] + W[3723] * W[367] + W[3941] * W[149];
-    W[3991] = W[3988] - W[3990];
-    W[3999] = W[3996] + W[3998];
-    W[4009] = W[3931] + W[4003];
-    W[4012] = W[3932] + W[4006];
-    W[4027] = W[4024] + W[4026];
-    W[4037] = W[3929] + W[4031];
-    W[4040] = W[3930] + W[4034];
-    W[4055] = W[4052] + W[4054];
-    W[4078] = W[4074] + W[4077];
-    W[4081] = W[33] * W[3996];
-    W[4082] = W[33] * W[4024];
-    W[4083] = W[33] * W[4052];
-    W[4084] = W[33] * W[4077];
-    W[4095] = W[4090] + W[4092];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 18. */
+static EOMC_NOINLINE int
+chain5_taylor_run_205(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4097] = W[4089] + W[4091];
     W[4004] = W[11] * W[4003] + W[229] * W[3785] + W[447] * W[3567] + W[665] * W[3349] + W[883] * W[3131]
             + W[1101] * W[2913] + W[1319] * W[2695] + W[1537] * W[2477] + W[1755] * W[2259] + W[1973] * W[2041]
@@ -8787,53 +6320,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1095] * W[2919] + W[1313] * W[2701] + W[1531] * W[2483] + W[1749] * W[2265] + W[1967] * W[2047]
             + W[2185] * W[1829] + W[2403] * W[1611] + W[2621] * W[1393] + W[2839] * W[1175] + W[3057] * W[957]
             + W[3275] * W[739] + W[3493] * W[521] + W[3711] * W[303] + W[3929] * W[85];
-    W[4013] = W[6] * W[4012] + W[224] * W[3794] + W[442] * W[3576] + W[660] * W[3358] + W[878] * W[3140]
-            + W[1096] * W[2922] + W[1314] * W[2704] + W[1532] * W[2486] + W[1750] * W[2268] + W[1968] * W[2050]
-            + W[2186] * W[1832] + W[2404] * W[1614] + W[2622] * W[1396] + W[2840] * W[1178] + W[3058] * W[960]
-            + W[3276] * W[742] + W[3494] * W[524] + W[3712] * W[306] + W[3930] * W[88];
-    W[4038] = W[5] * W[4037] + W[223] * W[3819] + W[441] * W[3601] + W[659] * W[3383] + W[877] * W[3165]
-            + W[1095] * W[2947] + W[1313] * W[2729] + W[1531] * W[2511] + W[1749] * W[2293] + W[1967] * W[2075]
-            + W[2185] * W[1857] + W[2403] * W[1639] + W[2621] * W[1421] + W[2839] * W[1203] + W[3057] * W[985]
-            + W[3275] * W[767] + W[3493] * W[549] + W[3711] * W[331] + W[3929] * W[113];
-    W[4041] = W[6] * W[4040] + W[224] * W[3822] + W[442] * W[3604] + W[660] * W[3386] + W[878] * W[3168]
-            + W[1096] * W[2950] + W[1314] * W[2732] + W[1532] * W[2514] + W[1750] * W[2296] + W[1968] * W[2078]
-            + W[2186] * W[1860] + W[2404] * W[1642] + W[2622] * W[1424] + W[2840] * W[1206] + W[3058] * W[988]
-            + W[3276] * W[770] + W[3494] * W[552] + W[3712] * W[334] + W[3930] * W[116];
-    W[4096] = W[17] * W[4095] + W[235] * W[3877] + W[453] * W[3659] + W[671] * W[3441] + W[889] * W[3223]
-            + W[1107] * W[3005] + W[1325] * W[2787] + W[1543] * W[2569] + W[1761] * W[2351] + W[1979] * W[2133]
-            + W[2197] * W[1915] + W[2415] * W[1697] + W[2633] * W[1479] + W[2851] * W[1261] + W[3069] * W[1043]
-            + W[3287] * W[825] + W[3505] * W[607] + W[3723] * W[389] + W[3941] * W[171];
-    W[4098] = W[18] * W[4097] + W[236] * W[3879] + W[454] * W[3661] + W[672] * W[3443] + W[890] * W[3225]
-            + W[1108] * W[3007] + W[1326] * W[2789] + W[1544] * W[2571] + W[1762] * W[2353] + W[1980] * W[2135]
-            + W[2198] * W[1917] + W[2416] * W[1699] + W[2634] * W[1481] + W[2852] * W[1263] + W[3070] * W[1045]
-            + W[3288] * W[827] + W[3506] * W[609] + W[3724] * W[391] + W[3942] * W[173];
-    W[4005] = W[4002] + W[4004];
-    W[4033] = W[4030] + W[4032];
-    W[4061] = W[4058] + W[4060];
-    W[4066] = W[33] * W[4002];
-    W[4067] = W[33] * W[4030];
-    W[4068] = W[33] * W[4058];
-    W[4080] = W[33] * W[4079];
-    W[4103] = W[4086] + W[4099];
-    W[4105] = W[4085] + W[4101];
-    W[4108] = W[4096] + W[4107];
-    W[4112] = W[33] * W[4107];
-    W[4100] = W[11] * W[4099] + W[229] * W[3881] + W[447] * W[3663] + W[665] * W[3445] + W[883] * W[3227]
-            + W[1101] * W[3009] + W[1319] * W[2791] + W[1537] * W[2573] + W[1755] * W[2355] + W[1973] * W[2137]
-            + W[2191] * W[1919] + W[2409] * W[1701] + W[2627] * W[1483] + W[2845] * W[1265] + W[3063] * W[1047]
-            + W[3281] * W[829] + W[3499] * W[611] + W[3717] * W[393] + W[3935] * W[175];
-    W[4102] = W[12] * W[4101] + W[230] * W[3883] + W[448] * W[3665] + W[666] * W[3447] + W[884] * W[3229]
-            + W[1102] * W[3011] + W[1320] * W[2793] + W[1538] * W[2575] + W[1756] * W[2357] + W[1974] * W[2139]
-            + W[2192] * W[1921] + W[2410] * W[1703] + W[2628] * W[1485] + W[2846] * W[1267] + W[3064] * W[1049]
-            + W[3282] * W[831] + W[3500] * W[613] + W[3718] * W[395] + W[3936] * W[177];
-    W[4115] = W[1] * W[4114] + W[219] * W[3896] + W[437] * W[3678] + W[655] * W[3460] + W[873] * W[3242]
-            + W[1091] * W[3024] + W[1309] * W[2806] + W[1527] * W[2588] + W[1745] * W[2370] + W[1963] * W[2152]
-            + W[2181] * W[1934] + W[2399] * W[1716] + W[2617] * W[1498] + W[2835] * W[1280] + W[3053] * W[1062]
-            + W[3271] * W[844] + W[3489] * W[626] + W[3707] * W[408] + W[3925] * W[190];
-    W[4118] = W[2] * W[4117] + W[220] * W[3899] + W[438] * W[3681] + W[656] * W[3463] + W[874] * W[3245]
-            + W[1092] * W[3027] + W[1310] * W[2809] + W[1528] * W[2591] + W[1746] * W[2373] + W[1964] * W[2155]
-            + W[2182] * W[1937] + W[2400] * W[1719] + W[2618] * W[1501] + W[2836] * W[1283] + W[3054] * W[1065]
-            + W[3272] * W[847] + W[3490] * W[629] + W[3708] * W[411] + W[3926] * W[193];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 18. */
+static EOMC_NOINLINE int
+chain5_taylor_run_207(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4008] = W[4005] + W[4007];
     W[4036] = W[4033] + W[4035];
     W[4064] = W[4061] + W[4063];
@@ -8866,129 +6362,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[3272] * W[858] + W[3490] * W[640] + W[3708] * W[422] + W[3926] * W[204];
     W[4014] = W[4011] + W[4013];
     W[4042] = W[4039] + W[4041];
-    W[4111] = W[3985] + W[4110];
-    W[4122] = W[4121] - W[4102];
-    W[4015] = W[33] * W[4014];
-    W[4043] = W[33] * W[4042];
-    W[4116] = W[4014] + W[4115];
-    W[4123] = W[33] * W[4122];
-    W[4124] = W[4104] + W[4122];
-    W[4119] = W[4116] + W[4118];
-    W[4125] = W[4124] - W[4106];
-    W[4136] = W[3988] + W[4123];
-    W[4120] = W[33] * W[4119];
-    W[4126] = W[33] * W[4125];
-    W[4130] = W[4125] + W[4129];
-    W[4132] = W[4130] - W[4131];
-    W[4135] = W[3991] + W[4126];
-    W[4133] = W[33] * W[4132];
-    W[4134] = W[3993] + W[4133];
-    X[190] = X[185] / 19.0;
-    X[191] = X[186] / 19.0;
-    X[192] = X[187] / 19.0;
-    X[193] = X[188] / 19.0;
-    X[194] = X[189] / 19.0;
-    W[4137] = W[414] * W[3919] + W[632] * W[3701] + W[850] * W[3483] + W[1068] * W[3265] + W[1286] * W[3047]
-            + W[1504] * W[2829] + W[1722] * W[2611] + W[1940] * W[2393] + W[2158] * W[2175] + W[2376] * W[1957]
-            + W[2594] * W[1739] + W[2812] * W[1521] + W[3030] * W[1303] + W[3248] * W[1085] + W[3466] * W[867]
-            + W[3684] * W[649] + W[3902] * W[431] + W[4120] * W[213] + W[309] * W[3920] + W[527] * W[3702]
-            + W[745] * W[3484] + W[963] * W[3266] + W[1181] * W[3048] + W[1399] * W[2830] + W[1617] * W[2612]
-            + W[1835] * W[2394] + W[2053] * W[2176] + W[2271] * W[1958] + W[2489] * W[1740] + W[2707] * W[1522]
-            + W[2925] * W[1304] + W[3143] * W[1086] + W[3361] * W[868] + W[3579] * W[650] + W[3797] * W[432]
-            + W[4015] * W[214] + W[338] * W[3921] + W[556] * W[3703] + W[774] * W[3485] + W[992] * W[3267]
-            + W[1210] * W[3049] + W[1428] * W[2831] + W[1646] * W[2613] + W[1864] * W[2395] + W[2082] * W[2177]
-            + W[2300] * W[1959] + W[2518] * W[1741] + W[2736] * W[1523] + W[2954] * W[1305] + W[3172] * W[1087]
-            + W[3390] * W[869] + W[3608] * W[651] + W[3826] * W[433] + W[4044] * W[215] + W[360] * W[3922]
-            + W[578] * W[3704] + W[796] * W[3486] + W[1014] * W[3268] + W[1232] * W[3050] + W[1450] * W[2832]
-            + W[1668] * W[2614] + W[1886] * W[2396] + W[2104] * W[2178] + W[2322] * W[1960] + W[2540] * W[1742]
-            + W[2758] * W[1524] + W[2976] * W[1306] + W[3194] * W[1088] + W[3412] * W[870] + W[3630] * W[652]
-            + W[3848] * W[434] + W[4066] * W[216] + W[375] * W[3923] + W[593] * W[3705] + W[811] * W[3487]
-            + W[1029] * W[3269] + W[1247] * W[3051] + W[1465] * W[2833] + W[1683] * W[2615] + W[1901] * W[2397]
-            + W[2119] * W[2179] + W[2337] * W[1961] + W[2555] * W[1743] + W[2773] * W[1525] + W[2991] * W[1307]
-            + W[3209] * W[1089] + W[3427] * W[871] + W[3645] * W[653] + W[3863] * W[435] + W[4081] * W[217]
-            + W[4134];
-    W[4138] = W[309] * W[3919] + W[527] * W[3701] + W[745] * W[3483] + W[963] * W[3265] + W[1181] * W[3047]
-            + W[1399] * W[2829] + W[1617] * W[2611] + W[1835] * W[2393] + W[2053] * W[2175] + W[2271] * W[1957]
-            + W[2489] * W[1739] + W[2707] * W[1521] + W[2925] * W[1303] + W[3143] * W[1085] + W[3361] * W[867]
-            + W[3579] * W[649] + W[3797] * W[431] + W[4015] * W[213] + W[337] * W[3920] + W[555] * W[3702]
-            + W[773] * W[3484] + W[991] * W[3266] + W[1209] * W[3048] + W[1427] * W[2830] + W[1645] * W[2612]
-            + W[1863] * W[2394] + W[2081] * W[2176] + W[2299] * W[1958] + W[2517] * W[1740] + W[2735] * W[1522]
-            + W[2953] * W[1304] + W[3171] * W[1086] + W[3389] * W[868] + W[3607] * W[650] + W[3825] * W[432]
-            + W[4043] * W[214] + W[339] * W[3921] + W[557] * W[3703] + W[775] * W[3485] + W[993] * W[3267]
-            + W[1211] * W[3049] + W[1429] * W[2831] + W[1647] * W[2613] + W[1865] * W[2395] + W[2083] * W[2177]
-            + W[2301] * W[1959] + W[2519] * W[1741] + W[2737] * W[1523] + W[2955] * W[1305] + W[3173] * W[1087]
-            + W[3391] * W[869] + W[3609] * W[651] + W[3827] * W[433] + W[4045] * W[215] + W[361] * W[3922]
-            + W[579] * W[3704] + W[797] * W[3486] + W[1015] * W[3268] + W[1233] * W[3050] + W[1451] * W[2832]
-            + W[1669] * W[2614] + W[1887] * W[2396] + W[2105] * W[2178] + W[2323] * W[1960] + W[2541] * W[1742]
-            + W[2759] * W[1524] + W[2977] * W[1306] + W[3195] * W[1088] + W[3413] * W[870] + W[3631] * W[652]
-            + W[3849] * W[434] + W[4067] * W[216] + W[376] * W[3923] + W[594] * W[3705] + W[812] * W[3487]
-            + W[1030] * W[3269] + W[1248] * W[3051] + W[1466] * W[2833] + W[1684] * W[2615] + W[1902] * W[2397]
-            + W[2120] * W[2179] + W[2338] * W[1961] + W[2556] * W[1743] + W[2774] * W[1525] + W[2992] * W[1307]
-            + W[3210] * W[1089] + W[3428] * W[871] + W[3646] * W[653] + W[3864] * W[435] + W[4082] * W[217]
-            + W[4135];
-    W[4139] = W[338] * W[3919] + W[556] * W[3701] + W[774] * W[3483] + W[992] * W[3265] + W[1210] * W[3047]
-            + W[1428] * W[2829] + W[1646] * W[2611] + W[1864] * W[2393] + W[2082] * W[2175] + W[2300] * W[1957]
-            + W[2518] * W[1739] + W[2736] * W[1521] + W[2954] * W[1303] + W[3172] * W[1085] + W[3390] * W[867]
-            + W[3608] * W[649] + W[3826] * W[431] + W[4044] * W[213] + W[339] * W[3920] + W[557] * W[3702]
-            + W[775] * W[3484] + W[993] * W[3266] + W[1211] * W[3048] + W[1429] * W[2830] + W[1647] * W[2612]
-            + W[1865] * W[2394] + W[2083] * W[2176] + W[2301] * W[1958] + W[2519] * W[1740] + W[2737] * W[1522]
-            + W[2955] * W[1304] + W[3173] * W[1086] + W[3391] * W[868] + W[3609] * W[650] + W[3827] * W[432]
-            + W[4045] * W[214] + W[359] * W[3921] + W[577] * W[3703] + W[795] * W[3485] + W[1013] * W[3267]
-            + W[1231] * W[3049] + W[1449] * W[2831] + W[1667] * W[2613] + W[1885] * W[2395] + W[2103] * W[2177]
-            + W[2321] * W[1959] + W[2539] * W[1741] + W[2757] * W[1523] + W[2975] * W[1305] + W[3193] * W[1087]
-            + W[3411] * W[869] + W[3629] * W[651] + W[3847] * W[433] + W[4065] * W[215] + W[362] * W[3922]
-            + W[580] * W[3704] + W[798] * W[3486] + W[1016] * W[3268] + W[1234] * W[3050] + W[1452] * W[2832]
-            + W[1670] * W[2614] + W[1888] * W[2396] + W[2106] * W[2178] + W[2324] * W[1960] + W[2542] * W[1742]
-            + W[2760] * W[1524] + W[2978] * W[1306] + W[3196] * W[1088] + W[3414] * W[870] + W[3632] * W[652]
-            + W[3850] * W[434] + W[4068] * W[216] + W[377] * W[3923] + W[595] * W[3705] + W[813] * W[3487]
-            + W[1031] * W[3269] + W[1249] * W[3051] + W[1467] * W[2833] + W[1685] * W[2615] + W[1903] * W[2397]
-            + W[2121] * W[2179] + W[2339] * W[1961] + W[2557] * W[1743] + W[2775] * W[1525] + W[2993] * W[1307]
-            + W[3211] * W[1089] + W[3429] * W[871] + W[3647] * W[653] + W[3865] * W[435] + W[4083] * W[217]
-            + W[4136];
-    W[4140] = W[360] * W[3919] + W[578] * W[3701] + W[796] * W[3483] + W[1014] * W[3265] + W[1232] * W[3047]
-            + W[1450] * W[2829] + W[1668] * W[2611] + W[1886] * W[2393] + W[2104] * W[2175] + W[2322] * W[1957]
-            + W[2540] * W[1739] + W[2758] * W[1521] + W[2976] * W[1303] + W[3194] * W[1085] + W[3412] * W[867]
-            + W[3630] * W[649] + W[3848] * W[431] + W[4066] * W[213] + W[361] * W[3920] + W[579] * W[3702]
-            + W[797] * W[3484] + W[1015] * W[3266] + W[1233] * W[3048] + W[1451] * W[2830] + W[1669] * W[2612]
-            + W[1887] * W[2394] + W[2105] * W[2176] + W[2323] * W[1958] + W[2541] * W[1740] + W[2759] * W[1522]
-            + W[2977] * W[1304] + W[3195] * W[1086] + W[3413] * W[868] + W[3631] * W[650] + W[3849] * W[432]
-            + W[4067] * W[214] + W[362] * W[3921] + W[580] * W[3703] + W[798] * W[3485] + W[1016] * W[3267]
-            + W[1234] * W[3049] + W[1452] * W[2831] + W[1670] * W[2613] + W[1888] * W[2395] + W[2106] * W[2177]
-            + W[2324] * W[1959] + W[2542] * W[1741] + W[2760] * W[1523] + W[2978] * W[1305] + W[3196] * W[1087]
-            + W[3414] * W[869] + W[3632] * W[651] + W[3850] * W[433] + W[4068] * W[215] + W[374] * W[3922]
-            + W[592] * W[3704] + W[810] * W[3486] + W[1028] * W[3268] + W[1246] * W[3050] + W[1464] * W[2832]
-            + W[1682] * W[2614] + W[1900] * W[2396] + W[2118] * W[2178] + W[2336] * W[1960] + W[2554] * W[1742]
-            + W[2772] * W[1524] + W[2990] * W[1306] + W[3208] * W[1088] + W[3426] * W[870] + W[3644] * W[652]
-            + W[3862] * W[434] + W[4080] * W[216] + W[378] * W[3923] + W[596] * W[3705] + W[814] * W[3487]
-            + W[1032] * W[3269] + W[1250] * W[3051] + W[1468] * W[2833] + W[1686] * W[2615] + W[1904] * W[2397]
-            + W[2122] * W[2179] + W[2340] * W[1961] + W[2558] * W[1743] + W[2776] * W[1525] + W[2994] * W[1307]
-            + W[3212] * W[1089] + W[3430] * W[871] + W[3648] * W[653] + W[3866] * W[435] + W[4084] * W[217]
-            + W[4111];
-    W[4141] = W[375] * W[3919] + W[593] * W[3701] + W[811] * W[3483] + W[1029] * W[3265] + W[1247] * W[3047]
-            + W[1465] * W[2829] + W[1683] * W[2611] + W[1901] * W[2393] + W[2119] * W[2175] + W[2337] * W[1957]
-            + W[2555] * W[1739] + W[2773] * W[1521] + W[2991] * W[1303] + W[3209] * W[1085] + W[3427] * W[867]
-            + W[3645] * W[649] + W[3863] * W[431] + W[4081] * W[213] + W[376] * W[3920] + W[594] * W[3702]
-            + W[812] * W[3484] + W[1030] * W[3266] + W[1248] * W[3048] + W[1466] * W[2830] + W[1684] * W[2612]
-            + W[1902] * W[2394] + W[2120] * W[2176] + W[2338] * W[1958] + W[2556] * W[1740] + W[2774] * W[1522]
-            + W[2992] * W[1304] + W[3210] * W[1086] + W[3428] * W[868] + W[3646] * W[650] + W[3864] * W[432]
-            + W[4082] * W[214] + W[377] * W[3921] + W[595] * W[3703] + W[813] * W[3485] + W[1031] * W[3267]
-            + W[1249] * W[3049] + W[1467] * W[2831] + W[1685] * W[2613] + W[1903] * W[2395] + W[2121] * W[2177]
-            + W[2339] * W[1959] + W[2557] * W[1741] + W[2775] * W[1523] + W[2993] * W[1305] + W[3211] * W[1087]
-            + W[3429] * W[869] + W[3647] * W[651] + W[3865] * W[433] + W[4083] * W[215] + W[378] * W[3922]
-            + W[596] * W[3704] + W[814] * W[3486] + W[1032] * W[3268] + W[1250] * W[3050] + W[1468] * W[2832]
-            + W[1686] * W[2614] + W[1904] * W[2396] + W[2122] * W[2178] + W[2340] * W[1960] + W[2558] * W[1742]
-            + W[2776] * W[1524] + W[2994] * W[1306] + W[3212] * W[1088] + W[3430] * W[870] + W[3648] * W[652]
-            + W[3866] * W[434] + W[4084] * W[216] + W[4113];
-    if (solve(ctx, 18, NULL, W + 4137))
-        return -1;
-    X[195] = W[4137] / 19.0;
-    X[196] = W[4138] / 19.0;
-    X[197] = W[4139] / 19.0;
-    X[198] = W[4140] / 19.0;
-    X[199] = W[4141] / 19.0;
-    if (K == 19)
-        goto out;
-    /* order 19 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+chain5_taylor_run_210(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4143] = (X[10] * W[3926] + 2.0 * X[20] * W[3708] + 3.0 * X[30] * W[3490] + 4.0 * X[40] * W[3272]
             + 5.0 * X[50] * W[3054] + 6.0 * X[60] * W[2836] + 7.0 * X[70] * W[2618] + 8.0 * X[80] * W[2400]
             + 9.0 * X[90] * W[2182] + 10.0 * X[100] * W[1964] + 11.0 * X[110] * W[1746] + 12.0 * X[120] * W[1528]
@@ -9043,6 +6426,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1096] * W[3088] + W[1314] * W[2870] + W[1532] * W[2652] + W[1750] * W[2434] + W[1968] * W[2216]
             + W[2186] * W[1998] + W[2404] * W[1780] + W[2622] * W[1562] + W[2840] * W[1344] + W[3058] * W[1126]
             + W[3276] * W[908] + W[3494] * W[690] + W[3712] * W[472] + W[3930] * W[254] + W[4148] * W[36];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+chain5_taylor_run_211(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4180] = W[5] * W[4178] + W[223] * W[3960] + W[441] * W[3742] + W[659] * W[3524] + W[877] * W[3306]
             + W[1095] * W[3088] + W[1313] * W[2870] + W[1531] * W[2652] + W[1749] * W[2434] + W[1967] * W[2216]
             + W[2185] * W[1998] + W[2403] * W[1780] + W[2621] * W[1562] + W[2839] * W[1344] + W[3057] * W[1126]
@@ -9094,6 +6487,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + 17.0 * W[3728] * W[459] + 18.0 * W[3946] * W[241] + 19.0 * W[4164] * W[23])) / 19.0;
     W[4202] = W[57] * W[4159];
     W[4235] = W[4159] + W[4234];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+chain5_taylor_run_212(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4239] = W[4160] + W[4238];
     W[4264] = W[4153] + W[4159];
     W[4267] = W[4154] + W[4160];
@@ -9126,53 +6529,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[4290] = W[4159] + W[4165];
     W[4305] = W[4186] + W[4303];
     W[4306] = W[4187] + W[4304];
-    W[4191] = W[46] * W[4190] + W[264] * W[3972] + W[482] * W[3754] + W[700] * W[3536] + W[918] * W[3318]
-            + W[1136] * W[3100] + W[1354] * W[2882] + W[1572] * W[2664] + W[1790] * W[2446] + W[2008] * W[2228]
-            + W[2226] * W[2010] + W[2444] * W[1792] + W[2662] * W[1574] + W[2880] * W[1356] + W[3098] * W[1138]
-            + W[3316] * W[920] + W[3534] * W[702] + W[3752] * W[484] + W[3970] * W[266] + W[4188] * W[48];
-    W[4192] = W[46] * W[4189] + W[264] * W[3971] + W[482] * W[3753] + W[700] * W[3535] + W[918] * W[3317]
-            + W[1136] * W[3099] + W[1354] * W[2881] + W[1572] * W[2663] + W[1790] * W[2445] + W[2008] * W[2227]
-            + W[2226] * W[2009] + W[2444] * W[1791] + W[2662] * W[1573] + W[2880] * W[1355] + W[3098] * W[1137]
-            + W[3316] * W[919] + W[3534] * W[701] + W[3752] * W[483] + W[3970] * W[265] + W[4188] * W[47];
-    W[4194] = W[24] * W[4193] + W[242] * W[3975] + W[460] * W[3757] + W[678] * W[3539] + W[896] * W[3321]
-            + W[1114] * W[3103] + W[1332] * W[2885] + W[1550] * W[2667] + W[1768] * W[2449] + W[1986] * W[2231]
-            + W[2204] * W[2013] + W[2422] * W[1795] + W[2640] * W[1577] + W[2858] * W[1359] + W[3076] * W[1141]
-            + W[3294] * W[923] + W[3512] * W[705] + W[3730] * W[487] + W[3948] * W[269] + W[4166] * W[51];
-    W[4195] = W[23] * W[4193] + W[241] * W[3975] + W[459] * W[3757] + W[677] * W[3539] + W[895] * W[3321]
-            + W[1113] * W[3103] + W[1331] * W[2885] + W[1549] * W[2667] + W[1767] * W[2449] + W[1985] * W[2231]
-            + W[2203] * W[2013] + W[2421] * W[1795] + W[2639] * W[1577] + W[2857] * W[1359] + W[3075] * W[1141]
-            + W[3293] * W[923] + W[3511] * W[705] + W[3729] * W[487] + W[3947] * W[269] + W[4165] * W[51];
-    W[4203] = W[4200] - W[4202];
-    W[4215] = W[4161] + W[4167];
-    W[4218] = W[4162] + W[4168];
-    W[4243] = W[4235] + W[4236];
-    W[4246] = W[4239] + W[4240];
-    W[4271] = W[4264] + W[4265];
-    W[4274] = W[4267] + W[4268];
-    W[4288] = W[4160] + W[4287];
-    W[4291] = W[4159] + W[4290];
-    W[4307] = W[4191] + W[4305];
-    W[4308] = W[4192] + W[4306];
-    W[4196] = W[51] * W[4195] + W[269] * W[3977] + W[487] * W[3759] + W[705] * W[3541] + W[923] * W[3323]
-            + W[1141] * W[3105] + W[1359] * W[2887] + W[1577] * W[2669] + W[1795] * W[2451] + W[2013] * W[2233]
-            + W[2231] * W[2015] + W[2449] * W[1797] + W[2667] * W[1579] + W[2885] * W[1361] + W[3103] * W[1143]
-            + W[3321] * W[925] + W[3539] * W[707] + W[3757] * W[489] + W[3975] * W[271] + W[4193] * W[53];
-    W[4197] = W[51] * W[4194] + W[269] * W[3976] + W[487] * W[3758] + W[705] * W[3540] + W[923] * W[3322]
-            + W[1141] * W[3104] + W[1359] * W[2886] + W[1577] * W[2668] + W[1795] * W[2450] + W[2013] * W[2232]
-            + W[2231] * W[2014] + W[2449] * W[1796] + W[2667] * W[1578] + W[2885] * W[1360] + W[3103] * W[1142]
-            + W[3321] * W[924] + W[3539] * W[706] + W[3757] * W[488] + W[3975] * W[270] + W[4193] * W[52];
-    W[4212] = W[23] * W[4167] + W[241] * W[3949] + W[459] * W[3731] + W[677] * W[3513] + W[895] * W[3295]
-            + W[1113] * W[3077] + W[1331] * W[2859] + W[1549] * W[2641] + W[1767] * W[2423] + W[1985] * W[2205]
-            + W[2203] * W[1987] + W[2421] * W[1769] + W[2639] * W[1551] + W[2857] * W[1333] + W[3075] * W[1115]
-            + W[3293] * W[897] + W[3511] * W[679] + W[3729] * W[461] + W[3947] * W[243] + W[4165] * W[25];
-    W[4213] = W[24] * W[4168] + W[242] * W[3950] + W[460] * W[3732] + W[678] * W[3514] + W[896] * W[3296]
-            + W[1114] * W[3078] + W[1332] * W[2860] + W[1550] * W[2642] + W[1768] * W[2424] + W[1986] * W[2206]
-            + W[2204] * W[1988] + W[2422] * W[1770] + W[2640] * W[1552] + W[2858] * W[1334] + W[3076] * W[1116]
-            + W[3294] * W[898] + W[3512] * W[680] + W[3730] * W[462] + W[3948] * W[244] + W[4166] * W[26];
-    W[4237] = W[23] * W[4236] + W[241] * W[4018] + W[459] * W[3800] + W[677] * W[3582] + W[895] * W[3364]
-            + W[1113] * W[3146] + W[1331] * W[2928] + W[1549] * W[2710] + W[1767] * W[2492] + W[1985] * W[2274]
-            + W[2203] * W[2056] + W[2421] * W[1838] + W[2639] * W[1620] + W[2857] * W[1402] + W[3075] * W[1184]
-            + W[3293] * W[966] + W[3511] * W[748] + W[3729] * W[530] + W[3947] * W[312] + W[4165] * W[94];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+chain5_taylor_run_214(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4241] = W[24] * W[4240] + W[242] * W[4022] + W[460] * W[3804] + W[678] * W[3586] + W[896] * W[3368]
             + W[1114] * W[3150] + W[1332] * W[2932] + W[1550] * W[2714] + W[1768] * W[2496] + W[1986] * W[2278]
             + W[2204] * W[2060] + W[2422] * W[1842] + W[2640] * W[1624] + W[2858] * W[1406] + W[3076] * W[1188]
@@ -9214,44 +6580,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1108] * W[3128] + W[1326] * W[2910] + W[1544] * W[2692] + W[1762] * W[2474] + W[1980] * W[2256]
             + W[2198] * W[2038] + W[2416] * W[1820] + W[2634] * W[1602] + W[2852] * W[1384] + W[3070] * W[1166]
             + W[3288] * W[948] + W[3506] * W[730] + W[3724] * W[512] + W[3942] * W[294] + W[4160] * W[76];
-    W[4244] = W[17] * W[4243] + W[235] * W[4025] + W[453] * W[3807] + W[671] * W[3589] + W[889] * W[3371]
-            + W[1107] * W[3153] + W[1325] * W[2935] + W[1543] * W[2717] + W[1761] * W[2499] + W[1979] * W[2281]
-            + W[2197] * W[2063] + W[2415] * W[1845] + W[2633] * W[1627] + W[2851] * W[1409] + W[3069] * W[1191]
-            + W[3287] * W[973] + W[3505] * W[755] + W[3723] * W[537] + W[3941] * W[319] + W[4159] * W[101];
-    W[4247] = W[18] * W[4246] + W[236] * W[4028] + W[454] * W[3810] + W[672] * W[3592] + W[890] * W[3374]
-            + W[1108] * W[3156] + W[1326] * W[2938] + W[1544] * W[2720] + W[1762] * W[2502] + W[1980] * W[2284]
-            + W[2198] * W[2066] + W[2416] * W[1848] + W[2634] * W[1630] + W[2852] * W[1412] + W[3070] * W[1194]
-            + W[3288] * W[976] + W[3506] * W[758] + W[3724] * W[540] + W[3942] * W[322] + W[4160] * W[104];
-    W[4272] = W[17] * W[4271] + W[235] * W[4053] + W[453] * W[3835] + W[671] * W[3617] + W[889] * W[3399]
-            + W[1107] * W[3181] + W[1325] * W[2963] + W[1543] * W[2745] + W[1761] * W[2527] + W[1979] * W[2309]
-            + W[2197] * W[2091] + W[2415] * W[1873] + W[2633] * W[1655] + W[2851] * W[1437] + W[3069] * W[1219]
-            + W[3287] * W[1001] + W[3505] * W[783] + W[3723] * W[565] + W[3941] * W[347] + W[4159] * W[129];
-    W[4275] = W[18] * W[4274] + W[236] * W[4056] + W[454] * W[3838] + W[672] * W[3620] + W[890] * W[3402]
-            + W[1108] * W[3184] + W[1326] * W[2966] + W[1544] * W[2748] + W[1762] * W[2530] + W[1980] * W[2312]
-            + W[2198] * W[2094] + W[2416] * W[1876] + W[2634] * W[1658] + W[2852] * W[1440] + W[3070] * W[1222]
-            + W[3288] * W[1004] + W[3506] * W[786] + W[3724] * W[568] + W[3942] * W[350] + W[4160] * W[132];
-    W[4289] = W[18] * W[4288] + W[236] * W[4070] + W[454] * W[3852] + W[672] * W[3634] + W[890] * W[3416]
-            + W[1108] * W[3198] + W[1326] * W[2980] + W[1544] * W[2762] + W[1762] * W[2544] + W[1980] * W[2326]
-            + W[2198] * W[2108] + W[2416] * W[1890] + W[2634] * W[1672] + W[2852] * W[1454] + W[3070] * W[1236]
-            + W[3288] * W[1018] + W[3506] * W[800] + W[3724] * W[582] + W[3942] * W[364] + W[4160] * W[146];
-    W[4292] = W[17] * W[4291] + W[235] * W[4073] + W[453] * W[3855] + W[671] * W[3637] + W[889] * W[3419]
-            + W[1107] * W[3201] + W[1325] * W[2983] + W[1543] * W[2765] + W[1761] * W[2547] + W[1979] * W[2329]
-            + W[2197] * W[2111] + W[2415] * W[1893] + W[2633] * W[1675] + W[2851] * W[1457] + W[3069] * W[1239]
-            + W[3287] * W[1021] + W[3505] * W[803] + W[3723] * W[585] + W[3941] * W[367] + W[4159] * W[149];
-    W[4209] = W[4206] - W[4208];
-    W[4217] = W[4214] + W[4216];
-    W[4227] = W[4149] + W[4221];
-    W[4230] = W[4150] + W[4224];
-    W[4245] = W[4242] + W[4244];
-    W[4255] = W[4147] + W[4249];
-    W[4258] = W[4148] + W[4252];
-    W[4273] = W[4270] + W[4272];
-    W[4296] = W[4292] + W[4295];
-    W[4299] = W[33] * W[4214];
-    W[4300] = W[33] * W[4242];
-    W[4301] = W[33] * W[4270];
-    W[4302] = W[33] * W[4295];
-    W[4313] = W[4308] + W[4310];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+chain5_taylor_run_216(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4315] = W[4307] + W[4309];
     W[4222] = W[11] * W[4221] + W[229] * W[4003] + W[447] * W[3785] + W[665] * W[3567] + W[883] * W[3349]
             + W[1101] * W[3131] + W[1319] * W[2913] + W[1537] * W[2695] + W[1755] * W[2477] + W[1973] * W[2259]
@@ -9299,53 +6637,16 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1095] * W[3137] + W[1313] * W[2919] + W[1531] * W[2701] + W[1749] * W[2483] + W[1967] * W[2265]
             + W[2185] * W[2047] + W[2403] * W[1829] + W[2621] * W[1611] + W[2839] * W[1393] + W[3057] * W[1175]
             + W[3275] * W[957] + W[3493] * W[739] + W[3711] * W[521] + W[3929] * W[303] + W[4147] * W[85];
-    W[4231] = W[6] * W[4230] + W[224] * W[4012] + W[442] * W[3794] + W[660] * W[3576] + W[878] * W[3358]
-            + W[1096] * W[3140] + W[1314] * W[2922] + W[1532] * W[2704] + W[1750] * W[2486] + W[1968] * W[2268]
-            + W[2186] * W[2050] + W[2404] * W[1832] + W[2622] * W[1614] + W[2840] * W[1396] + W[3058] * W[1178]
-            + W[3276] * W[960] + W[3494] * W[742] + W[3712] * W[524] + W[3930] * W[306] + W[4148] * W[88];
-    W[4256] = W[5] * W[4255] + W[223] * W[4037] + W[441] * W[3819] + W[659] * W[3601] + W[877] * W[3383]
-            + W[1095] * W[3165] + W[1313] * W[2947] + W[1531] * W[2729] + W[1749] * W[2511] + W[1967] * W[2293]
-            + W[2185] * W[2075] + W[2403] * W[1857] + W[2621] * W[1639] + W[2839] * W[1421] + W[3057] * W[1203]
-            + W[3275] * W[985] + W[3493] * W[767] + W[3711] * W[549] + W[3929] * W[331] + W[4147] * W[113];
-    W[4259] = W[6] * W[4258] + W[224] * W[4040] + W[442] * W[3822] + W[660] * W[3604] + W[878] * W[3386]
-            + W[1096] * W[3168] + W[1314] * W[2950] + W[1532] * W[2732] + W[1750] * W[2514] + W[1968] * W[2296]
-            + W[2186] * W[2078] + W[2404] * W[1860] + W[2622] * W[1642] + W[2840] * W[1424] + W[3058] * W[1206]
-            + W[3276] * W[988] + W[3494] * W[770] + W[3712] * W[552] + W[3930] * W[334] + W[4148] * W[116];
-    W[4314] = W[17] * W[4313] + W[235] * W[4095] + W[453] * W[3877] + W[671] * W[3659] + W[889] * W[3441]
-            + W[1107] * W[3223] + W[1325] * W[3005] + W[1543] * W[2787] + W[1761] * W[2569] + W[1979] * W[2351]
-            + W[2197] * W[2133] + W[2415] * W[1915] + W[2633] * W[1697] + W[2851] * W[1479] + W[3069] * W[1261]
-            + W[3287] * W[1043] + W[3505] * W[825] + W[3723] * W[607] + W[3941] * W[389] + W[4159] * W[171];
-    W[4316] = W[18] * W[4315] + W[236] * W[4097] + W[454] * W[3879] + W[672] * W[3661] + W[890] * W[3443]
-            + W[1108] * W[3225] + W[1326] * W[3007] + W[1544] * W[2789] + W[1762] * W[2571] + W[1980] * W[2353]
-            + W[2198] * W[2135] + W[2416] * W[1917] + W[2634] * W[1699] + W[2852] * W[1481] + W[3070] * W[1263]
-            + W[3288] * W[1045] + W[3506] * W[827] + W[3724] * W[609] + W[3942] * W[391] + W[4160] * W[173];
-    W[4223] = W[4220] + W[4222];
-    W[4251] = W[4248] + W[4250];
-    W[4279] = W[4276] + W[4278];
-    W[4284] = W[33] * W[4220];
-    W[4285] = W[33] * W[4248];
-    W[4286] = W[33] * W[4276];
-    W[4298] = W[33] * W[4297];
-    W[4321] = W[4304] + W[4317];
-    W[4323] = W[4303] + W[4319];
-    W[4326] = W[4314] + W[4325];
-    W[4330] = W[33] * W[4325];
-    W[4318] = W[11] * W[4317] + W[229] * W[4099] + W[447] * W[3881] + W[665] * W[3663] + W[883] * W[3445]
-            + W[1101] * W[3227] + W[1319] * W[3009] + W[1537] * W[2791] + W[1755] * W[2573] + W[1973] * W[2355]
-            + W[2191] * W[2137] + W[2409] * W[1919] + W[2627] * W[1701] + W[2845] * W[1483] + W[3063] * W[1265]
-            + W[3281] * W[1047] + W[3499] * W[829] + W[3717] * W[611] + W[3935] * W[393] + W[4153] * W[175];
-    W[4320] = W[12] * W[4319] + W[230] * W[4101] + W[448] * W[3883] + W[666] * W[3665] + W[884] * W[3447]
-            + W[1102] * W[3229] + W[1320] * W[3011] + W[1538] * W[2793] + W[1756] * W[2575] + W[1974] * W[2357]
-            + W[2192] * W[2139] + W[2410] * W[1921] + W[2628] * W[1703] + W[2846] * W[1485] + W[3064] * W[1267]
-            + W[3282] * W[1049] + W[3500] * W[831] + W[3718] * W[613] + W[3936] * W[395] + W[4154] * W[177];
-    W[4333] = W[1] * W[4332] + W[219] * W[4114] + W[437] * W[3896] + W[655] * W[3678] + W[873] * W[3460]
-            + W[1091] * W[3242] + W[1309] * W[3024] + W[1527] * W[2806] + W[1745] * W[2588] + W[1963] * W[2370]
-            + W[2181] * W[2152] + W[2399] * W[1934] + W[2617] * W[1716] + W[2835] * W[1498] + W[3053] * W[1280]
-            + W[3271] * W[1062] + W[3489] * W[844] + W[3707] * W[626] + W[3925] * W[408] + W[4143] * W[190];
-    W[4336] = W[2] * W[4335] + W[220] * W[4117] + W[438] * W[3899] + W[656] * W[3681] + W[874] * W[3463]
-            + W[1092] * W[3245] + W[1310] * W[3027] + W[1528] * W[2809] + W[1746] * W[2591] + W[1964] * W[2373]
-            + W[2182] * W[2155] + W[2400] * W[1937] + W[2618] * W[1719] + W[2836] * W[1501] + W[3054] * W[1283]
-            + W[3272] * W[1065] + W[3490] * W[847] + W[3708] * W[629] + W[3926] * W[411] + W[4144] * W[193];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+chain5_taylor_run_218(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4226] = W[4223] + W[4225];
     W[4254] = W[4251] + W[4253];
     W[4282] = W[4279] + W[4281];
@@ -9378,131 +6679,997 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[3272] * W[1076] + W[3490] * W[858] + W[3708] * W[640] + W[3926] * W[422] + W[4144] * W[204];
     W[4232] = W[4229] + W[4231];
     W[4260] = W[4257] + W[4259];
-    W[4329] = W[4203] + W[4328];
-    W[4340] = W[4339] - W[4320];
-    W[4233] = W[33] * W[4232];
-    W[4261] = W[33] * W[4260];
-    W[4334] = W[4232] + W[4333];
-    W[4341] = W[33] * W[4340];
-    W[4342] = W[4322] + W[4340];
-    W[4337] = W[4334] + W[4336];
-    W[4343] = W[4342] - W[4324];
-    W[4354] = W[4206] + W[4341];
-    W[4338] = W[33] * W[4337];
-    W[4344] = W[33] * W[4343];
-    W[4348] = W[4343] + W[4347];
-    W[4350] = W[4348] - W[4349];
-    W[4353] = W[4209] + W[4344];
-    W[4351] = W[33] * W[4350];
-    W[4352] = W[4211] + W[4351];
-    X[200] = X[195] / 20.0;
-    X[201] = X[196] / 20.0;
-    X[202] = X[197] / 20.0;
-    X[203] = X[198] / 20.0;
-    X[204] = X[199] / 20.0;
-    W[4355] = W[414] * W[4137] + W[632] * W[3919] + W[850] * W[3701] + W[1068] * W[3483] + W[1286] * W[3265]
-            + W[1504] * W[3047] + W[1722] * W[2829] + W[1940] * W[2611] + W[2158] * W[2393] + W[2376] * W[2175]
-            + W[2594] * W[1957] + W[2812] * W[1739] + W[3030] * W[1521] + W[3248] * W[1303] + W[3466] * W[1085]
-            + W[3684] * W[867] + W[3902] * W[649] + W[4120] * W[431] + W[4338] * W[213] + W[309] * W[4138]
-            + W[527] * W[3920] + W[745] * W[3702] + W[963] * W[3484] + W[1181] * W[3266] + W[1399] * W[3048]
-            + W[1617] * W[2830] + W[1835] * W[2612] + W[2053] * W[2394] + W[2271] * W[2176] + W[2489] * W[1958]
-            + W[2707] * W[1740] + W[2925] * W[1522] + W[3143] * W[1304] + W[3361] * W[1086] + W[3579] * W[868]
-            + W[3797] * W[650] + W[4015] * W[432] + W[4233] * W[214] + W[338] * W[4139] + W[556] * W[3921]
-            + W[774] * W[3703] + W[992] * W[3485] + W[1210] * W[3267] + W[1428] * W[3049] + W[1646] * W[2831]
-            + W[1864] * W[2613] + W[2082] * W[2395] + W[2300] * W[2177] + W[2518] * W[1959] + W[2736] * W[1741]
-            + W[2954] * W[1523] + W[3172] * W[1305] + W[3390] * W[1087] + W[3608] * W[869] + W[3826] * W[651]
-            + W[4044] * W[433] + W[4262] * W[215] + W[360] * W[4140] + W[578] * W[3922] + W[796] * W[3704]
-            + W[1014] * W[3486] + W[1232] * W[3268] + W[1450] * W[3050] + W[1668] * W[2832] + W[1886] * W[2614]
-            + W[2104] * W[2396] + W[2322] * W[2178] + W[2540] * W[1960] + W[2758] * W[1742] + W[2976] * W[1524]
-            + W[3194] * W[1306] + W[3412] * W[1088] + W[3630] * W[870] + W[3848] * W[652] + W[4066] * W[434]
-            + W[4284] * W[216] + W[375] * W[4141] + W[593] * W[3923] + W[811] * W[3705] + W[1029] * W[3487]
-            + W[1247] * W[3269] + W[1465] * W[3051] + W[1683] * W[2833] + W[1901] * W[2615] + W[2119] * W[2397]
-            + W[2337] * W[2179] + W[2555] * W[1961] + W[2773] * W[1743] + W[2991] * W[1525] + W[3209] * W[1307]
-            + W[3427] * W[1089] + W[3645] * W[871] + W[3863] * W[653] + W[4081] * W[435] + W[4299] * W[217]
-            + W[4352];
-    W[4356] = W[309] * W[4137] + W[527] * W[3919] + W[745] * W[3701] + W[963] * W[3483] + W[1181] * W[3265]
-            + W[1399] * W[3047] + W[1617] * W[2829] + W[1835] * W[2611] + W[2053] * W[2393] + W[2271] * W[2175]
-            + W[2489] * W[1957] + W[2707] * W[1739] + W[2925] * W[1521] + W[3143] * W[1303] + W[3361] * W[1085]
-            + W[3579] * W[867] + W[3797] * W[649] + W[4015] * W[431] + W[4233] * W[213] + W[337] * W[4138]
-            + W[555] * W[3920] + W[773] * W[3702] + W[991] * W[3484] + W[1209] * W[3266] + W[1427] * W[3048]
-            + W[1645] * W[2830] + W[1863] * W[2612] + W[2081] * W[2394] + W[2299] * W[2176] + W[2517] * W[1958]
-            + W[2735] * W[1740] + W[2953] * W[1522] + W[3171] * W[1304] + W[3389] * W[1086] + W[3607] * W[868]
-            + W[3825] * W[650] + W[4043] * W[432] + W[4261] * W[214] + W[339] * W[4139] + W[557] * W[3921]
-            + W[775] * W[3703] + W[993] * W[3485] + W[1211] * W[3267] + W[1429] * W[3049] + W[1647] * W[2831]
-            + W[1865] * W[2613] + W[2083] * W[2395] + W[2301] * W[2177] + W[2519] * W[1959] + W[2737] * W[1741]
-            + W[2955] * W[1523] + W[3173] * W[1305] + W[3391] * W[1087] + W[3609] * W[869] + W[3827] * W[651]
-            + W[4045] * W[433] + W[4263] * W[215] + W[361] * W[4140] + W[579] * W[3922] + W[797] * W[3704]
-            + W[1015] * W[3486] + W[1233] * W[3268] + W[1451] * W[3050] + W[1669] * W[2832] + W[1887] * W[2614]
-            + W[2105] * W[2396] + W[2323] * W[2178] + W[2541] * W[1960] + W[2759] * W[1742] + W[2977] * W[1524]
-            + W[3195] * W[1306] + W[3413] * W[1088] + W[3631] * W[870] + W[3849] * W[652] + W[4067] * W[434]
-            + W[4285] * W[216] + W[376] * W[4141] + W[594] * W[3923] + W[812] * W[3705] + W[1030] * W[3487]
-            + W[1248] * W[3269] + W[1466] * W[3051] + W[1684] * W[2833] + W[1902] * W[2615] + W[2120] * W[2397]
-            + W[2338] * W[2179] + W[2556] * W[1961] + W[2774] * W[1743] + W[2992] * W[1525] + W[3210] * W[1307]
-            + W[3428] * W[1089] + W[3646] * W[871] + W[3864] * W[653] + W[4082] * W[435] + W[4300] * W[217]
-            + W[4353];
-    W[4357] = W[338] * W[4137] + W[556] * W[3919] + W[774] * W[3701] + W[992] * W[3483] + W[1210] * W[3265]
-            + W[1428] * W[3047] + W[1646] * W[2829] + W[1864] * W[2611] + W[2082] * W[2393] + W[2300] * W[2175]
-            + W[2518] * W[1957] + W[2736] * W[1739] + W[2954] * W[1521] + W[3172] * W[1303] + W[3390] * W[1085]
-            + W[3608] * W[867] + W[3826] * W[649] + W[4044] * W[431] + W[4262] * W[213] + W[339] * W[4138]
-            + W[557] * W[3920] + W[775] * W[3702] + W[993] * W[3484] + W[1211] * W[3266] + W[1429] * W[3048]
-            + W[1647] * W[2830] + W[1865] * W[2612] + W[2083] * W[2394] + W[2301] * W[2176] + W[2519] * W[1958]
-            + W[2737] * W[1740] + W[2955] * W[1522] + W[3173] * W[1304] + W[3391] * W[1086] + W[3609] * W[868]
-            + W[3827] * W[650] + W[4045] * W[432] + W[4263] * W[214] + W[359] * W[4139] + W[577] * W[3921]
-            + W[795] * W[3703] + W[1013] * W[3485] + W[1231] * W[3267] + W[1449] * W[3049] + W[1667] * W[2831]
-            + W[1885] * W[2613] + W[2103] * W[2395] + W[2321] * W[2177] + W[2539] * W[1959] + W[2757] * W[1741]
-            + W[2975] * W[1523] + W[3193] * W[1305] + W[3411] * W[1087] + W[3629] * W[869] + W[3847] * W[651]
-            + W[4065] * W[433] + W[4283] * W[215] + W[362] * W[4140] + W[580] * W[3922] + W[798] * W[3704]
-            + W[1016] * W[3486] + W[1234] * W[3268] + W[1452] * W[3050] + W[1670] * W[2832] + W[1888] * W[2614]
-            + W[2106] * W[2396] + W[2324] * W[2178] + W[2542] * W[1960] + W[2760] * W[1742] + W[2978] * W[1524]
-            + W[3196] * W[1306] + W[3414] * W[1088] + W[3632] * W[870] + W[3850] * W[652] + W[4068] * W[434]
-            + W[4286] * W[216] + W[377] * W[4141] + W[595] * W[3923] + W[813] * W[3705] + W[1031] * W[3487]
-            + W[1249] * W[3269] + W[1467] * W[3051] + W[1685] * W[2833] + W[1903] * W[2615] + W[2121] * W[2397]
-            + W[2339] * W[2179] + W[2557] * W[1961] + W[2775] * W[1743] + W[2993] * W[1525] + W[3211] * W[1307]
-            + W[3429] * W[1089] + W[3647] * W[871] + W[3865] * W[653] + W[4083] * W[435] + W[4301] * W[217]
-            + W[4354];
-    W[4358] = W[360] * W[4137] + W[578] * W[3919] + W[796] * W[3701] + W[1014] * W[3483] + W[1232] * W[3265]
-            + W[1450] * W[3047] + W[1668] * W[2829] + W[1886] * W[2611] + W[2104] * W[2393] + W[2322] * W[2175]
-            + W[2540] * W[1957] + W[2758] * W[1739] + W[2976] * W[1521] + W[3194] * W[1303] + W[3412] * W[1085]
-            + W[3630] * W[867] + W[3848] * W[649] + W[4066] * W[431] + W[4284] * W[213] + W[361] * W[4138]
-            + W[579] * W[3920] + W[797] * W[3702] + W[1015] * W[3484] + W[1233] * W[3266] + W[1451] * W[3048]
-            + W[1669] * W[2830] + W[1887] * W[2612] + W[2105] * W[2394] + W[2323] * W[2176] + W[2541] * W[1958]
-            + W[2759] * W[1740] + W[2977] * W[1522] + W[3195] * W[1304] + W[3413] * W[1086] + W[3631] * W[868]
-            + W[3849] * W[650] + W[4067] * W[432] + W[4285] * W[214] + W[362] * W[4139] + W[580] * W[3921]
-            + W[798] * W[3703] + W[1016] * W[3485] + W[1234] * W[3267] + W[1452] * W[3049] + W[1670] * W[2831]
-            + W[1888] * W[2613] + W[2106] * W[2395] + W[2324] * W[2177] + W[2542] * W[1959] + W[2760] * W[1741]
-            + W[2978] * W[1523] + W[3196] * W[1305] + W[3414] * W[1087] + W[3632] * W[869] + W[3850] * W[651]
-            + W[4068] * W[433] + W[4286] * W[215] + W[374] * W[4140] + W[592] * W[3922] + W[810] * W[3704]
-            + W[1028] * W[3486] + W[1246] * W[3268] + W[1464] * W[3050] + W[1682] * W[2832] + W[1900] * W[2614]
-            + W[2118] * W[2396] + W[2336] * W[2178] + W[2554] * W[1960] + W[2772] * W[1742] + W[2990] * W[1524]
-            + W[3208] * W[1306] + W[3426] * W[1088] + W[3644] * W[870] + W[3862] * W[652] + W[4080] * W[434]
-            + W[4298] * W[216] + W[378] * W[4141] + W[596] * W[3923] + W[814] * W[3705] + W[1032] * W[3487]
-            + W[1250] * W[3269] + W[1468] * W[3051] + W[1686] * W[2833] + W[1904] * W[2615] + W[2122] * W[2397]
-            + W[2340] * W[2179] + W[2558] * W[1961] + W[2776] * W[1743] + W[2994] * W[1525] + W[3212] * W[1307]
-            + W[3430] * W[1089] + W[3648] * W[871] + W[3866] * W[653] + W[4084] * W[435] + W[4302] * W[217]
-            + W[4329];
-    W[4359] = W[375] * W[4137] + W[593] * W[3919] + W[811] * W[3701] + W[1029] * W[3483] + W[1247] * W[3265]
-            + W[1465] * W[3047] + W[1683] * W[2829] + W[1901] * W[2611] + W[2119] * W[2393] + W[2337] * W[2175]
-            + W[2555] * W[1957] + W[2773] * W[1739] + W[2991] * W[1521] + W[3209] * W[1303] + W[3427] * W[1085]
-            + W[3645] * W[867] + W[3863] * W[649] + W[4081] * W[431] + W[4299] * W[213] + W[376] * W[4138]
-            + W[594] * W[3920] + W[812] * W[3702] + W[1030] * W[3484] + W[1248] * W[3266] + W[1466] * W[3048]
-            + W[1684] * W[2830] + W[1902] * W[2612] + W[2120] * W[2394] + W[2338] * W[2176] + W[2556] * W[1958]
-            + W[2774] * W[1740] + W[2992] * W[1522] + W[3210] * W[1304] + W[3428] * W[1086] + W[3646] * W[868]
-            + W[3864] * W[650] + W[4082] * W[432] + W[4300] * W[214] + W[377] * W[4139] + W[595] * W[3921]
-            + W[813] * W[3703] + W[1031] * W[3485] + W[1249] * W[3267] + W[1467] * W[3049] + W[1685] * W[2831]
-            + W[1903] * W[2613] + W[2121] * W[2395] + W[2339] * W[2177] + W[2557] * W[1959] + W[2775] * W[1741]
-            + W[2993] * W[1523] + W[3211] * W[1305] + W[3429] * W[1087] + W[3647] * W[869] + W[3865] * W[651]
-            + W[4083] * W[433] + W[4301] * W[215] + W[378] * W[4140] + W[596] * W[3922] + W[814] * W[3704]
-            + W[1032] * W[3486] + W[1250] * W[3268] + W[1468] * W[3050] + W[1686] * W[2832] + W[1904] * W[2614]
-            + W[2122] * W[2396] + W[2340] * W[2178] + W[2558] * W[1960] + W[2776] * W[1742] + W[2994] * W[1524]
-            + W[3212] * W[1306] + W[3430] * W[1088] + W[3648] * W[870] + W[3866] * W[652] + W[4084] * W[434]
-            + W[4302] * W[216] + W[4331];
-    if (solve(ctx, 19, NULL, W + 4355))
+    return 0;
+}
+
+EOMC_PART int
+chain5_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_3(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_4(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_5(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_7(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_8(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_9(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_10(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_11(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_12(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_13(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_14(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_15(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_16(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_17(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_19(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_21(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_23(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_25(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_27(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_29(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_31(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_33(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_35(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_37(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_39(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_41(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_43(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_45(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_47(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_49(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_51(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_53(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_55(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_57(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_59(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_62(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_64(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_66(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_68(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_71(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_73(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_75(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_77(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_80(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_81(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_83(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_85(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_87(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_89(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_90(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_93(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_94(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_96(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_99(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_102(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_104(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_105(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_107(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_109(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_111(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_112(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_114(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_117(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_119(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_120(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_122(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_123(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_125(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_127(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_129(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_132(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_135(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_137(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_139(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_141(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_143(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_146(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_148(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_150(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_152(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_153(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_155(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_156(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_158(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_160(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_162(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_164(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_166(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_167(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_169(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_171(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_173(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_175(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_177(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_178(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_180(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_182(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_184(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_186(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_188(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_189(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_191(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_193(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_195(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_197(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_199(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_200(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_202(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_204(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_206(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_208(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_209(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_213(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_215(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_217(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_219(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+chain5_taylor_run_220(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+static int
+chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *T, eomc_real *X, eomc_tay_solve solve, void *ctx)
+{
+    const int S = K + 1;
+    if (K > 20)
+        return 1;
+    (void)S, (void)T, (void)t0, (void)p, (void)u;
+    eomc_real W[4578]; /* slot s's coefficient j at W[j * 218 + s], but the
+                   * state's: X[j * 10 + i], q's then v's */
+    /* order 0 */
+    if (chain5_taylor_run_1(t0, p, u, W, X, solve, ctx))
         return -1;
-    X[205] = W[4355] / 20.0;
-    X[206] = W[4356] / 20.0;
-    X[207] = W[4357] / 20.0;
-    X[208] = W[4358] / 20.0;
-    X[209] = W[4359] / 20.0;
+    if (chain5_taylor_run_2(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_3(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_4(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_5(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_6(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_7(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_8(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_9(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_10(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_11(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 1)
+        goto out;
+    /* order 1 */
+    if (chain5_taylor_run_12(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_13(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_14(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_15(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_16(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_17(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_18(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_19(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_20(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_21(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_22(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 2)
+        goto out;
+    /* order 2 */
+    if (chain5_taylor_run_23(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_24(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_25(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_26(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_27(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_28(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_29(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_30(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_31(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_32(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_33(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 3)
+        goto out;
+    /* order 3 */
+    if (chain5_taylor_run_34(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_35(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_36(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_37(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_38(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_39(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_40(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_41(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_42(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_43(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_44(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 4)
+        goto out;
+    /* order 4 */
+    if (chain5_taylor_run_45(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_46(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_47(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_48(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_49(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_50(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_51(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_52(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_53(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_54(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_55(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 5)
+        goto out;
+    /* order 5 */
+    if (chain5_taylor_run_56(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_57(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_58(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_59(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_60(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_61(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_62(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_63(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_64(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_65(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_66(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 6)
+        goto out;
+    /* order 6 */
+    if (chain5_taylor_run_67(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_68(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_69(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_70(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_71(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_72(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_73(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_74(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_75(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_76(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_77(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 7)
+        goto out;
+    /* order 7 */
+    if (chain5_taylor_run_78(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_79(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_80(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_81(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_82(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_83(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_84(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_85(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_86(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_87(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_88(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 8)
+        goto out;
+    /* order 8 */
+    if (chain5_taylor_run_89(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_90(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_91(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_92(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_93(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_94(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_95(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_96(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_97(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_98(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_99(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 9)
+        goto out;
+    /* order 9 */
+    if (chain5_taylor_run_100(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_101(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_102(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_103(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_104(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_105(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_106(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_107(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_108(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_109(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_110(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 10)
+        goto out;
+    /* order 10 */
+    if (chain5_taylor_run_111(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_112(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_113(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_114(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_115(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_116(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_117(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_118(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_119(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_120(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_121(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 11)
+        goto out;
+    /* order 11 */
+    if (chain5_taylor_run_122(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_123(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_124(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_125(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_126(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_127(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_128(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_129(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_130(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_131(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_132(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 12)
+        goto out;
+    /* order 12 */
+    if (chain5_taylor_run_133(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_134(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_135(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_136(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_137(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_138(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_139(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_140(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_141(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_142(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_143(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 13)
+        goto out;
+    /* order 13 */
+    if (chain5_taylor_run_144(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_145(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_146(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_147(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_148(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_149(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_150(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_151(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_152(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_153(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_154(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 14)
+        goto out;
+    /* order 14 */
+    if (chain5_taylor_run_155(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_156(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_157(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_158(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_159(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_160(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_161(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_162(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_163(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_164(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_165(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 15)
+        goto out;
+    /* order 15 */
+    if (chain5_taylor_run_166(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_167(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_168(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_169(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_170(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_171(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_172(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_173(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_174(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_175(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_176(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 16)
+        goto out;
+    /* order 16 */
+    if (chain5_taylor_run_177(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_178(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_179(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_180(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_181(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_182(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_183(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_184(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_185(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_186(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_187(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 17)
+        goto out;
+    /* order 17 */
+    if (chain5_taylor_run_188(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_189(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_190(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_191(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_192(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_193(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_194(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_195(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_196(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_197(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_198(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 18)
+        goto out;
+    /* order 18 */
+    if (chain5_taylor_run_199(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_200(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_201(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_202(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_203(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_204(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_205(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_206(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_207(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_208(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_209(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 19)
+        goto out;
+    /* order 19 */
+    if (chain5_taylor_run_210(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_211(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_212(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_213(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_214(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_215(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_216(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_217(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_218(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_219(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (chain5_taylor_run_220(t0, p, u, W, X, solve, ctx))
+        return -1;
 out:
     return 0;
 }
@@ -9612,3 +7779,5198 @@ const eomc_model_ext chain5_model_ext = {
 };
 #endif /* EOMC_EXTENDED */
 #endif /* EOMC_UNIT 3 */
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 4
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define chain5_taylor_run_1 chain5_taylor_run_1_ext
+#define chain5_taylor_run_2 chain5_taylor_run_2_ext
+#define chain5_taylor_run_3 chain5_taylor_run_3_ext
+#define chain5_taylor_run_4 chain5_taylor_run_4_ext
+#define chain5_taylor_run_5 chain5_taylor_run_5_ext
+#define chain5_taylor_run_6 chain5_taylor_run_6_ext
+#define chain5_taylor_run_7 chain5_taylor_run_7_ext
+#define chain5_taylor_run_8 chain5_taylor_run_8_ext
+#define chain5_taylor_run_9 chain5_taylor_run_9_ext
+#define chain5_taylor_run_10 chain5_taylor_run_10_ext
+#define chain5_taylor_run_11 chain5_taylor_run_11_ext
+#define chain5_taylor_run_12 chain5_taylor_run_12_ext
+#define chain5_taylor_run_13 chain5_taylor_run_13_ext
+#define chain5_taylor_run_14 chain5_taylor_run_14_ext
+#define chain5_taylor_run_15 chain5_taylor_run_15_ext
+#define chain5_taylor_run_16 chain5_taylor_run_16_ext
+#define chain5_taylor_run_17 chain5_taylor_run_17_ext
+#define chain5_taylor_run_19 chain5_taylor_run_19_ext
+#define chain5_taylor_run_21 chain5_taylor_run_21_ext
+#define chain5_taylor_run_23 chain5_taylor_run_23_ext
+#define chain5_taylor_run_25 chain5_taylor_run_25_ext
+#define chain5_taylor_run_27 chain5_taylor_run_27_ext
+#define chain5_taylor_run_29 chain5_taylor_run_29_ext
+#define chain5_taylor_run_31 chain5_taylor_run_31_ext
+#define chain5_taylor_run_33 chain5_taylor_run_33_ext
+#define chain5_taylor_run_35 chain5_taylor_run_35_ext
+#define chain5_taylor_run_37 chain5_taylor_run_37_ext
+#define chain5_taylor_run_39 chain5_taylor_run_39_ext
+#define chain5_taylor_run_41 chain5_taylor_run_41_ext
+#define chain5_taylor_run_43 chain5_taylor_run_43_ext
+#define chain5_taylor_run_45 chain5_taylor_run_45_ext
+#define chain5_taylor_run_47 chain5_taylor_run_47_ext
+#define chain5_taylor_run_49 chain5_taylor_run_49_ext
+#define chain5_taylor_run_51 chain5_taylor_run_51_ext
+#define chain5_taylor_run_53 chain5_taylor_run_53_ext
+#define chain5_taylor_run_55 chain5_taylor_run_55_ext
+#define chain5_taylor_run_57 chain5_taylor_run_57_ext
+#define chain5_taylor_run_59 chain5_taylor_run_59_ext
+#define chain5_taylor_run_62 chain5_taylor_run_62_ext
+#define chain5_taylor_run_64 chain5_taylor_run_64_ext
+#define chain5_taylor_run_66 chain5_taylor_run_66_ext
+#define chain5_taylor_run_68 chain5_taylor_run_68_ext
+#define chain5_taylor_run_71 chain5_taylor_run_71_ext
+#define chain5_taylor_run_73 chain5_taylor_run_73_ext
+#define chain5_taylor_run_75 chain5_taylor_run_75_ext
+#define chain5_taylor_run_77 chain5_taylor_run_77_ext
+#define chain5_taylor_run_80 chain5_taylor_run_80_ext
+#define chain5_taylor_run_81 chain5_taylor_run_81_ext
+#define chain5_taylor_run_83 chain5_taylor_run_83_ext
+#define chain5_taylor_run_85 chain5_taylor_run_85_ext
+#define chain5_taylor_run_87 chain5_taylor_run_87_ext
+#define chain5_taylor_run_89 chain5_taylor_run_89_ext
+#define chain5_taylor_run_90 chain5_taylor_run_90_ext
+#define chain5_taylor_run_93 chain5_taylor_run_93_ext
+#define chain5_taylor_run_94 chain5_taylor_run_94_ext
+#define chain5_taylor_run_96 chain5_taylor_run_96_ext
+#define chain5_taylor_run_99 chain5_taylor_run_99_ext
+#define chain5_taylor_run_102 chain5_taylor_run_102_ext
+#define chain5_taylor_run_104 chain5_taylor_run_104_ext
+#define chain5_taylor_run_105 chain5_taylor_run_105_ext
+#define chain5_taylor_run_107 chain5_taylor_run_107_ext
+#define chain5_taylor_run_109 chain5_taylor_run_109_ext
+#define chain5_taylor_run_111 chain5_taylor_run_111_ext
+#define chain5_taylor_run_112 chain5_taylor_run_112_ext
+#define chain5_taylor_run_114 chain5_taylor_run_114_ext
+#define chain5_taylor_run_117 chain5_taylor_run_117_ext
+#define chain5_taylor_run_119 chain5_taylor_run_119_ext
+#define chain5_taylor_run_120 chain5_taylor_run_120_ext
+#define chain5_taylor_run_122 chain5_taylor_run_122_ext
+#define chain5_taylor_run_123 chain5_taylor_run_123_ext
+#define chain5_taylor_run_125 chain5_taylor_run_125_ext
+#define chain5_taylor_run_127 chain5_taylor_run_127_ext
+#define chain5_taylor_run_129 chain5_taylor_run_129_ext
+#define chain5_taylor_run_132 chain5_taylor_run_132_ext
+#define chain5_taylor_run_135 chain5_taylor_run_135_ext
+#define chain5_taylor_run_137 chain5_taylor_run_137_ext
+#define chain5_taylor_run_139 chain5_taylor_run_139_ext
+#define chain5_taylor_run_141 chain5_taylor_run_141_ext
+#define chain5_taylor_run_143 chain5_taylor_run_143_ext
+#define chain5_taylor_run_146 chain5_taylor_run_146_ext
+#define chain5_taylor_run_148 chain5_taylor_run_148_ext
+#define chain5_taylor_run_150 chain5_taylor_run_150_ext
+#define chain5_taylor_run_152 chain5_taylor_run_152_ext
+#define chain5_taylor_run_153 chain5_taylor_run_153_ext
+#define chain5_taylor_run_155 chain5_taylor_run_155_ext
+#define chain5_taylor_run_156 chain5_taylor_run_156_ext
+#define chain5_taylor_run_158 chain5_taylor_run_158_ext
+#define chain5_taylor_run_160 chain5_taylor_run_160_ext
+#define chain5_taylor_run_162 chain5_taylor_run_162_ext
+#define chain5_taylor_run_164 chain5_taylor_run_164_ext
+#define chain5_taylor_run_166 chain5_taylor_run_166_ext
+#define chain5_taylor_run_167 chain5_taylor_run_167_ext
+#define chain5_taylor_run_169 chain5_taylor_run_169_ext
+#define chain5_taylor_run_171 chain5_taylor_run_171_ext
+#define chain5_taylor_run_173 chain5_taylor_run_173_ext
+#define chain5_taylor_run_175 chain5_taylor_run_175_ext
+#define chain5_taylor_run_177 chain5_taylor_run_177_ext
+#define chain5_taylor_run_178 chain5_taylor_run_178_ext
+#define chain5_taylor_run_180 chain5_taylor_run_180_ext
+#define chain5_taylor_run_182 chain5_taylor_run_182_ext
+#define chain5_taylor_run_184 chain5_taylor_run_184_ext
+#define chain5_taylor_run_186 chain5_taylor_run_186_ext
+#define chain5_taylor_run_188 chain5_taylor_run_188_ext
+#define chain5_taylor_run_189 chain5_taylor_run_189_ext
+#define chain5_taylor_run_191 chain5_taylor_run_191_ext
+#define chain5_taylor_run_193 chain5_taylor_run_193_ext
+#define chain5_taylor_run_195 chain5_taylor_run_195_ext
+#define chain5_taylor_run_197 chain5_taylor_run_197_ext
+#define chain5_taylor_run_199 chain5_taylor_run_199_ext
+#define chain5_taylor_run_200 chain5_taylor_run_200_ext
+#define chain5_taylor_run_202 chain5_taylor_run_202_ext
+#define chain5_taylor_run_204 chain5_taylor_run_204_ext
+#define chain5_taylor_run_206 chain5_taylor_run_206_ext
+#define chain5_taylor_run_208 chain5_taylor_run_208_ext
+#define chain5_taylor_run_209 chain5_taylor_run_209_ext
+#define chain5_taylor_run_213 chain5_taylor_run_213_ext
+#define chain5_taylor_run_215 chain5_taylor_run_215_ext
+#define chain5_taylor_run_217 chain5_taylor_run_217_ext
+#define chain5_taylor_run_219 chain5_taylor_run_219_ext
+#define chain5_taylor_run_220 chain5_taylor_run_220_ext
+#endif
+#ifndef EOMC_EXTENDED
+/* Lines 0 .. 19 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1] = sin(X[0]);
+    W[2] = cos(X[0]);
+    W[4] = X[0] + X[1];
+    W[32] = X[5] * X[5];
+    W[33] = p[3];
+    W[36] = X[5] + X[6];
+    W[56] = p[5];
+    W[57] = p[6];
+    W[59] = p[7];
+    W[62] = p[8];
+    W[65] = p[9];
+    W[5] = sin(W[4]);
+    W[6] = cos(W[4]);
+    W[10] = W[4] + X[2];
+    W[41] = X[7] + W[36];
+    W[68] = W[65] * W[1];
+    W[34] = W[1] * W[32];
+    W[35] = W[2] * W[32];
+    W[7] = W[1] + W[5];
+    W[8] = W[2] + W[6];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[11] = sin(W[10]);
+    W[12] = cos(W[10]);
+    W[16] = W[10] + X[3];
+    W[46] = X[8] + W[41];
+    W[66] = W[62] * W[5];
+    W[37] = W[6] * W[36];
+    W[38] = W[5] * W[36];
+    W[13] = W[7] + W[11];
+    W[14] = W[8] + W[12];
+    W[17] = sin(W[16]);
+    W[18] = cos(W[16]);
+    W[22] = W[16] + X[4];
+    W[51] = X[9] + W[46];
+    W[63] = W[59] * W[11];
+    W[92] = W[5] + W[11];
+    W[96] = W[6] + W[12];
+    W[39] = W[36] * W[38];
+    W[40] = W[36] * W[37];
+    W[42] = W[12] * W[41];
+    W[43] = W[11] * W[41];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_3(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[19] = W[13] + W[17];
+    W[20] = W[14] + W[18];
+    W[23] = sin(W[22]);
+    W[24] = cos(W[22]);
+    W[60] = W[57] * W[17];
+    W[93] = W[17] + W[92];
+    W[97] = W[18] + W[96];
+    W[122] = W[11] + W[17];
+    W[125] = W[12] + W[18];
+    W[161] = W[34] + W[39];
+    W[162] = W[35] + W[40];
+    W[44] = W[41] * W[43];
+    W[45] = W[41] * W[42];
+    W[47] = W[18] * W[46];
+    W[48] = W[17] * W[46];
+    W[25] = W[19] + W[23];
+    W[26] = W[20] + W[24];
+    W[58] = W[56] * W[23];
+    W[94] = W[23] + W[93];
+    W[98] = W[24] + W[97];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_4(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[123] = W[23] + W[122];
+    W[126] = W[24] + W[125];
+    W[145] = W[18] + W[24];
+    W[148] = W[17] + W[23];
+    W[163] = W[44] + W[161];
+    W[164] = W[45] + W[162];
+    W[49] = W[46] * W[48];
+    W[50] = W[46] * W[47];
+    W[52] = W[24] * W[51];
+    W[53] = W[23] * W[51];
+    W[61] = W[58] - W[60];
+    W[73] = W[19] + W[25];
+    W[76] = W[20] + W[26];
+    W[101] = W[93] + W[94];
+    W[104] = W[97] + W[98];
+    W[129] = W[122] + W[123];
+    W[132] = W[125] + W[126];
+    W[146] = W[18] + W[145];
+    W[149] = W[17] + W[148];
+    W[165] = W[49] + W[163];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_5(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[166] = W[50] + W[164];
+    W[54] = W[51] * W[53];
+    W[55] = W[51] * W[52];
+    W[70] = W[23] * W[25];
+    W[71] = W[24] * W[26];
+    W[95] = W[23] * W[94];
+    W[99] = W[24] * W[98];
+    W[124] = W[23] * W[123];
+    W[127] = W[24] * W[126];
+    W[151] = W[23] * W[148];
+    W[152] = W[24] * W[145];
+    W[64] = W[61] - W[63];
+    W[72] = W[70] + W[71];
+    W[79] = W[13] + W[73];
+    W[82] = W[14] + W[76];
+    W[100] = W[95] + W[99];
+    W[107] = W[92] + W[101];
+    W[110] = W[96] + W[104];
+    W[128] = W[124] + W[127];
+    W[135] = W[11] + W[129];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[138] = W[12] + W[132];
+    W[153] = W[151] + W[152];
+    W[167] = W[54] + W[165];
+    W[168] = W[55] + W[166];
+    W[74] = W[17] * W[73];
+    W[77] = W[18] * W[76];
+    W[102] = W[17] * W[101];
+    W[105] = W[18] * W[104];
+    W[130] = W[17] * W[129];
+    W[133] = W[18] * W[132];
+    W[147] = W[18] * W[146];
+    W[150] = W[17] * W[149];
+    W[67] = W[64] - W[66];
+    W[75] = W[72] + W[74];
+    W[85] = W[7] + W[79];
+    W[88] = W[8] + W[82];
+    W[103] = W[100] + W[102];
+    W[113] = W[5] + W[107];
+    W[116] = W[6] + W[110];
+    W[131] = W[128] + W[130];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_7(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[154] = W[150] + W[153];
+    W[157] = W[33] * W[72];
+    W[158] = W[33] * W[100];
+    W[159] = W[33] * W[128];
+    W[160] = W[33] * W[153];
+    W[171] = W[166] + W[168];
+    W[173] = W[165] + W[167];
+    W[80] = W[11] * W[79];
+    W[83] = W[12] * W[82];
+    W[108] = W[11] * W[107];
+    W[111] = W[12] * W[110];
+    W[136] = W[11] * W[135];
+    W[139] = W[12] * W[138];
+    W[169] = W[23] * W[168];
+    W[170] = W[24] * W[167];
+    W[69] = W[67] - W[68];
+    W[78] = W[75] + W[77];
+    W[106] = W[103] + W[105];
+    W[134] = W[131] + W[133];
+    W[155] = W[147] + W[154];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_8(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[175] = W[164] + W[171];
+    W[177] = W[163] + W[173];
+    W[183] = W[169] - W[170];
+    W[190] = W[1] + W[85];
+    W[193] = W[2] + W[88];
+    W[86] = W[5] * W[85];
+    W[89] = W[6] * W[88];
+    W[114] = W[5] * W[113];
+    W[117] = W[6] * W[116];
+    W[172] = W[17] * W[171];
+    W[174] = W[18] * W[173];
+    W[81] = W[78] + W[80];
+    W[109] = W[106] + W[108];
+    W[137] = W[134] + W[136];
+    W[142] = W[33] * W[78];
+    W[143] = W[33] * W[106];
+    W[144] = W[33] * W[134];
+    W[156] = W[33] * W[155];
+    W[179] = W[162] + W[175];
+    W[181] = W[161] + W[177];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_9(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[184] = W[172] + W[183];
+    W[188] = W[33] * W[183];
+    W[176] = W[11] * W[175];
+    W[178] = W[12] * W[177];
+    W[191] = W[1] * W[190];
+    W[194] = W[2] * W[193];
+    W[84] = W[81] + W[83];
+    W[112] = W[109] + W[111];
+    W[140] = W[137] + W[139];
+    W[185] = W[184] - W[174];
+    W[189] = W[58] + W[188];
+    W[203] = W[35] + W[179];
+    W[204] = W[34] + W[181];
+    W[180] = W[5] * W[179];
+    W[182] = W[6] * W[181];
+    W[87] = W[84] + W[86];
+    W[115] = W[112] + W[114];
+    W[120] = W[33] * W[84];
+    W[121] = W[33] * W[112];
+    W[141] = W[33] * W[140];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_10(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[186] = W[33] * W[185];
+    W[197] = W[176] + W[185];
+    W[205] = W[1] * W[203];
+    W[207] = W[2] * W[204];
+    W[90] = W[87] + W[89];
+    W[118] = W[115] + W[117];
+    W[187] = W[61] + W[186];
+    W[198] = W[197] - W[178];
+    W[91] = W[33] * W[90];
+    W[119] = W[33] * W[118];
+    W[192] = W[90] + W[191];
+    W[199] = W[33] * W[198];
+    W[200] = W[180] + W[198];
+    W[195] = W[192] + W[194];
+    W[201] = W[200] - W[182];
+    W[212] = W[64] + W[199];
+    W[196] = W[33] * W[195];
+    W[202] = W[33] * W[201];
+    W[206] = W[201] + W[205];
+    W[208] = W[206] - W[207];
+    return 0;
+}
+
+/* Lines 200 .. 218 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_11(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[211] = W[67] + W[202];
+    W[209] = W[33] * W[208];
+    W[210] = W[69] + W[209];
+    X[10] = X[5];
+    X[11] = X[6];
+    X[12] = X[7];
+    X[13] = X[8];
+    X[14] = X[9];
+    W[213] = W[210];
+    W[214] = W[211];
+    W[215] = W[212];
+    W[216] = W[187];
+    W[217] = W[189];
+    {
+        const eomc_real M0[25] = {W[196], W[91], W[120], W[142], W[157], W[91], W[119],
+            W[121], W[143], W[158], W[120], W[121], W[141], W[144], W[159], W[142], W[143], W[144],
+            W[156], W[160], W[157], W[158], W[159], W[160], W[33]};
+        if (solve(ctx, 0, M0, W + 213))
+            return -1;
+    }
+    X[15] = W[213];
+    X[16] = W[214];
+    X[17] = W[215];
+    X[18] = W[216];
+    X[19] = W[217];
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_12(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[219] = X[10] * W[2];
+    W[220] = -X[10] * W[1];
+    W[222] = X[10] + X[11];
+    W[250] = X[5] * X[15] * 2.0;
+    W[254] = X[15] + X[16];
+    W[223] = W[222] * W[6];
+    W[224] = -W[222] * W[5];
+    W[228] = W[222] + X[12];
+    W[259] = X[17] + W[254];
+    W[286] = W[65] * W[219];
+    W[252] = W[1] * W[250] + W[219] * W[32];
+    W[253] = W[2] * W[250] + W[220] * W[32];
+    W[225] = W[219] + W[223];
+    W[226] = W[220] + W[224];
+    W[229] = W[228] * W[12];
+    W[230] = -W[228] * W[11];
+    W[234] = W[228] + X[13];
+    W[264] = X[18] + W[259];
+    W[284] = W[62] * W[223];
+    W[255] = W[6] * W[254] + W[224] * W[36];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_13(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[256] = W[5] * W[254] + W[223] * W[36];
+    W[231] = W[225] + W[229];
+    W[232] = W[226] + W[230];
+    W[235] = W[234] * W[18];
+    W[236] = -W[234] * W[17];
+    W[240] = W[234] + X[14];
+    W[269] = X[19] + W[264];
+    W[281] = W[59] * W[229];
+    W[310] = W[223] + W[229];
+    W[314] = W[224] + W[230];
+    W[257] = W[36] * W[256] + W[254] * W[38];
+    W[258] = W[36] * W[255] + W[254] * W[37];
+    W[260] = W[12] * W[259] + W[230] * W[41];
+    W[261] = W[11] * W[259] + W[229] * W[41];
+    W[237] = W[231] + W[235];
+    W[238] = W[232] + W[236];
+    W[241] = W[240] * W[24];
+    W[242] = -W[240] * W[23];
+    W[278] = W[57] * W[235];
+    W[311] = W[235] + W[310];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_14(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[315] = W[236] + W[314];
+    W[340] = W[229] + W[235];
+    W[343] = W[230] + W[236];
+    W[379] = W[252] + W[257];
+    W[380] = W[253] + W[258];
+    W[262] = W[41] * W[261] + W[259] * W[43];
+    W[263] = W[41] * W[260] + W[259] * W[42];
+    W[265] = W[18] * W[264] + W[236] * W[46];
+    W[266] = W[17] * W[264] + W[235] * W[46];
+    W[243] = W[237] + W[241];
+    W[244] = W[238] + W[242];
+    W[276] = W[56] * W[241];
+    W[312] = W[241] + W[311];
+    W[316] = W[242] + W[315];
+    W[341] = W[241] + W[340];
+    W[344] = W[242] + W[343];
+    W[363] = W[236] + W[242];
+    W[366] = W[235] + W[241];
+    W[381] = W[262] + W[379];
+    W[382] = W[263] + W[380];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_15(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[267] = W[46] * W[266] + W[264] * W[48];
+    W[268] = W[46] * W[265] + W[264] * W[47];
+    W[270] = W[24] * W[269] + W[242] * W[51];
+    W[271] = W[23] * W[269] + W[241] * W[51];
+    W[279] = W[276] - W[278];
+    W[291] = W[237] + W[243];
+    W[294] = W[238] + W[244];
+    W[319] = W[311] + W[312];
+    W[322] = W[315] + W[316];
+    W[347] = W[340] + W[341];
+    W[350] = W[343] + W[344];
+    W[364] = W[236] + W[363];
+    W[367] = W[235] + W[366];
+    W[383] = W[267] + W[381];
+    W[384] = W[268] + W[382];
+    W[272] = W[51] * W[271] + W[269] * W[53];
+    W[273] = W[51] * W[270] + W[269] * W[52];
+    W[288] = W[23] * W[243] + W[241] * W[25];
+    W[289] = W[24] * W[244] + W[242] * W[26];
+    W[313] = W[23] * W[312] + W[241] * W[94];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_16(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[317] = W[24] * W[316] + W[242] * W[98];
+    W[342] = W[23] * W[341] + W[241] * W[123];
+    W[345] = W[24] * W[344] + W[242] * W[126];
+    W[369] = W[23] * W[366] + W[241] * W[148];
+    W[370] = W[24] * W[363] + W[242] * W[145];
+    W[282] = W[279] - W[281];
+    W[290] = W[288] + W[289];
+    W[297] = W[231] + W[291];
+    W[300] = W[232] + W[294];
+    W[318] = W[313] + W[317];
+    W[325] = W[310] + W[319];
+    W[328] = W[314] + W[322];
+    W[346] = W[342] + W[345];
+    W[353] = W[229] + W[347];
+    W[356] = W[230] + W[350];
+    W[371] = W[369] + W[370];
+    W[385] = W[272] + W[383];
+    W[386] = W[273] + W[384];
+    W[292] = W[17] * W[291] + W[235] * W[73];
+    W[295] = W[18] * W[294] + W[236] * W[76];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_17(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[320] = W[17] * W[319] + W[235] * W[101];
+    W[323] = W[18] * W[322] + W[236] * W[104];
+    W[348] = W[17] * W[347] + W[235] * W[129];
+    W[351] = W[18] * W[350] + W[236] * W[132];
+    W[365] = W[18] * W[364] + W[236] * W[146];
+    W[368] = W[17] * W[367] + W[235] * W[149];
+    W[285] = W[282] - W[284];
+    W[293] = W[290] + W[292];
+    W[303] = W[225] + W[297];
+    W[306] = W[226] + W[300];
+    W[321] = W[318] + W[320];
+    W[331] = W[223] + W[325];
+    W[334] = W[224] + W[328];
+    W[349] = W[346] + W[348];
+    W[372] = W[368] + W[371];
+    W[375] = W[33] * W[290];
+    W[376] = W[33] * W[318];
+    W[377] = W[33] * W[346];
+    W[378] = W[33] * W[371];
+    W[389] = W[384] + W[386];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_19(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[307] = W[6] * W[306] + W[224] * W[88];
+    W[332] = W[5] * W[331] + W[223] * W[113];
+    W[335] = W[6] * W[334] + W[224] * W[116];
+    W[390] = W[17] * W[389] + W[235] * W[171];
+    W[392] = W[18] * W[391] + W[236] * W[173];
+    W[299] = W[296] + W[298];
+    W[327] = W[324] + W[326];
+    W[355] = W[352] + W[354];
+    W[360] = W[33] * W[296];
+    W[361] = W[33] * W[324];
+    W[362] = W[33] * W[352];
+    W[374] = W[33] * W[373];
+    W[397] = W[380] + W[393];
+    W[399] = W[379] + W[395];
+    W[402] = W[390] + W[401];
+    W[406] = W[33] * W[401];
+    W[394] = W[11] * W[393] + W[229] * W[175];
+    W[396] = W[12] * W[395] + W[230] * W[177];
+    W[409] = W[1] * W[408] + W[219] * W[190];
+    W[412] = W[2] * W[411] + W[220] * W[193];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_21(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[405] = W[279] + W[404];
+    W[416] = W[415] - W[396];
+    W[309] = W[33] * W[308];
+    W[337] = W[33] * W[336];
+    W[410] = W[308] + W[409];
+    W[417] = W[33] * W[416];
+    W[418] = W[398] + W[416];
+    W[413] = W[410] + W[412];
+    W[419] = W[418] - W[400];
+    W[430] = W[282] + W[417];
+    W[414] = W[33] * W[413];
+    W[420] = W[33] * W[419];
+    W[424] = W[419] + W[423];
+    W[426] = W[424] - W[425];
+    W[429] = W[285] + W[420];
+    W[427] = W[33] * W[426];
+    W[428] = W[287] + W[427];
+    X[20] = X[15] / 2.0;
+    X[21] = X[16] / 2.0;
+    X[22] = X[17] / 2.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_23(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[437] = (X[10] * W[220] + 2.0 * X[20] * W[2]) / 2.0;
+    W[438] = -((X[10] * W[219] + 2.0 * X[20] * W[1])) / 2.0;
+    W[440] = X[20] + X[21];
+    W[468] = X[5] * X[25] * 2.0 + X[15] * X[15];
+    W[472] = X[25] + X[26];
+    W[441] = (W[222] * W[224] + 2.0 * W[440] * W[6]) / 2.0;
+    W[442] = -((W[222] * W[223] + 2.0 * W[440] * W[5])) / 2.0;
+    W[446] = W[440] + X[22];
+    W[477] = X[27] + W[472];
+    W[504] = W[65] * W[437];
+    W[470] = W[1] * W[468] + W[219] * W[250] + W[437] * W[32];
+    W[471] = W[2] * W[468] + W[220] * W[250] + W[438] * W[32];
+    W[443] = W[437] + W[441];
+    W[444] = W[438] + W[442];
+    W[447] = (W[228] * W[230] + 2.0 * W[446] * W[12]) / 2.0;
+    W[448] = -((W[228] * W[229] + 2.0 * W[446] * W[11])) / 2.0;
+    W[452] = W[446] + X[23];
+    W[482] = X[28] + W[477];
+    W[502] = W[62] * W[441];
+    W[473] = W[6] * W[472] + W[224] * W[254] + W[442] * W[36];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_25(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[533] = W[454] + W[532];
+    W[558] = W[447] + W[453];
+    W[561] = W[448] + W[454];
+    W[597] = W[470] + W[475];
+    W[598] = W[471] + W[476];
+    W[480] = W[41] * W[479] + W[259] * W[261] + W[477] * W[43];
+    W[481] = W[41] * W[478] + W[259] * W[260] + W[477] * W[42];
+    W[483] = W[18] * W[482] + W[236] * W[264] + W[454] * W[46];
+    W[484] = W[17] * W[482] + W[235] * W[264] + W[453] * W[46];
+    W[461] = W[455] + W[459];
+    W[462] = W[456] + W[460];
+    W[494] = W[56] * W[459];
+    W[530] = W[459] + W[529];
+    W[534] = W[460] + W[533];
+    W[559] = W[459] + W[558];
+    W[562] = W[460] + W[561];
+    W[581] = W[454] + W[460];
+    W[584] = W[453] + W[459];
+    W[599] = W[480] + W[597];
+    W[600] = W[481] + W[598];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_27(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[535] = W[24] * W[534] + W[242] * W[316] + W[460] * W[98];
+    W[560] = W[23] * W[559] + W[241] * W[341] + W[459] * W[123];
+    W[563] = W[24] * W[562] + W[242] * W[344] + W[460] * W[126];
+    W[587] = W[23] * W[584] + W[241] * W[366] + W[459] * W[148];
+    W[588] = W[24] * W[581] + W[242] * W[363] + W[460] * W[145];
+    W[500] = W[497] - W[499];
+    W[508] = W[506] + W[507];
+    W[515] = W[449] + W[509];
+    W[518] = W[450] + W[512];
+    W[536] = W[531] + W[535];
+    W[543] = W[528] + W[537];
+    W[546] = W[532] + W[540];
+    W[564] = W[560] + W[563];
+    W[571] = W[447] + W[565];
+    W[574] = W[448] + W[568];
+    W[589] = W[587] + W[588];
+    W[603] = W[490] + W[601];
+    W[604] = W[491] + W[602];
+    W[510] = W[17] * W[509] + W[235] * W[291] + W[453] * W[73];
+    W[513] = W[18] * W[512] + W[236] * W[294] + W[454] * W[76];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_29(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[609] = W[601] + W[603];
+    W[516] = W[11] * W[515] + W[229] * W[297] + W[447] * W[79];
+    W[519] = W[12] * W[518] + W[230] * W[300] + W[448] * W[82];
+    W[544] = W[11] * W[543] + W[229] * W[325] + W[447] * W[107];
+    W[547] = W[12] * W[546] + W[230] * W[328] + W[448] * W[110];
+    W[572] = W[11] * W[571] + W[229] * W[353] + W[447] * W[135];
+    W[575] = W[12] * W[574] + W[230] * W[356] + W[448] * W[138];
+    W[605] = W[23] * W[604] + W[241] * W[386] + W[459] * W[168];
+    W[606] = W[24] * W[603] + W[242] * W[385] + W[460] * W[167];
+    W[505] = W[503] - W[504];
+    W[514] = W[511] + W[513];
+    W[542] = W[539] + W[541];
+    W[570] = W[567] + W[569];
+    W[591] = W[583] + W[590];
+    W[611] = W[600] + W[607];
+    W[613] = W[599] + W[609];
+    W[619] = W[605] - W[606];
+    W[626] = W[437] + W[521];
+    W[629] = W[438] + W[524];
+    W[522] = W[5] * W[521] + W[223] * W[303] + W[441] * W[85];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_31(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[520] = W[517] + W[519];
+    W[548] = W[545] + W[547];
+    W[576] = W[573] + W[575];
+    W[621] = W[620] - W[610];
+    W[625] = W[494] + W[624];
+    W[639] = W[471] + W[615];
+    W[640] = W[470] + W[617];
+    W[616] = W[5] * W[615] + W[223] * W[397] + W[441] * W[179];
+    W[618] = W[6] * W[617] + W[224] * W[399] + W[442] * W[181];
+    W[523] = W[520] + W[522];
+    W[551] = W[548] + W[550];
+    W[556] = W[33] * W[520];
+    W[557] = W[33] * W[548];
+    W[577] = W[33] * W[576];
+    W[622] = W[33] * W[621];
+    W[633] = W[612] + W[621];
+    W[641] = W[1] * W[639] + W[219] * W[421] + W[437] * W[203];
+    W[643] = W[2] * W[640] + W[220] * W[422] + W[438] * W[204];
+    W[526] = W[523] + W[525];
+    W[554] = W[551] + W[553];
+    return 0;
+}
+
+/* Lines 200 .. 212 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_33(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[33] = X[28] / 3.0;
+    X[34] = X[29] / 3.0;
+    W[649] = W[414] * W[431] + W[632] * W[213] + W[309] * W[432] + W[527] * W[214] + W[338] * W[433]
+            + W[556] * W[215] + W[360] * W[434] + W[578] * W[216] + W[375] * W[435] + W[593] * W[217]
+            + W[646];
+    W[650] = W[309] * W[431] + W[527] * W[213] + W[337] * W[432] + W[555] * W[214] + W[339] * W[433]
+            + W[557] * W[215] + W[361] * W[434] + W[579] * W[216] + W[376] * W[435] + W[594] * W[217]
+            + W[647];
+    W[651] = W[338] * W[431] + W[556] * W[213] + W[339] * W[432] + W[557] * W[214] + W[359] * W[433]
+            + W[577] * W[215] + W[362] * W[434] + W[580] * W[216] + W[377] * W[435] + W[595] * W[217]
+            + W[648];
+    W[652] = W[360] * W[431] + W[578] * W[213] + W[361] * W[432] + W[579] * W[214] + W[362] * W[433]
+            + W[580] * W[215] + W[374] * W[434] + W[592] * W[216] + W[378] * W[435] + W[596] * W[217]
+            + W[623];
+    W[653] = W[375] * W[431] + W[593] * W[213] + W[376] * W[432] + W[594] * W[214] + W[377] * W[433]
+            + W[595] * W[215] + W[378] * W[434] + W[596] * W[216] + W[625];
+    if (solve(ctx, 2, NULL, W + 649))
+        return -1;
+    X[35] = W[649] / 3.0;
+    X[36] = W[650] / 3.0;
+    X[37] = W[651] / 3.0;
+    X[38] = W[652] / 3.0;
+    X[39] = W[653] / 3.0;
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_35(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[692] = W[5] * W[690] + W[223] * W[472] + W[441] * W[254] + W[659] * W[36];
+    W[667] = W[661] + W[665];
+    W[668] = W[662] + W[666];
+    W[671] = (W[234] * W[454] + 2.0 * W[452] * W[236] + 3.0 * W[670] * W[18]) / 3.0;
+    W[672] = -((W[234] * W[453] + 2.0 * W[452] * W[235] + 3.0 * W[670] * W[17])) / 3.0;
+    W[676] = W[670] + X[34];
+    W[705] = X[39] + W[700];
+    W[717] = W[59] * W[665];
+    W[746] = W[659] + W[665];
+    W[750] = W[660] + W[666];
+    W[693] = W[36] * W[692] + W[254] * W[474] + W[472] * W[256] + W[690] * W[38];
+    W[694] = W[36] * W[691] + W[254] * W[473] + W[472] * W[255] + W[690] * W[37];
+    W[696] = W[12] * W[695] + W[230] * W[477] + W[448] * W[259] + W[666] * W[41];
+    W[697] = W[11] * W[695] + W[229] * W[477] + W[447] * W[259] + W[665] * W[41];
+    W[673] = W[667] + W[671];
+    W[674] = W[668] + W[672];
+    W[677] = (W[240] * W[460] + 2.0 * W[458] * W[242] + 3.0 * W[676] * W[24]) / 3.0;
+    W[678] = -((W[240] * W[459] + 2.0 * W[458] * W[241] + 3.0 * W[676] * W[23])) / 3.0;
+    W[714] = W[57] * W[671];
+    W[747] = W[671] + W[746];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_37(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[703] = W[46] * W[702] + W[264] * W[484] + W[482] * W[266] + W[700] * W[48];
+    W[704] = W[46] * W[701] + W[264] * W[483] + W[482] * W[265] + W[700] * W[47];
+    W[706] = W[24] * W[705] + W[242] * W[487] + W[460] * W[269] + W[678] * W[51];
+    W[707] = W[23] * W[705] + W[241] * W[487] + W[459] * W[269] + W[677] * W[51];
+    W[715] = W[712] - W[714];
+    W[727] = W[673] + W[679];
+    W[730] = W[674] + W[680];
+    W[755] = W[747] + W[748];
+    W[758] = W[751] + W[752];
+    W[783] = W[776] + W[777];
+    W[786] = W[779] + W[780];
+    W[800] = W[672] + W[799];
+    W[803] = W[671] + W[802];
+    W[819] = W[703] + W[817];
+    W[820] = W[704] + W[818];
+    W[708] = W[51] * W[707] + W[269] * W[489] + W[487] * W[271] + W[705] * W[53];
+    W[709] = W[51] * W[706] + W[269] * W[488] + W[487] * W[270] + W[705] * W[52];
+    W[724] = W[23] * W[679] + W[241] * W[461] + W[459] * W[243] + W[677] * W[25];
+    W[725] = W[24] * W[680] + W[242] * W[462] + W[460] * W[244] + W[678] * W[26];
+    W[749] = W[23] * W[748] + W[241] * W[530] + W[459] * W[312] + W[677] * W[94];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_39(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[756] = W[17] * W[755] + W[235] * W[537] + W[453] * W[319] + W[671] * W[101];
+    W[759] = W[18] * W[758] + W[236] * W[540] + W[454] * W[322] + W[672] * W[104];
+    W[784] = W[17] * W[783] + W[235] * W[565] + W[453] * W[347] + W[671] * W[129];
+    W[787] = W[18] * W[786] + W[236] * W[568] + W[454] * W[350] + W[672] * W[132];
+    W[801] = W[18] * W[800] + W[236] * W[582] + W[454] * W[364] + W[672] * W[146];
+    W[804] = W[17] * W[803] + W[235] * W[585] + W[453] * W[367] + W[671] * W[149];
+    W[721] = W[718] - W[720];
+    W[729] = W[726] + W[728];
+    W[739] = W[661] + W[733];
+    W[742] = W[662] + W[736];
+    W[757] = W[754] + W[756];
+    W[767] = W[659] + W[761];
+    W[770] = W[660] + W[764];
+    W[785] = W[782] + W[784];
+    W[808] = W[804] + W[807];
+    W[811] = W[33] * W[726];
+    W[812] = W[33] * W[754];
+    W[813] = W[33] * W[782];
+    W[814] = W[33] * W[807];
+    W[825] = W[820] + W[822];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_41(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[743] = W[6] * W[742] + W[224] * W[524] + W[442] * W[306] + W[660] * W[88];
+    W[768] = W[5] * W[767] + W[223] * W[549] + W[441] * W[331] + W[659] * W[113];
+    W[771] = W[6] * W[770] + W[224] * W[552] + W[442] * W[334] + W[660] * W[116];
+    W[826] = W[17] * W[825] + W[235] * W[607] + W[453] * W[389] + W[671] * W[171];
+    W[828] = W[18] * W[827] + W[236] * W[609] + W[454] * W[391] + W[672] * W[173];
+    W[735] = W[732] + W[734];
+    W[763] = W[760] + W[762];
+    W[791] = W[788] + W[790];
+    W[796] = W[33] * W[732];
+    W[797] = W[33] * W[760];
+    W[798] = W[33] * W[788];
+    W[810] = W[33] * W[809];
+    W[833] = W[816] + W[829];
+    W[835] = W[815] + W[831];
+    W[838] = W[826] + W[837];
+    W[842] = W[33] * W[837];
+    W[830] = W[11] * W[829] + W[229] * W[611] + W[447] * W[393] + W[665] * W[175];
+    W[832] = W[12] * W[831] + W[230] * W[613] + W[448] * W[395] + W[666] * W[177];
+    W[845] = W[1] * W[844] + W[219] * W[626] + W[437] * W[408] + W[655] * W[190];
+    W[848] = W[2] * W[847] + W[220] * W[629] + W[438] * W[411] + W[656] * W[193];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_43(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[841] = W[715] + W[840];
+    W[852] = W[851] - W[832];
+    W[745] = W[33] * W[744];
+    W[773] = W[33] * W[772];
+    W[846] = W[744] + W[845];
+    W[853] = W[33] * W[852];
+    W[854] = W[834] + W[852];
+    W[849] = W[846] + W[848];
+    W[855] = W[854] - W[836];
+    W[866] = W[718] + W[853];
+    W[850] = W[33] * W[849];
+    W[856] = W[33] * W[855];
+    W[860] = W[855] + W[859];
+    W[862] = W[860] - W[861];
+    W[865] = W[721] + W[856];
+    W[863] = W[33] * W[862];
+    W[864] = W[723] + W[863];
+    X[40] = X[35] / 4.0;
+    X[41] = X[36] / 4.0;
+    X[42] = X[37] / 4.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_45(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[873] = (X[10] * W[656] + 2.0 * X[20] * W[438] + 3.0 * X[30] * W[220] + 4.0 * X[40] * W[2]) / 4.0;
+    W[874] = -((X[10] * W[655] + 2.0 * X[20] * W[437] + 3.0 * X[30] * W[219] + 4.0 * X[40] * W[1])) / 4.0;
+    W[876] = X[40] + X[41];
+    W[904] = (X[5] * X[45] + X[15] * X[35]) * 2.0 + X[25] * X[25];
+    W[908] = X[45] + X[46];
+    W[877] = (W[222] * W[660] + 2.0 * W[440] * W[442] + 3.0 * W[658] * W[224] + 4.0 * W[876] * W[6]) / 4.0;
+    W[878] = -((W[222] * W[659] + 2.0 * W[440] * W[441] + 3.0 * W[658] * W[223] + 4.0 * W[876] * W[5])) / 4.0;
+    W[882] = W[876] + X[42];
+    W[913] = X[47] + W[908];
+    W[940] = W[65] * W[873];
+    W[906] = W[1] * W[904] + W[219] * W[686] + W[437] * W[468] + W[655] * W[250] + W[873] * W[32];
+    W[907] = W[2] * W[904] + W[220] * W[686] + W[438] * W[468] + W[656] * W[250] + W[874] * W[32];
+    W[879] = W[873] + W[877];
+    W[880] = W[874] + W[878];
+    W[883] = (W[228] * W[666] + 2.0 * W[446] * W[448] + 3.0 * W[664] * W[230] + 4.0 * W[882] * W[12]) / 4.0;
+    W[884] = -((W[228] * W[665] + 2.0 * W[446] * W[447] + 3.0 * W[664] * W[229] + 4.0 * W[882] * W[11])) / 4.0;
+    W[888] = W[882] + X[43];
+    W[918] = X[48] + W[913];
+    W[938] = W[62] * W[877];
+    W[909] = W[6] * W[908] + W[224] * W[690] + W[442] * W[472] + W[660] * W[254] + W[878] * W[36];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_47(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[969] = W[890] + W[968];
+    W[994] = W[883] + W[889];
+    W[997] = W[884] + W[890];
+    W[1033] = W[906] + W[911];
+    W[1034] = W[907] + W[912];
+    W[916] = W[41] * W[915] + W[259] * W[697] + W[477] * W[479] + W[695] * W[261] + W[913] * W[43];
+    W[917] = W[41] * W[914] + W[259] * W[696] + W[477] * W[478] + W[695] * W[260] + W[913] * W[42];
+    W[919] = W[18] * W[918] + W[236] * W[700] + W[454] * W[482] + W[672] * W[264] + W[890] * W[46];
+    W[920] = W[17] * W[918] + W[235] * W[700] + W[453] * W[482] + W[671] * W[264] + W[889] * W[46];
+    W[897] = W[891] + W[895];
+    W[898] = W[892] + W[896];
+    W[930] = W[56] * W[895];
+    W[966] = W[895] + W[965];
+    W[970] = W[896] + W[969];
+    W[995] = W[895] + W[994];
+    W[998] = W[896] + W[997];
+    W[1017] = W[890] + W[896];
+    W[1020] = W[889] + W[895];
+    W[1035] = W[916] + W[1033];
+    W[1036] = W[917] + W[1034];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_49(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[971] = W[24] * W[970] + W[242] * W[752] + W[460] * W[534] + W[678] * W[316] + W[896] * W[98];
+    W[996] = W[23] * W[995] + W[241] * W[777] + W[459] * W[559] + W[677] * W[341] + W[895] * W[123];
+    W[999] = W[24] * W[998] + W[242] * W[780] + W[460] * W[562] + W[678] * W[344] + W[896] * W[126];
+    W[1023] = W[23] * W[1020] + W[241] * W[802] + W[459] * W[584] + W[677] * W[366] + W[895] * W[148];
+    W[1024] = W[24] * W[1017] + W[242] * W[799] + W[460] * W[581] + W[678] * W[363] + W[896] * W[145];
+    W[936] = W[933] - W[935];
+    W[944] = W[942] + W[943];
+    W[951] = W[885] + W[945];
+    W[954] = W[886] + W[948];
+    W[972] = W[967] + W[971];
+    W[979] = W[964] + W[973];
+    W[982] = W[968] + W[976];
+    W[1000] = W[996] + W[999];
+    W[1007] = W[883] + W[1001];
+    W[1010] = W[884] + W[1004];
+    W[1025] = W[1023] + W[1024];
+    W[1039] = W[926] + W[1037];
+    W[1040] = W[927] + W[1038];
+    W[946] = W[17] * W[945] + W[235] * W[727] + W[453] * W[509] + W[671] * W[291] + W[889] * W[73];
+    W[949] = W[18] * W[948] + W[236] * W[730] + W[454] * W[512] + W[672] * W[294] + W[890] * W[76];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_51(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1045] = W[1037] + W[1039];
+    W[952] = W[11] * W[951] + W[229] * W[733] + W[447] * W[515] + W[665] * W[297] + W[883] * W[79];
+    W[955] = W[12] * W[954] + W[230] * W[736] + W[448] * W[518] + W[666] * W[300] + W[884] * W[82];
+    W[980] = W[11] * W[979] + W[229] * W[761] + W[447] * W[543] + W[665] * W[325] + W[883] * W[107];
+    W[983] = W[12] * W[982] + W[230] * W[764] + W[448] * W[546] + W[666] * W[328] + W[884] * W[110];
+    W[1008] = W[11] * W[1007] + W[229] * W[789] + W[447] * W[571] + W[665] * W[353] + W[883] * W[135];
+    W[1011] = W[12] * W[1010] + W[230] * W[792] + W[448] * W[574] + W[666] * W[356] + W[884] * W[138];
+    W[1041] = W[23] * W[1040] + W[241] * W[822] + W[459] * W[604] + W[677] * W[386] + W[895] * W[168];
+    W[1042] = W[24] * W[1039] + W[242] * W[821] + W[460] * W[603] + W[678] * W[385] + W[896] * W[167];
+    W[941] = W[939] - W[940];
+    W[950] = W[947] + W[949];
+    W[978] = W[975] + W[977];
+    W[1006] = W[1003] + W[1005];
+    W[1027] = W[1019] + W[1026];
+    W[1047] = W[1036] + W[1043];
+    W[1049] = W[1035] + W[1045];
+    W[1055] = W[1041] - W[1042];
+    W[1062] = W[873] + W[957];
+    W[1065] = W[874] + W[960];
+    W[958] = W[5] * W[957] + W[223] * W[739] + W[441] * W[521] + W[659] * W[303] + W[877] * W[85];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_53(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[956] = W[953] + W[955];
+    W[984] = W[981] + W[983];
+    W[1012] = W[1009] + W[1011];
+    W[1057] = W[1056] - W[1046];
+    W[1061] = W[930] + W[1060];
+    W[1075] = W[907] + W[1051];
+    W[1076] = W[906] + W[1053];
+    W[1052] = W[5] * W[1051] + W[223] * W[833] + W[441] * W[615] + W[659] * W[397] + W[877] * W[179];
+    W[1054] = W[6] * W[1053] + W[224] * W[835] + W[442] * W[617] + W[660] * W[399] + W[878] * W[181];
+    W[959] = W[956] + W[958];
+    W[987] = W[984] + W[986];
+    W[992] = W[33] * W[956];
+    W[993] = W[33] * W[984];
+    W[1013] = W[33] * W[1012];
+    W[1058] = W[33] * W[1057];
+    W[1069] = W[1048] + W[1057];
+    W[1077] = W[1] * W[1075] + W[219] * W[857] + W[437] * W[639] + W[655] * W[421] + W[873] * W[203];
+    W[1079] = W[2] * W[1076] + W[220] * W[858] + W[438] * W[640] + W[656] * W[422] + W[874] * W[204];
+    W[962] = W[959] + W[961];
+    W[990] = W[987] + W[989];
+    return 0;
+}
+
+/* Lines 200 .. 212 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_55(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[53] = X[48] / 5.0;
+    X[54] = X[49] / 5.0;
+    W[1085] = W[414] * W[867] + W[632] * W[649] + W[850] * W[431] + W[1068] * W[213] + W[309] * W[868]
+            + W[527] * W[650] + W[745] * W[432] + W[963] * W[214] + W[338] * W[869] + W[556] * W[651]
+            + W[774] * W[433] + W[992] * W[215] + W[360] * W[870] + W[578] * W[652] + W[796] * W[434]
+            + W[1014] * W[216] + W[375] * W[871] + W[593] * W[653] + W[811] * W[435] + W[1029] * W[217]
+            + W[1082];
+    W[1086] = W[309] * W[867] + W[527] * W[649] + W[745] * W[431] + W[963] * W[213] + W[337] * W[868]
+            + W[555] * W[650] + W[773] * W[432] + W[991] * W[214] + W[339] * W[869] + W[557] * W[651]
+            + W[775] * W[433] + W[993] * W[215] + W[361] * W[870] + W[579] * W[652] + W[797] * W[434]
+            + W[1015] * W[216] + W[376] * W[871] + W[594] * W[653] + W[812] * W[435] + W[1030] * W[217]
+            + W[1083];
+    W[1087] = W[338] * W[867] + W[556] * W[649] + W[774] * W[431] + W[992] * W[213] + W[339] * W[868]
+            + W[557] * W[650] + W[775] * W[432] + W[993] * W[214] + W[359] * W[869] + W[577] * W[651]
+            + W[795] * W[433] + W[1013] * W[215] + W[362] * W[870] + W[580] * W[652] + W[798] * W[434]
+            + W[1016] * W[216] + W[377] * W[871] + W[595] * W[653] + W[813] * W[435] + W[1031] * W[217]
+            + W[1084];
+    W[1088] = W[360] * W[867] + W[578] * W[649] + W[796] * W[431] + W[1014] * W[213] + W[361] * W[868]
+            + W[579] * W[650] + W[797] * W[432] + W[1015] * W[214] + W[362] * W[869] + W[580] * W[651]
+            + W[798] * W[433] + W[1016] * W[215] + W[374] * W[870] + W[592] * W[652] + W[810] * W[434]
+            + W[1028] * W[216] + W[378] * W[871] + W[596] * W[653] + W[814] * W[435] + W[1032] * W[217]
+            + W[1059];
+    W[1089] = W[375] * W[867] + W[593] * W[649] + W[811] * W[431] + W[1029] * W[213] + W[376] * W[868]
+            + W[594] * W[650] + W[812] * W[432] + W[1030] * W[214] + W[377] * W[869] + W[595] * W[651]
+            + W[813] * W[433] + W[1031] * W[215] + W[378] * W[870] + W[596] * W[652] + W[814] * W[434]
+            + W[1032] * W[216] + W[1061];
+    if (solve(ctx, 4, NULL, W + 1085))
+        return -1;
+    X[55] = W[1085] / 5.0;
+    X[56] = W[1086] / 5.0;
+    X[57] = W[1087] / 5.0;
+    X[58] = W[1088] / 5.0;
+    X[59] = W[1089] / 5.0;
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_57(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1128] = W[5] * W[1126] + W[223] * W[908] + W[441] * W[690] + W[659] * W[472] + W[877] * W[254]
+            + W[1095] * W[36];
+    W[1103] = W[1097] + W[1101];
+    W[1104] = W[1098] + W[1102];
+    W[1107] = (W[234] * W[890] + 2.0 * W[452] * W[672] + 3.0 * W[670] * W[454] + 4.0 * W[888] * W[236]
+            + 5.0 * W[1106] * W[18]) / 5.0;
+    W[1108] = -((W[234] * W[889] + 2.0 * W[452] * W[671] + 3.0 * W[670] * W[453] + 4.0 * W[888] * W[235]
+            + 5.0 * W[1106] * W[17])) / 5.0;
+    W[1112] = W[1106] + X[54];
+    W[1141] = X[59] + W[1136];
+    W[1153] = W[59] * W[1101];
+    W[1182] = W[1095] + W[1101];
+    W[1186] = W[1096] + W[1102];
+    W[1129] = W[36] * W[1128] + W[254] * W[910] + W[472] * W[692] + W[690] * W[474] + W[908] * W[256]
+            + W[1126] * W[38];
+    W[1130] = W[36] * W[1127] + W[254] * W[909] + W[472] * W[691] + W[690] * W[473] + W[908] * W[255]
+            + W[1126] * W[37];
+    W[1132] = W[12] * W[1131] + W[230] * W[913] + W[448] * W[695] + W[666] * W[477] + W[884] * W[259]
+            + W[1102] * W[41];
+    W[1133] = W[11] * W[1131] + W[229] * W[913] + W[447] * W[695] + W[665] * W[477] + W[883] * W[259]
+            + W[1101] * W[41];
+    W[1109] = W[1103] + W[1107];
+    W[1110] = W[1104] + W[1108];
+    W[1113] = (W[240] * W[896] + 2.0 * W[458] * W[678] + 3.0 * W[676] * W[460] + 4.0 * W[894] * W[242]
+            + 5.0 * W[1112] * W[24]) / 5.0;
+    W[1114] = -((W[240] * W[895] + 2.0 * W[458] * W[677] + 3.0 * W[676] * W[459] + 4.0 * W[894] * W[241]
+            + 5.0 * W[1112] * W[23])) / 5.0;
+    W[1150] = W[57] * W[1107];
+    W[1183] = W[1107] + W[1182];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_59(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1139] = W[46] * W[1138] + W[264] * W[920] + W[482] * W[702] + W[700] * W[484] + W[918] * W[266]
+            + W[1136] * W[48];
+    W[1140] = W[46] * W[1137] + W[264] * W[919] + W[482] * W[701] + W[700] * W[483] + W[918] * W[265]
+            + W[1136] * W[47];
+    W[1142] = W[24] * W[1141] + W[242] * W[923] + W[460] * W[705] + W[678] * W[487] + W[896] * W[269]
+            + W[1114] * W[51];
+    W[1143] = W[23] * W[1141] + W[241] * W[923] + W[459] * W[705] + W[677] * W[487] + W[895] * W[269]
+            + W[1113] * W[51];
+    W[1151] = W[1148] - W[1150];
+    W[1163] = W[1109] + W[1115];
+    W[1166] = W[1110] + W[1116];
+    W[1191] = W[1183] + W[1184];
+    W[1194] = W[1187] + W[1188];
+    W[1219] = W[1212] + W[1213];
+    W[1222] = W[1215] + W[1216];
+    W[1236] = W[1108] + W[1235];
+    W[1239] = W[1107] + W[1238];
+    W[1255] = W[1139] + W[1253];
+    W[1256] = W[1140] + W[1254];
+    W[1144] = W[51] * W[1143] + W[269] * W[925] + W[487] * W[707] + W[705] * W[489] + W[923] * W[271]
+            + W[1141] * W[53];
+    W[1145] = W[51] * W[1142] + W[269] * W[924] + W[487] * W[706] + W[705] * W[488] + W[923] * W[270]
+            + W[1141] * W[52];
+    W[1160] = W[23] * W[1115] + W[241] * W[897] + W[459] * W[679] + W[677] * W[461] + W[895] * W[243]
+            + W[1113] * W[25];
+    W[1161] = W[24] * W[1116] + W[242] * W[898] + W[460] * W[680] + W[678] * W[462] + W[896] * W[244]
+            + W[1114] * W[26];
+    W[1185] = W[23] * W[1184] + W[241] * W[966] + W[459] * W[748] + W[677] * W[530] + W[895] * W[312]
+            + W[1113] * W[94];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_62(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1263] = W[1255] + W[1257];
+    W[1170] = W[11] * W[1169] + W[229] * W[951] + W[447] * W[733] + W[665] * W[515] + W[883] * W[297]
+            + W[1101] * W[79];
+    W[1173] = W[12] * W[1172] + W[230] * W[954] + W[448] * W[736] + W[666] * W[518] + W[884] * W[300]
+            + W[1102] * W[82];
+    W[1198] = W[11] * W[1197] + W[229] * W[979] + W[447] * W[761] + W[665] * W[543] + W[883] * W[325]
+            + W[1101] * W[107];
+    W[1201] = W[12] * W[1200] + W[230] * W[982] + W[448] * W[764] + W[666] * W[546] + W[884] * W[328]
+            + W[1102] * W[110];
+    W[1226] = W[11] * W[1225] + W[229] * W[1007] + W[447] * W[789] + W[665] * W[571] + W[883] * W[353]
+            + W[1101] * W[135];
+    W[1229] = W[12] * W[1228] + W[230] * W[1010] + W[448] * W[792] + W[666] * W[574] + W[884] * W[356]
+            + W[1102] * W[138];
+    W[1259] = W[23] * W[1258] + W[241] * W[1040] + W[459] * W[822] + W[677] * W[604] + W[895] * W[386]
+            + W[1113] * W[168];
+    W[1260] = W[24] * W[1257] + W[242] * W[1039] + W[460] * W[821] + W[678] * W[603] + W[896] * W[385]
+            + W[1114] * W[167];
+    W[1159] = W[1157] - W[1158];
+    W[1168] = W[1165] + W[1167];
+    W[1196] = W[1193] + W[1195];
+    W[1224] = W[1221] + W[1223];
+    W[1245] = W[1237] + W[1244];
+    W[1265] = W[1254] + W[1261];
+    W[1267] = W[1253] + W[1263];
+    W[1273] = W[1259] - W[1260];
+    W[1280] = W[1091] + W[1175];
+    W[1283] = W[1092] + W[1178];
+    W[1176] = W[5] * W[1175] + W[223] * W[957] + W[441] * W[739] + W[659] * W[521] + W[877] * W[303]
+            + W[1095] * W[85];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_64(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1174] = W[1171] + W[1173];
+    W[1202] = W[1199] + W[1201];
+    W[1230] = W[1227] + W[1229];
+    W[1275] = W[1274] - W[1264];
+    W[1279] = W[1148] + W[1278];
+    W[1293] = W[1125] + W[1269];
+    W[1294] = W[1124] + W[1271];
+    W[1270] = W[5] * W[1269] + W[223] * W[1051] + W[441] * W[833] + W[659] * W[615] + W[877] * W[397]
+            + W[1095] * W[179];
+    W[1272] = W[6] * W[1271] + W[224] * W[1053] + W[442] * W[835] + W[660] * W[617] + W[878] * W[399]
+            + W[1096] * W[181];
+    W[1177] = W[1174] + W[1176];
+    W[1205] = W[1202] + W[1204];
+    W[1210] = W[33] * W[1174];
+    W[1211] = W[33] * W[1202];
+    W[1231] = W[33] * W[1230];
+    W[1276] = W[33] * W[1275];
+    W[1287] = W[1266] + W[1275];
+    W[1295] = W[1] * W[1293] + W[219] * W[1075] + W[437] * W[857] + W[655] * W[639] + W[873] * W[421]
+            + W[1091] * W[203];
+    W[1297] = W[2] * W[1294] + W[220] * W[1076] + W[438] * W[858] + W[656] * W[640] + W[874] * W[422]
+            + W[1092] * W[204];
+    W[1180] = W[1177] + W[1179];
+    W[1208] = W[1205] + W[1207];
+    return 0;
+}
+
+/* Lines 200 .. 212 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_66(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[63] = X[58] / 6.0;
+    X[64] = X[59] / 6.0;
+    W[1303] = W[414] * W[1085] + W[632] * W[867] + W[850] * W[649] + W[1068] * W[431] + W[1286] * W[213]
+            + W[309] * W[1086] + W[527] * W[868] + W[745] * W[650] + W[963] * W[432] + W[1181] * W[214]
+            + W[338] * W[1087] + W[556] * W[869] + W[774] * W[651] + W[992] * W[433] + W[1210] * W[215]
+            + W[360] * W[1088] + W[578] * W[870] + W[796] * W[652] + W[1014] * W[434] + W[1232] * W[216]
+            + W[375] * W[1089] + W[593] * W[871] + W[811] * W[653] + W[1029] * W[435] + W[1247] * W[217]
+            + W[1300];
+    W[1304] = W[309] * W[1085] + W[527] * W[867] + W[745] * W[649] + W[963] * W[431] + W[1181] * W[213]
+            + W[337] * W[1086] + W[555] * W[868] + W[773] * W[650] + W[991] * W[432] + W[1209] * W[214]
+            + W[339] * W[1087] + W[557] * W[869] + W[775] * W[651] + W[993] * W[433] + W[1211] * W[215]
+            + W[361] * W[1088] + W[579] * W[870] + W[797] * W[652] + W[1015] * W[434] + W[1233] * W[216]
+            + W[376] * W[1089] + W[594] * W[871] + W[812] * W[653] + W[1030] * W[435] + W[1248] * W[217]
+            + W[1301];
+    W[1305] = W[338] * W[1085] + W[556] * W[867] + W[774] * W[649] + W[992] * W[431] + W[1210] * W[213]
+            + W[339] * W[1086] + W[557] * W[868] + W[775] * W[650] + W[993] * W[432] + W[1211] * W[214]
+            + W[359] * W[1087] + W[577] * W[869] + W[795] * W[651] + W[1013] * W[433] + W[1231] * W[215]
+            + W[362] * W[1088] + W[580] * W[870] + W[798] * W[652] + W[1016] * W[434] + W[1234] * W[216]
+            + W[377] * W[1089] + W[595] * W[871] + W[813] * W[653] + W[1031] * W[435] + W[1249] * W[217]
+            + W[1302];
+    W[1306] = W[360] * W[1085] + W[578] * W[867] + W[796] * W[649] + W[1014] * W[431] + W[1232] * W[213]
+            + W[361] * W[1086] + W[579] * W[868] + W[797] * W[650] + W[1015] * W[432] + W[1233] * W[214]
+            + W[362] * W[1087] + W[580] * W[869] + W[798] * W[651] + W[1016] * W[433] + W[1234] * W[215]
+            + W[374] * W[1088] + W[592] * W[870] + W[810] * W[652] + W[1028] * W[434] + W[1246] * W[216]
+            + W[378] * W[1089] + W[596] * W[871] + W[814] * W[653] + W[1032] * W[435] + W[1250] * W[217]
+            + W[1277];
+    W[1307] = W[375] * W[1085] + W[593] * W[867] + W[811] * W[649] + W[1029] * W[431] + W[1247] * W[213]
+            + W[376] * W[1086] + W[594] * W[868] + W[812] * W[650] + W[1030] * W[432] + W[1248] * W[214]
+            + W[377] * W[1087] + W[595] * W[869] + W[813] * W[651] + W[1031] * W[433] + W[1249] * W[215]
+            + W[378] * W[1088] + W[596] * W[870] + W[814] * W[652] + W[1032] * W[434] + W[1250] * W[216]
+            + W[1279];
+    if (solve(ctx, 5, NULL, W + 1303))
+        return -1;
+    X[65] = W[1303] / 6.0;
+    X[66] = W[1304] / 6.0;
+    X[67] = W[1305] / 6.0;
+    X[68] = W[1306] / 6.0;
+    X[69] = W[1307] / 6.0;
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_68(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1346] = W[5] * W[1344] + W[223] * W[1126] + W[441] * W[908] + W[659] * W[690] + W[877] * W[472]
+            + W[1095] * W[254] + W[1313] * W[36];
+    W[1321] = W[1315] + W[1319];
+    W[1322] = W[1316] + W[1320];
+    W[1325] = (W[234] * W[1108] + 2.0 * W[452] * W[890] + 3.0 * W[670] * W[672] + 4.0 * W[888] * W[454]
+            + 5.0 * W[1106] * W[236] + 6.0 * W[1324] * W[18]) / 6.0;
+    W[1326] = -((W[234] * W[1107] + 2.0 * W[452] * W[889] + 3.0 * W[670] * W[671] + 4.0 * W[888] * W[453]
+            + 5.0 * W[1106] * W[235] + 6.0 * W[1324] * W[17])) / 6.0;
+    W[1330] = W[1324] + X[64];
+    W[1359] = X[69] + W[1354];
+    W[1371] = W[59] * W[1319];
+    W[1400] = W[1313] + W[1319];
+    W[1404] = W[1314] + W[1320];
+    W[1347] = W[36] * W[1346] + W[254] * W[1128] + W[472] * W[910] + W[690] * W[692] + W[908] * W[474]
+            + W[1126] * W[256] + W[1344] * W[38];
+    W[1348] = W[36] * W[1345] + W[254] * W[1127] + W[472] * W[909] + W[690] * W[691] + W[908] * W[473]
+            + W[1126] * W[255] + W[1344] * W[37];
+    W[1350] = W[12] * W[1349] + W[230] * W[1131] + W[448] * W[913] + W[666] * W[695] + W[884] * W[477]
+            + W[1102] * W[259] + W[1320] * W[41];
+    W[1351] = W[11] * W[1349] + W[229] * W[1131] + W[447] * W[913] + W[665] * W[695] + W[883] * W[477]
+            + W[1101] * W[259] + W[1319] * W[41];
+    W[1327] = W[1321] + W[1325];
+    W[1328] = W[1322] + W[1326];
+    W[1331] = (W[240] * W[1114] + 2.0 * W[458] * W[896] + 3.0 * W[676] * W[678] + 4.0 * W[894] * W[460]
+            + 5.0 * W[1112] * W[242] + 6.0 * W[1330] * W[24]) / 6.0;
+    W[1332] = -((W[240] * W[1113] + 2.0 * W[458] * W[895] + 3.0 * W[676] * W[677] + 4.0 * W[894] * W[459]
+            + 5.0 * W[1112] * W[241] + 6.0 * W[1330] * W[23])) / 6.0;
+    W[1368] = W[57] * W[1325];
+    W[1401] = W[1325] + W[1400];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_71(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1407] = W[24] * W[1406] + W[242] * W[1188] + W[460] * W[970] + W[678] * W[752] + W[896] * W[534]
+            + W[1114] * W[316] + W[1332] * W[98];
+    W[1432] = W[23] * W[1431] + W[241] * W[1213] + W[459] * W[995] + W[677] * W[777] + W[895] * W[559]
+            + W[1113] * W[341] + W[1331] * W[123];
+    W[1435] = W[24] * W[1434] + W[242] * W[1216] + W[460] * W[998] + W[678] * W[780] + W[896] * W[562]
+            + W[1114] * W[344] + W[1332] * W[126];
+    W[1459] = W[23] * W[1456] + W[241] * W[1238] + W[459] * W[1020] + W[677] * W[802] + W[895] * W[584]
+            + W[1113] * W[366] + W[1331] * W[148];
+    W[1460] = W[24] * W[1453] + W[242] * W[1235] + W[460] * W[1017] + W[678] * W[799] + W[896] * W[581]
+            + W[1114] * W[363] + W[1332] * W[145];
+    W[1372] = W[1369] - W[1371];
+    W[1380] = W[1378] + W[1379];
+    W[1387] = W[1321] + W[1381];
+    W[1390] = W[1322] + W[1384];
+    W[1408] = W[1403] + W[1407];
+    W[1415] = W[1400] + W[1409];
+    W[1418] = W[1404] + W[1412];
+    W[1436] = W[1432] + W[1435];
+    W[1443] = W[1319] + W[1437];
+    W[1446] = W[1320] + W[1440];
+    W[1461] = W[1459] + W[1460];
+    W[1475] = W[1362] + W[1473];
+    W[1476] = W[1363] + W[1474];
+    W[1382] = W[17] * W[1381] + W[235] * W[1163] + W[453] * W[945] + W[671] * W[727] + W[889] * W[509]
+            + W[1107] * W[291] + W[1325] * W[73];
+    W[1385] = W[18] * W[1384] + W[236] * W[1166] + W[454] * W[948] + W[672] * W[730] + W[890] * W[512]
+            + W[1108] * W[294] + W[1326] * W[76];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_73(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1481] = W[1473] + W[1475];
+    W[1388] = W[11] * W[1387] + W[229] * W[1169] + W[447] * W[951] + W[665] * W[733] + W[883] * W[515]
+            + W[1101] * W[297] + W[1319] * W[79];
+    W[1391] = W[12] * W[1390] + W[230] * W[1172] + W[448] * W[954] + W[666] * W[736] + W[884] * W[518]
+            + W[1102] * W[300] + W[1320] * W[82];
+    W[1416] = W[11] * W[1415] + W[229] * W[1197] + W[447] * W[979] + W[665] * W[761] + W[883] * W[543]
+            + W[1101] * W[325] + W[1319] * W[107];
+    W[1419] = W[12] * W[1418] + W[230] * W[1200] + W[448] * W[982] + W[666] * W[764] + W[884] * W[546]
+            + W[1102] * W[328] + W[1320] * W[110];
+    W[1444] = W[11] * W[1443] + W[229] * W[1225] + W[447] * W[1007] + W[665] * W[789] + W[883] * W[571]
+            + W[1101] * W[353] + W[1319] * W[135];
+    W[1447] = W[12] * W[1446] + W[230] * W[1228] + W[448] * W[1010] + W[666] * W[792] + W[884] * W[574]
+            + W[1102] * W[356] + W[1320] * W[138];
+    W[1477] = W[23] * W[1476] + W[241] * W[1258] + W[459] * W[1040] + W[677] * W[822] + W[895] * W[604]
+            + W[1113] * W[386] + W[1331] * W[168];
+    W[1478] = W[24] * W[1475] + W[242] * W[1257] + W[460] * W[1039] + W[678] * W[821] + W[896] * W[603]
+            + W[1114] * W[385] + W[1332] * W[167];
+    W[1377] = W[1375] - W[1376];
+    W[1386] = W[1383] + W[1385];
+    W[1414] = W[1411] + W[1413];
+    W[1442] = W[1439] + W[1441];
+    W[1463] = W[1455] + W[1462];
+    W[1483] = W[1472] + W[1479];
+    W[1485] = W[1471] + W[1481];
+    W[1491] = W[1477] - W[1478];
+    W[1498] = W[1309] + W[1393];
+    W[1501] = W[1310] + W[1396];
+    W[1394] = W[5] * W[1393] + W[223] * W[1175] + W[441] * W[957] + W[659] * W[739] + W[877] * W[521]
+            + W[1095] * W[303] + W[1313] * W[85];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_75(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1392] = W[1389] + W[1391];
+    W[1420] = W[1417] + W[1419];
+    W[1448] = W[1445] + W[1447];
+    W[1493] = W[1492] - W[1482];
+    W[1497] = W[1366] + W[1496];
+    W[1511] = W[1343] + W[1487];
+    W[1512] = W[1342] + W[1489];
+    W[1488] = W[5] * W[1487] + W[223] * W[1269] + W[441] * W[1051] + W[659] * W[833] + W[877] * W[615]
+            + W[1095] * W[397] + W[1313] * W[179];
+    W[1490] = W[6] * W[1489] + W[224] * W[1271] + W[442] * W[1053] + W[660] * W[835] + W[878] * W[617]
+            + W[1096] * W[399] + W[1314] * W[181];
+    W[1395] = W[1392] + W[1394];
+    W[1423] = W[1420] + W[1422];
+    W[1428] = W[33] * W[1392];
+    W[1429] = W[33] * W[1420];
+    W[1449] = W[33] * W[1448];
+    W[1494] = W[33] * W[1493];
+    W[1505] = W[1484] + W[1493];
+    W[1513] = W[1] * W[1511] + W[219] * W[1293] + W[437] * W[1075] + W[655] * W[857] + W[873] * W[639]
+            + W[1091] * W[421] + W[1309] * W[203];
+    W[1515] = W[2] * W[1512] + W[220] * W[1294] + W[438] * W[1076] + W[656] * W[858] + W[874] * W[640]
+            + W[1092] * W[422] + W[1310] * W[204];
+    W[1398] = W[1395] + W[1397];
+    W[1426] = W[1423] + W[1425];
+    return 0;
+}
+
+/* Lines 200 .. 212 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_77(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[73] = X[68] / 7.0;
+    X[74] = X[69] / 7.0;
+    W[1521] = W[414] * W[1303] + W[632] * W[1085] + W[850] * W[867] + W[1068] * W[649] + W[1286] * W[431]
+            + W[1504] * W[213] + W[309] * W[1304] + W[527] * W[1086] + W[745] * W[868] + W[963] * W[650]
+            + W[1181] * W[432] + W[1399] * W[214] + W[338] * W[1305] + W[556] * W[1087] + W[774] * W[869]
+            + W[992] * W[651] + W[1210] * W[433] + W[1428] * W[215] + W[360] * W[1306] + W[578] * W[1088]
+            + W[796] * W[870] + W[1014] * W[652] + W[1232] * W[434] + W[1450] * W[216] + W[375] * W[1307]
+            + W[593] * W[1089] + W[811] * W[871] + W[1029] * W[653] + W[1247] * W[435] + W[1465] * W[217]
+            + W[1518];
+    W[1522] = W[309] * W[1303] + W[527] * W[1085] + W[745] * W[867] + W[963] * W[649] + W[1181] * W[431]
+            + W[1399] * W[213] + W[337] * W[1304] + W[555] * W[1086] + W[773] * W[868] + W[991] * W[650]
+            + W[1209] * W[432] + W[1427] * W[214] + W[339] * W[1305] + W[557] * W[1087] + W[775] * W[869]
+            + W[993] * W[651] + W[1211] * W[433] + W[1429] * W[215] + W[361] * W[1306] + W[579] * W[1088]
+            + W[797] * W[870] + W[1015] * W[652] + W[1233] * W[434] + W[1451] * W[216] + W[376] * W[1307]
+            + W[594] * W[1089] + W[812] * W[871] + W[1030] * W[653] + W[1248] * W[435] + W[1466] * W[217]
+            + W[1519];
+    W[1523] = W[338] * W[1303] + W[556] * W[1085] + W[774] * W[867] + W[992] * W[649] + W[1210] * W[431]
+            + W[1428] * W[213] + W[339] * W[1304] + W[557] * W[1086] + W[775] * W[868] + W[993] * W[650]
+            + W[1211] * W[432] + W[1429] * W[214] + W[359] * W[1305] + W[577] * W[1087] + W[795] * W[869]
+            + W[1013] * W[651] + W[1231] * W[433] + W[1449] * W[215] + W[362] * W[1306] + W[580] * W[1088]
+            + W[798] * W[870] + W[1016] * W[652] + W[1234] * W[434] + W[1452] * W[216] + W[377] * W[1307]
+            + W[595] * W[1089] + W[813] * W[871] + W[1031] * W[653] + W[1249] * W[435] + W[1467] * W[217]
+            + W[1520];
+    W[1524] = W[360] * W[1303] + W[578] * W[1085] + W[796] * W[867] + W[1014] * W[649] + W[1232] * W[431]
+            + W[1450] * W[213] + W[361] * W[1304] + W[579] * W[1086] + W[797] * W[868] + W[1015] * W[650]
+            + W[1233] * W[432] + W[1451] * W[214] + W[362] * W[1305] + W[580] * W[1087] + W[798] * W[869]
+            + W[1016] * W[651] + W[1234] * W[433] + W[1452] * W[215] + W[374] * W[1306] + W[592] * W[1088]
+            + W[810] * W[870] + W[1028] * W[652] + W[1246] * W[434] + W[1464] * W[216] + W[378] * W[1307]
+            + W[596] * W[1089] + W[814] * W[871] + W[1032] * W[653] + W[1250] * W[435] + W[1468] * W[217]
+            + W[1495];
+    W[1525] = W[375] * W[1303] + W[593] * W[1085] + W[811] * W[867] + W[1029] * W[649] + W[1247] * W[431]
+            + W[1465] * W[213] + W[376] * W[1304] + W[594] * W[1086] + W[812] * W[868] + W[1030] * W[650]
+            + W[1248] * W[432] + W[1466] * W[214] + W[377] * W[1305] + W[595] * W[1087] + W[813] * W[869]
+            + W[1031] * W[651] + W[1249] * W[433] + W[1467] * W[215] + W[378] * W[1306] + W[596] * W[1088]
+            + W[814] * W[870] + W[1032] * W[652] + W[1250] * W[434] + W[1468] * W[216] + W[1497];
+    if (solve(ctx, 6, NULL, W + 1521))
+        return -1;
+    X[75] = W[1521] / 7.0;
+    X[76] = W[1522] / 7.0;
+    X[77] = W[1523] / 7.0;
+    X[78] = W[1524] / 7.0;
+    X[79] = W[1525] / 7.0;
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_80(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1623] = W[1544] + W[1622];
+    W[1648] = W[1537] + W[1543];
+    W[1651] = W[1538] + W[1544];
+    W[1687] = W[1560] + W[1565];
+    W[1688] = W[1561] + W[1566];
+    W[1570] = W[41] * W[1569] + W[259] * W[1351] + W[477] * W[1133] + W[695] * W[915] + W[913] * W[697]
+            + W[1131] * W[479] + W[1349] * W[261] + W[1567] * W[43];
+    W[1571] = W[41] * W[1568] + W[259] * W[1350] + W[477] * W[1132] + W[695] * W[914] + W[913] * W[696]
+            + W[1131] * W[478] + W[1349] * W[260] + W[1567] * W[42];
+    W[1573] = W[18] * W[1572] + W[236] * W[1354] + W[454] * W[1136] + W[672] * W[918] + W[890] * W[700]
+            + W[1108] * W[482] + W[1326] * W[264] + W[1544] * W[46];
+    W[1574] = W[17] * W[1572] + W[235] * W[1354] + W[453] * W[1136] + W[671] * W[918] + W[889] * W[700]
+            + W[1107] * W[482] + W[1325] * W[264] + W[1543] * W[46];
+    W[1551] = W[1545] + W[1549];
+    W[1552] = W[1546] + W[1550];
+    W[1584] = W[56] * W[1549];
+    W[1620] = W[1549] + W[1619];
+    W[1624] = W[1550] + W[1623];
+    W[1649] = W[1549] + W[1648];
+    W[1652] = W[1550] + W[1651];
+    W[1671] = W[1544] + W[1550];
+    W[1674] = W[1543] + W[1549];
+    W[1689] = W[1570] + W[1687];
+    W[1690] = W[1571] + W[1688];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_81(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1575] = W[46] * W[1574] + W[264] * W[1356] + W[482] * W[1138] + W[700] * W[920] + W[918] * W[702]
+            + W[1136] * W[484] + W[1354] * W[266] + W[1572] * W[48];
+    W[1576] = W[46] * W[1573] + W[264] * W[1355] + W[482] * W[1137] + W[700] * W[919] + W[918] * W[701]
+            + W[1136] * W[483] + W[1354] * W[265] + W[1572] * W[47];
+    W[1578] = W[24] * W[1577] + W[242] * W[1359] + W[460] * W[1141] + W[678] * W[923] + W[896] * W[705]
+            + W[1114] * W[487] + W[1332] * W[269] + W[1550] * W[51];
+    W[1579] = W[23] * W[1577] + W[241] * W[1359] + W[459] * W[1141] + W[677] * W[923] + W[895] * W[705]
+            + W[1113] * W[487] + W[1331] * W[269] + W[1549] * W[51];
+    W[1587] = W[1584] - W[1586];
+    W[1599] = W[1545] + W[1551];
+    W[1602] = W[1546] + W[1552];
+    W[1627] = W[1619] + W[1620];
+    W[1630] = W[1623] + W[1624];
+    W[1655] = W[1648] + W[1649];
+    W[1658] = W[1651] + W[1652];
+    W[1672] = W[1544] + W[1671];
+    W[1675] = W[1543] + W[1674];
+    W[1691] = W[1575] + W[1689];
+    W[1692] = W[1576] + W[1690];
+    W[1580] = W[51] * W[1579] + W[269] * W[1361] + W[487] * W[1143] + W[705] * W[925] + W[923] * W[707]
+            + W[1141] * W[489] + W[1359] * W[271] + W[1577] * W[53];
+    W[1581] = W[51] * W[1578] + W[269] * W[1360] + W[487] * W[1142] + W[705] * W[924] + W[923] * W[706]
+            + W[1141] * W[488] + W[1359] * W[270] + W[1577] * W[52];
+    W[1596] = W[23] * W[1551] + W[241] * W[1333] + W[459] * W[1115] + W[677] * W[897] + W[895] * W[679]
+            + W[1113] * W[461] + W[1331] * W[243] + W[1549] * W[25];
+    W[1597] = W[24] * W[1552] + W[242] * W[1334] + W[460] * W[1116] + W[678] * W[898] + W[896] * W[680]
+            + W[1114] * W[462] + W[1332] * W[244] + W[1550] * W[26];
+    W[1621] = W[23] * W[1620] + W[241] * W[1402] + W[459] * W[1184] + W[677] * W[966] + W[895] * W[748]
+            + W[1113] * W[530] + W[1331] * W[312] + W[1549] * W[94];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_83(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1628] = W[17] * W[1627] + W[235] * W[1409] + W[453] * W[1191] + W[671] * W[973] + W[889] * W[755]
+            + W[1107] * W[537] + W[1325] * W[319] + W[1543] * W[101];
+    W[1631] = W[18] * W[1630] + W[236] * W[1412] + W[454] * W[1194] + W[672] * W[976] + W[890] * W[758]
+            + W[1108] * W[540] + W[1326] * W[322] + W[1544] * W[104];
+    W[1656] = W[17] * W[1655] + W[235] * W[1437] + W[453] * W[1219] + W[671] * W[1001] + W[889] * W[783]
+            + W[1107] * W[565] + W[1325] * W[347] + W[1543] * W[129];
+    W[1659] = W[18] * W[1658] + W[236] * W[1440] + W[454] * W[1222] + W[672] * W[1004] + W[890] * W[786]
+            + W[1108] * W[568] + W[1326] * W[350] + W[1544] * W[132];
+    W[1673] = W[18] * W[1672] + W[236] * W[1454] + W[454] * W[1236] + W[672] * W[1018] + W[890] * W[800]
+            + W[1108] * W[582] + W[1326] * W[364] + W[1544] * W[146];
+    W[1676] = W[17] * W[1675] + W[235] * W[1457] + W[453] * W[1239] + W[671] * W[1021] + W[889] * W[803]
+            + W[1107] * W[585] + W[1325] * W[367] + W[1543] * W[149];
+    W[1593] = W[1590] - W[1592];
+    W[1601] = W[1598] + W[1600];
+    W[1611] = W[1533] + W[1605];
+    W[1614] = W[1534] + W[1608];
+    W[1629] = W[1626] + W[1628];
+    W[1639] = W[1531] + W[1633];
+    W[1642] = W[1532] + W[1636];
+    W[1657] = W[1654] + W[1656];
+    W[1680] = W[1676] + W[1679];
+    W[1683] = W[33] * W[1598];
+    W[1684] = W[33] * W[1626];
+    W[1685] = W[33] * W[1654];
+    W[1686] = W[33] * W[1679];
+    W[1697] = W[1692] + W[1694];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_85(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1615] = W[6] * W[1614] + W[224] * W[1396] + W[442] * W[1178] + W[660] * W[960] + W[878] * W[742]
+            + W[1096] * W[524] + W[1314] * W[306] + W[1532] * W[88];
+    W[1640] = W[5] * W[1639] + W[223] * W[1421] + W[441] * W[1203] + W[659] * W[985] + W[877] * W[767]
+            + W[1095] * W[549] + W[1313] * W[331] + W[1531] * W[113];
+    W[1643] = W[6] * W[1642] + W[224] * W[1424] + W[442] * W[1206] + W[660] * W[988] + W[878] * W[770]
+            + W[1096] * W[552] + W[1314] * W[334] + W[1532] * W[116];
+    W[1698] = W[17] * W[1697] + W[235] * W[1479] + W[453] * W[1261] + W[671] * W[1043] + W[889] * W[825]
+            + W[1107] * W[607] + W[1325] * W[389] + W[1543] * W[171];
+    W[1700] = W[18] * W[1699] + W[236] * W[1481] + W[454] * W[1263] + W[672] * W[1045] + W[890] * W[827]
+            + W[1108] * W[609] + W[1326] * W[391] + W[1544] * W[173];
+    W[1607] = W[1604] + W[1606];
+    W[1635] = W[1632] + W[1634];
+    W[1663] = W[1660] + W[1662];
+    W[1668] = W[33] * W[1604];
+    W[1669] = W[33] * W[1632];
+    W[1670] = W[33] * W[1660];
+    W[1682] = W[33] * W[1681];
+    W[1705] = W[1688] + W[1701];
+    W[1707] = W[1687] + W[1703];
+    W[1710] = W[1698] + W[1709];
+    W[1714] = W[33] * W[1709];
+    W[1702] = W[11] * W[1701] + W[229] * W[1483] + W[447] * W[1265] + W[665] * W[1047] + W[883] * W[829]
+            + W[1101] * W[611] + W[1319] * W[393] + W[1537] * W[175];
+    W[1704] = W[12] * W[1703] + W[230] * W[1485] + W[448] * W[1267] + W[666] * W[1049] + W[884] * W[831]
+            + W[1102] * W[613] + W[1320] * W[395] + W[1538] * W[177];
+    W[1717] = W[1] * W[1716] + W[219] * W[1498] + W[437] * W[1280] + W[655] * W[1062] + W[873] * W[844]
+            + W[1091] * W[626] + W[1309] * W[408] + W[1527] * W[190];
+    W[1720] = W[2] * W[1719] + W[220] * W[1501] + W[438] * W[1283] + W[656] * W[1065] + W[874] * W[847]
+            + W[1092] * W[629] + W[1310] * W[411] + W[1528] * W[193];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_87(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1713] = W[1587] + W[1712];
+    W[1724] = W[1723] - W[1704];
+    W[1617] = W[33] * W[1616];
+    W[1645] = W[33] * W[1644];
+    W[1718] = W[1616] + W[1717];
+    W[1725] = W[33] * W[1724];
+    W[1726] = W[1706] + W[1724];
+    W[1721] = W[1718] + W[1720];
+    W[1727] = W[1726] - W[1708];
+    W[1738] = W[1590] + W[1725];
+    W[1722] = W[33] * W[1721];
+    W[1728] = W[33] * W[1727];
+    W[1732] = W[1727] + W[1731];
+    W[1734] = W[1732] - W[1733];
+    W[1737] = W[1593] + W[1728];
+    W[1735] = W[33] * W[1734];
+    W[1736] = W[1595] + W[1735];
+    X[80] = X[75] / 8.0;
+    X[81] = X[76] / 8.0;
+    X[82] = X[77] / 8.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_89(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1745] = (X[10] * W[1528] + 2.0 * X[20] * W[1310] + 3.0 * X[30] * W[1092] + 4.0 * X[40] * W[874]
+            + 5.0 * X[50] * W[656] + 6.0 * X[60] * W[438] + 7.0 * X[70] * W[220] + 8.0 * X[80] * W[2]) / 8.0;
+    W[1746] = -((X[10] * W[1527] + 2.0 * X[20] * W[1309] + 3.0 * X[30] * W[1091] + 4.0 * X[40] * W[873]
+            + 5.0 * X[50] * W[655] + 6.0 * X[60] * W[437] + 7.0 * X[70] * W[219] + 8.0 * X[80] * W[1])) / 8.0;
+    W[1748] = X[80] + X[81];
+    W[1776] = (X[5] * X[85] + X[15] * X[75] + X[25] * X[65] + X[35] * X[55]) * 2.0 + X[45] * X[45];
+    W[1780] = X[85] + X[86];
+    W[1749] = (W[222] * W[1532] + 2.0 * W[440] * W[1314] + 3.0 * W[658] * W[1096] + 4.0 * W[876] * W[878]
+            + 5.0 * W[1094] * W[660] + 6.0 * W[1312] * W[442] + 7.0 * W[1530] * W[224] + 8.0 * W[1748] * W[6]) / 8.0;
+    W[1750] = -((W[222] * W[1531] + 2.0 * W[440] * W[1313] + 3.0 * W[658] * W[1095] + 4.0 * W[876] * W[877]
+            + 5.0 * W[1094] * W[659] + 6.0 * W[1312] * W[441] + 7.0 * W[1530] * W[223] + 8.0 * W[1748] * W[5])) / 8.0;
+    W[1754] = W[1748] + X[82];
+    W[1785] = X[87] + W[1780];
+    W[1812] = W[65] * W[1745];
+    W[1778] = W[1] * W[1776] + W[219] * W[1558] + W[437] * W[1340] + W[655] * W[1122] + W[873] * W[904]
+            + W[1091] * W[686] + W[1309] * W[468] + W[1527] * W[250] + W[1745] * W[32];
+    W[1779] = W[2] * W[1776] + W[220] * W[1558] + W[438] * W[1340] + W[656] * W[1122] + W[874] * W[904]
+            + W[1092] * W[686] + W[1310] * W[468] + W[1528] * W[250] + W[1746] * W[32];
+    W[1751] = W[1745] + W[1749];
+    W[1752] = W[1746] + W[1750];
+    W[1755] = (W[228] * W[1538] + 2.0 * W[446] * W[1320] + 3.0 * W[664] * W[1102] + 4.0 * W[882] * W[884]
+            + 5.0 * W[1100] * W[666] + 6.0 * W[1318] * W[448] + 7.0 * W[1536] * W[230] + 8.0 * W[1754] * W[12]) / 8.0;
+    W[1756] = -((W[228] * W[1537] + 2.0 * W[446] * W[1319] + 3.0 * W[664] * W[1101] + 4.0 * W[882] * W[883]
+            + 5.0 * W[1100] * W[665] + 6.0 * W[1318] * W[447] + 7.0 * W[1536] * W[229] + 8.0 * W[1754] * W[11])) / 8.0;
+    W[1760] = W[1754] + X[83];
+    W[1790] = X[88] + W[1785];
+    W[1810] = W[62] * W[1749];
+    W[1781] = W[6] * W[1780] + W[224] * W[1562] + W[442] * W[1344] + W[660] * W[1126] + W[878] * W[908]
+            + W[1096] * W[690] + W[1314] * W[472] + W[1532] * W[254] + W[1750] * W[36];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_90(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1782] = W[5] * W[1780] + W[223] * W[1562] + W[441] * W[1344] + W[659] * W[1126] + W[877] * W[908]
+            + W[1095] * W[690] + W[1313] * W[472] + W[1531] * W[254] + W[1749] * W[36];
+    W[1757] = W[1751] + W[1755];
+    W[1758] = W[1752] + W[1756];
+    W[1761] = (W[234] * W[1544] + 2.0 * W[452] * W[1326] + 3.0 * W[670] * W[1108] + 4.0 * W[888] * W[890]
+            + 5.0 * W[1106] * W[672] + 6.0 * W[1324] * W[454] + 7.0 * W[1542] * W[236] + 8.0 * W[1760] * W[18]) / 8.0;
+    W[1762] = -((W[234] * W[1543] + 2.0 * W[452] * W[1325] + 3.0 * W[670] * W[1107] + 4.0 * W[888] * W[889]
+            + 5.0 * W[1106] * W[671] + 6.0 * W[1324] * W[453] + 7.0 * W[1542] * W[235] + 8.0 * W[1760] * W[17])) / 8.0;
+    W[1766] = W[1760] + X[84];
+    W[1795] = X[89] + W[1790];
+    W[1807] = W[59] * W[1755];
+    W[1836] = W[1749] + W[1755];
+    W[1840] = W[1750] + W[1756];
+    W[1783] = W[36] * W[1782] + W[254] * W[1564] + W[472] * W[1346] + W[690] * W[1128] + W[908] * W[910]
+            + W[1126] * W[692] + W[1344] * W[474] + W[1562] * W[256] + W[1780] * W[38];
+    W[1784] = W[36] * W[1781] + W[254] * W[1563] + W[472] * W[1345] + W[690] * W[1127] + W[908] * W[909]
+            + W[1126] * W[691] + W[1344] * W[473] + W[1562] * W[255] + W[1780] * W[37];
+    W[1786] = W[12] * W[1785] + W[230] * W[1567] + W[448] * W[1349] + W[666] * W[1131] + W[884] * W[913]
+            + W[1102] * W[695] + W[1320] * W[477] + W[1538] * W[259] + W[1756] * W[41];
+    W[1787] = W[11] * W[1785] + W[229] * W[1567] + W[447] * W[1349] + W[665] * W[1131] + W[883] * W[913]
+            + W[1101] * W[695] + W[1319] * W[477] + W[1537] * W[259] + W[1755] * W[41];
+    W[1763] = W[1757] + W[1761];
+    W[1764] = W[1758] + W[1762];
+    W[1767] = (W[240] * W[1550] + 2.0 * W[458] * W[1332] + 3.0 * W[676] * W[1114] + 4.0 * W[894] * W[896]
+            + 5.0 * W[1112] * W[678] + 6.0 * W[1330] * W[460] + 7.0 * W[1548] * W[242] + 8.0 * W[1766] * W[24]) / 8.0;
+    W[1768] = -((W[240] * W[1549] + 2.0 * W[458] * W[1331] + 3.0 * W[676] * W[1113] + 4.0 * W[894] * W[895]
+            + 5.0 * W[1112] * W[677] + 6.0 * W[1330] * W[459] + 7.0 * W[1548] * W[241] + 8.0 * W[1766] * W[23])) / 8.0;
+    W[1804] = W[57] * W[1761];
+    W[1837] = W[1761] + W[1836];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_93(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1843] = W[24] * W[1842] + W[242] * W[1624] + W[460] * W[1406] + W[678] * W[1188] + W[896] * W[970]
+            + W[1114] * W[752] + W[1332] * W[534] + W[1550] * W[316] + W[1768] * W[98];
+    W[1868] = W[23] * W[1867] + W[241] * W[1649] + W[459] * W[1431] + W[677] * W[1213] + W[895] * W[995]
+            + W[1113] * W[777] + W[1331] * W[559] + W[1549] * W[341] + W[1767] * W[123];
+    W[1871] = W[24] * W[1870] + W[242] * W[1652] + W[460] * W[1434] + W[678] * W[1216] + W[896] * W[998]
+            + W[1114] * W[780] + W[1332] * W[562] + W[1550] * W[344] + W[1768] * W[126];
+    W[1895] = W[23] * W[1892] + W[241] * W[1674] + W[459] * W[1456] + W[677] * W[1238] + W[895] * W[1020]
+            + W[1113] * W[802] + W[1331] * W[584] + W[1549] * W[366] + W[1767] * W[148];
+    W[1896] = W[24] * W[1889] + W[242] * W[1671] + W[460] * W[1453] + W[678] * W[1235] + W[896] * W[1017]
+            + W[1114] * W[799] + W[1332] * W[581] + W[1550] * W[363] + W[1768] * W[145];
+    W[1808] = W[1805] - W[1807];
+    W[1816] = W[1814] + W[1815];
+    W[1823] = W[1757] + W[1817];
+    W[1826] = W[1758] + W[1820];
+    W[1844] = W[1839] + W[1843];
+    W[1851] = W[1836] + W[1845];
+    W[1854] = W[1840] + W[1848];
+    W[1872] = W[1868] + W[1871];
+    W[1879] = W[1755] + W[1873];
+    W[1882] = W[1756] + W[1876];
+    W[1897] = W[1895] + W[1896];
+    W[1911] = W[1798] + W[1909];
+    W[1912] = W[1799] + W[1910];
+    W[1818] = W[17] * W[1817] + W[235] * W[1599] + W[453] * W[1381] + W[671] * W[1163] + W[889] * W[945]
+            + W[1107] * W[727] + W[1325] * W[509] + W[1543] * W[291] + W[1761] * W[73];
+    W[1821] = W[18] * W[1820] + W[236] * W[1602] + W[454] * W[1384] + W[672] * W[1166] + W[890] * W[948]
+            + W[1108] * W[730] + W[1326] * W[512] + W[1544] * W[294] + W[1762] * W[76];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_94(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1846] = W[17] * W[1845] + W[235] * W[1627] + W[453] * W[1409] + W[671] * W[1191] + W[889] * W[973]
+            + W[1107] * W[755] + W[1325] * W[537] + W[1543] * W[319] + W[1761] * W[101];
+    W[1849] = W[18] * W[1848] + W[236] * W[1630] + W[454] * W[1412] + W[672] * W[1194] + W[890] * W[976]
+            + W[1108] * W[758] + W[1326] * W[540] + W[1544] * W[322] + W[1762] * W[104];
+    W[1874] = W[17] * W[1873] + W[235] * W[1655] + W[453] * W[1437] + W[671] * W[1219] + W[889] * W[1001]
+            + W[1107] * W[783] + W[1325] * W[565] + W[1543] * W[347] + W[1761] * W[129];
+    W[1877] = W[18] * W[1876] + W[236] * W[1658] + W[454] * W[1440] + W[672] * W[1222] + W[890] * W[1004]
+            + W[1108] * W[786] + W[1326] * W[568] + W[1544] * W[350] + W[1762] * W[132];
+    W[1891] = W[18] * W[1890] + W[236] * W[1672] + W[454] * W[1454] + W[672] * W[1236] + W[890] * W[1018]
+            + W[1108] * W[800] + W[1326] * W[582] + W[1544] * W[364] + W[1762] * W[146];
+    W[1894] = W[17] * W[1893] + W[235] * W[1675] + W[453] * W[1457] + W[671] * W[1239] + W[889] * W[1021]
+            + W[1107] * W[803] + W[1325] * W[585] + W[1543] * W[367] + W[1761] * W[149];
+    W[1811] = W[1808] - W[1810];
+    W[1819] = W[1816] + W[1818];
+    W[1829] = W[1751] + W[1823];
+    W[1832] = W[1752] + W[1826];
+    W[1847] = W[1844] + W[1846];
+    W[1857] = W[1749] + W[1851];
+    W[1860] = W[1750] + W[1854];
+    W[1875] = W[1872] + W[1874];
+    W[1898] = W[1894] + W[1897];
+    W[1901] = W[33] * W[1816];
+    W[1902] = W[33] * W[1844];
+    W[1903] = W[33] * W[1872];
+    W[1904] = W[33] * W[1897];
+    W[1915] = W[1910] + W[1912];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_96(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1833] = W[6] * W[1832] + W[224] * W[1614] + W[442] * W[1396] + W[660] * W[1178] + W[878] * W[960]
+            + W[1096] * W[742] + W[1314] * W[524] + W[1532] * W[306] + W[1750] * W[88];
+    W[1858] = W[5] * W[1857] + W[223] * W[1639] + W[441] * W[1421] + W[659] * W[1203] + W[877] * W[985]
+            + W[1095] * W[767] + W[1313] * W[549] + W[1531] * W[331] + W[1749] * W[113];
+    W[1861] = W[6] * W[1860] + W[224] * W[1642] + W[442] * W[1424] + W[660] * W[1206] + W[878] * W[988]
+            + W[1096] * W[770] + W[1314] * W[552] + W[1532] * W[334] + W[1750] * W[116];
+    W[1916] = W[17] * W[1915] + W[235] * W[1697] + W[453] * W[1479] + W[671] * W[1261] + W[889] * W[1043]
+            + W[1107] * W[825] + W[1325] * W[607] + W[1543] * W[389] + W[1761] * W[171];
+    W[1918] = W[18] * W[1917] + W[236] * W[1699] + W[454] * W[1481] + W[672] * W[1263] + W[890] * W[1045]
+            + W[1108] * W[827] + W[1326] * W[609] + W[1544] * W[391] + W[1762] * W[173];
+    W[1825] = W[1822] + W[1824];
+    W[1853] = W[1850] + W[1852];
+    W[1881] = W[1878] + W[1880];
+    W[1886] = W[33] * W[1822];
+    W[1887] = W[33] * W[1850];
+    W[1888] = W[33] * W[1878];
+    W[1900] = W[33] * W[1899];
+    W[1923] = W[1906] + W[1919];
+    W[1925] = W[1905] + W[1921];
+    W[1928] = W[1916] + W[1927];
+    W[1932] = W[33] * W[1927];
+    W[1920] = W[11] * W[1919] + W[229] * W[1701] + W[447] * W[1483] + W[665] * W[1265] + W[883] * W[1047]
+            + W[1101] * W[829] + W[1319] * W[611] + W[1537] * W[393] + W[1755] * W[175];
+    W[1922] = W[12] * W[1921] + W[230] * W[1703] + W[448] * W[1485] + W[666] * W[1267] + W[884] * W[1049]
+            + W[1102] * W[831] + W[1320] * W[613] + W[1538] * W[395] + W[1756] * W[177];
+    W[1935] = W[1] * W[1934] + W[219] * W[1716] + W[437] * W[1498] + W[655] * W[1280] + W[873] * W[1062]
+            + W[1091] * W[844] + W[1309] * W[626] + W[1527] * W[408] + W[1745] * W[190];
+    W[1938] = W[2] * W[1937] + W[220] * W[1719] + W[438] * W[1501] + W[656] * W[1283] + W[874] * W[1065]
+            + W[1092] * W[847] + W[1310] * W[629] + W[1528] * W[411] + W[1746] * W[193];
+    return 0;
+}
+
+/* Lines 200 .. 212 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_99(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[93] = X[88] / 9.0;
+    X[94] = X[89] / 9.0;
+    W[1957] = W[414] * W[1739] + W[632] * W[1521] + W[850] * W[1303] + W[1068] * W[1085] + W[1286] * W[867]
+            + W[1504] * W[649] + W[1722] * W[431] + W[1940] * W[213] + W[309] * W[1740] + W[527] * W[1522]
+            + W[745] * W[1304] + W[963] * W[1086] + W[1181] * W[868] + W[1399] * W[650] + W[1617] * W[432]
+            + W[1835] * W[214] + W[338] * W[1741] + W[556] * W[1523] + W[774] * W[1305] + W[992] * W[1087]
+            + W[1210] * W[869] + W[1428] * W[651] + W[1646] * W[433] + W[1864] * W[215] + W[360] * W[1742]
+            + W[578] * W[1524] + W[796] * W[1306] + W[1014] * W[1088] + W[1232] * W[870] + W[1450] * W[652]
+            + W[1668] * W[434] + W[1886] * W[216] + W[375] * W[1743] + W[593] * W[1525] + W[811] * W[1307]
+            + W[1029] * W[1089] + W[1247] * W[871] + W[1465] * W[653] + W[1683] * W[435] + W[1901] * W[217]
+            + W[1954];
+    W[1958] = W[309] * W[1739] + W[527] * W[1521] + W[745] * W[1303] + W[963] * W[1085] + W[1181] * W[867]
+            + W[1399] * W[649] + W[1617] * W[431] + W[1835] * W[213] + W[337] * W[1740] + W[555] * W[1522]
+            + W[773] * W[1304] + W[991] * W[1086] + W[1209] * W[868] + W[1427] * W[650] + W[1645] * W[432]
+            + W[1863] * W[214] + W[339] * W[1741] + W[557] * W[1523] + W[775] * W[1305] + W[993] * W[1087]
+            + W[1211] * W[869] + W[1429] * W[651] + W[1647] * W[433] + W[1865] * W[215] + W[361] * W[1742]
+            + W[579] * W[1524] + W[797] * W[1306] + W[1015] * W[1088] + W[1233] * W[870] + W[1451] * W[652]
+            + W[1669] * W[434] + W[1887] * W[216] + W[376] * W[1743] + W[594] * W[1525] + W[812] * W[1307]
+            + W[1030] * W[1089] + W[1248] * W[871] + W[1466] * W[653] + W[1684] * W[435] + W[1902] * W[217]
+            + W[1955];
+    W[1959] = W[338] * W[1739] + W[556] * W[1521] + W[774] * W[1303] + W[992] * W[1085] + W[1210] * W[867]
+            + W[1428] * W[649] + W[1646] * W[431] + W[1864] * W[213] + W[339] * W[1740] + W[557] * W[1522]
+            + W[775] * W[1304] + W[993] * W[1086] + W[1211] * W[868] + W[1429] * W[650] + W[1647] * W[432]
+            + W[1865] * W[214] + W[359] * W[1741] + W[577] * W[1523] + W[795] * W[1305] + W[1013] * W[1087]
+            + W[1231] * W[869] + W[1449] * W[651] + W[1667] * W[433] + W[1885] * W[215] + W[362] * W[1742]
+            + W[580] * W[1524] + W[798] * W[1306] + W[1016] * W[1088] + W[1234] * W[870] + W[1452] * W[652]
+            + W[1670] * W[434] + W[1888] * W[216] + W[377] * W[1743] + W[595] * W[1525] + W[813] * W[1307]
+            + W[1031] * W[1089] + W[1249] * W[871] + W[1467] * W[653] + W[1685] * W[435] + W[1903] * W[217]
+            + W[1956];
+    W[1960] = W[360] * W[1739] + W[578] * W[1521] + W[796] * W[1303] + W[1014] * W[1085] + W[1232] * W[867]
+            + W[1450] * W[649] + W[1668] * W[431] + W[1886] * W[213] + W[361] * W[1740] + W[579] * W[1522]
+            + W[797] * W[1304] + W[1015] * W[1086] + W[1233] * W[868] + W[1451] * W[650] + W[1669] * W[432]
+            + W[1887] * W[214] + W[362] * W[1741] + W[580] * W[1523] + W[798] * W[1305] + W[1016] * W[1087]
+            + W[1234] * W[869] + W[1452] * W[651] + W[1670] * W[433] + W[1888] * W[215] + W[374] * W[1742]
+            + W[592] * W[1524] + W[810] * W[1306] + W[1028] * W[1088] + W[1246] * W[870] + W[1464] * W[652]
+            + W[1682] * W[434] + W[1900] * W[216] + W[378] * W[1743] + W[596] * W[1525] + W[814] * W[1307]
+            + W[1032] * W[1089] + W[1250] * W[871] + W[1468] * W[653] + W[1686] * W[435] + W[1904] * W[217]
+            + W[1931];
+    W[1961] = W[375] * W[1739] + W[593] * W[1521] + W[811] * W[1303] + W[1029] * W[1085] + W[1247] * W[867]
+            + W[1465] * W[649] + W[1683] * W[431] + W[1901] * W[213] + W[376] * W[1740] + W[594] * W[1522]
+            + W[812] * W[1304] + W[1030] * W[1086] + W[1248] * W[868] + W[1466] * W[650] + W[1684] * W[432]
+            + W[1902] * W[214] + W[377] * W[1741] + W[595] * W[1523] + W[813] * W[1305] + W[1031] * W[1087]
+            + W[1249] * W[869] + W[1467] * W[651] + W[1685] * W[433] + W[1903] * W[215] + W[378] * W[1742]
+            + W[596] * W[1524] + W[814] * W[1306] + W[1032] * W[1088] + W[1250] * W[870] + W[1468] * W[652]
+            + W[1686] * W[434] + W[1904] * W[216] + W[1933];
+    if (solve(ctx, 8, NULL, W + 1957))
+        return -1;
+    X[95] = W[1957] / 9.0;
+    X[96] = W[1958] / 9.0;
+    X[97] = W[1959] / 9.0;
+    X[98] = W[1960] / 9.0;
+    X[99] = W[1961] / 9.0;
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 9, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_102(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2059] = W[1980] + W[2058];
+    W[2084] = W[1973] + W[1979];
+    W[2087] = W[1974] + W[1980];
+    W[2123] = W[1996] + W[2001];
+    W[2124] = W[1997] + W[2002];
+    W[2006] = W[41] * W[2005] + W[259] * W[1787] + W[477] * W[1569] + W[695] * W[1351] + W[913] * W[1133]
+            + W[1131] * W[915] + W[1349] * W[697] + W[1567] * W[479] + W[1785] * W[261] + W[2003] * W[43];
+    W[2007] = W[41] * W[2004] + W[259] * W[1786] + W[477] * W[1568] + W[695] * W[1350] + W[913] * W[1132]
+            + W[1131] * W[914] + W[1349] * W[696] + W[1567] * W[478] + W[1785] * W[260] + W[2003] * W[42];
+    W[2009] = W[18] * W[2008] + W[236] * W[1790] + W[454] * W[1572] + W[672] * W[1354] + W[890] * W[1136]
+            + W[1108] * W[918] + W[1326] * W[700] + W[1544] * W[482] + W[1762] * W[264] + W[1980] * W[46];
+    W[2010] = W[17] * W[2008] + W[235] * W[1790] + W[453] * W[1572] + W[671] * W[1354] + W[889] * W[1136]
+            + W[1107] * W[918] + W[1325] * W[700] + W[1543] * W[482] + W[1761] * W[264] + W[1979] * W[46];
+    W[1987] = W[1981] + W[1985];
+    W[1988] = W[1982] + W[1986];
+    W[2020] = W[56] * W[1985];
+    W[2056] = W[1985] + W[2055];
+    W[2060] = W[1986] + W[2059];
+    W[2085] = W[1985] + W[2084];
+    W[2088] = W[1986] + W[2087];
+    W[2107] = W[1980] + W[1986];
+    W[2110] = W[1979] + W[1985];
+    W[2125] = W[2006] + W[2123];
+    W[2126] = W[2007] + W[2124];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 9, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_104(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2061] = W[24] * W[2060] + W[242] * W[1842] + W[460] * W[1624] + W[678] * W[1406] + W[896] * W[1188]
+            + W[1114] * W[970] + W[1332] * W[752] + W[1550] * W[534] + W[1768] * W[316] + W[1986] * W[98];
+    W[2086] = W[23] * W[2085] + W[241] * W[1867] + W[459] * W[1649] + W[677] * W[1431] + W[895] * W[1213]
+            + W[1113] * W[995] + W[1331] * W[777] + W[1549] * W[559] + W[1767] * W[341] + W[1985] * W[123];
+    W[2089] = W[24] * W[2088] + W[242] * W[1870] + W[460] * W[1652] + W[678] * W[1434] + W[896] * W[1216]
+            + W[1114] * W[998] + W[1332] * W[780] + W[1550] * W[562] + W[1768] * W[344] + W[1986] * W[126];
+    W[2113] = W[23] * W[2110] + W[241] * W[1892] + W[459] * W[1674] + W[677] * W[1456] + W[895] * W[1238]
+            + W[1113] * W[1020] + W[1331] * W[802] + W[1549] * W[584] + W[1767] * W[366] + W[1985] * W[148];
+    W[2114] = W[24] * W[2107] + W[242] * W[1889] + W[460] * W[1671] + W[678] * W[1453] + W[896] * W[1235]
+            + W[1114] * W[1017] + W[1332] * W[799] + W[1550] * W[581] + W[1768] * W[363] + W[1986] * W[145];
+    W[2026] = W[2023] - W[2025];
+    W[2034] = W[2032] + W[2033];
+    W[2041] = W[1975] + W[2035];
+    W[2044] = W[1976] + W[2038];
+    W[2062] = W[2057] + W[2061];
+    W[2069] = W[2054] + W[2063];
+    W[2072] = W[2058] + W[2066];
+    W[2090] = W[2086] + W[2089];
+    W[2097] = W[1973] + W[2091];
+    W[2100] = W[1974] + W[2094];
+    W[2115] = W[2113] + W[2114];
+    W[2129] = W[2016] + W[2127];
+    W[2130] = W[2017] + W[2128];
+    W[2036] = W[17] * W[2035] + W[235] * W[1817] + W[453] * W[1599] + W[671] * W[1381] + W[889] * W[1163]
+            + W[1107] * W[945] + W[1325] * W[727] + W[1543] * W[509] + W[1761] * W[291] + W[1979] * W[73];
+    W[2039] = W[18] * W[2038] + W[236] * W[1820] + W[454] * W[1602] + W[672] * W[1384] + W[890] * W[1166]
+            + W[1108] * W[948] + W[1326] * W[730] + W[1544] * W[512] + W[1762] * W[294] + W[1980] * W[76];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 9, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_105(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2064] = W[17] * W[2063] + W[235] * W[1845] + W[453] * W[1627] + W[671] * W[1409] + W[889] * W[1191]
+            + W[1107] * W[973] + W[1325] * W[755] + W[1543] * W[537] + W[1761] * W[319] + W[1979] * W[101];
+    W[2067] = W[18] * W[2066] + W[236] * W[1848] + W[454] * W[1630] + W[672] * W[1412] + W[890] * W[1194]
+            + W[1108] * W[976] + W[1326] * W[758] + W[1544] * W[540] + W[1762] * W[322] + W[1980] * W[104];
+    W[2092] = W[17] * W[2091] + W[235] * W[1873] + W[453] * W[1655] + W[671] * W[1437] + W[889] * W[1219]
+            + W[1107] * W[1001] + W[1325] * W[783] + W[1543] * W[565] + W[1761] * W[347] + W[1979] * W[129];
+    W[2095] = W[18] * W[2094] + W[236] * W[1876] + W[454] * W[1658] + W[672] * W[1440] + W[890] * W[1222]
+            + W[1108] * W[1004] + W[1326] * W[786] + W[1544] * W[568] + W[1762] * W[350] + W[1980] * W[132];
+    W[2109] = W[18] * W[2108] + W[236] * W[1890] + W[454] * W[1672] + W[672] * W[1454] + W[890] * W[1236]
+            + W[1108] * W[1018] + W[1326] * W[800] + W[1544] * W[582] + W[1762] * W[364] + W[1980] * W[146];
+    W[2112] = W[17] * W[2111] + W[235] * W[1893] + W[453] * W[1675] + W[671] * W[1457] + W[889] * W[1239]
+            + W[1107] * W[1021] + W[1325] * W[803] + W[1543] * W[585] + W[1761] * W[367] + W[1979] * W[149];
+    W[2029] = W[2026] - W[2028];
+    W[2037] = W[2034] + W[2036];
+    W[2047] = W[1969] + W[2041];
+    W[2050] = W[1970] + W[2044];
+    W[2065] = W[2062] + W[2064];
+    W[2075] = W[1967] + W[2069];
+    W[2078] = W[1968] + W[2072];
+    W[2093] = W[2090] + W[2092];
+    W[2116] = W[2112] + W[2115];
+    W[2119] = W[33] * W[2034];
+    W[2120] = W[33] * W[2062];
+    W[2121] = W[33] * W[2090];
+    W[2122] = W[33] * W[2115];
+    W[2133] = W[2128] + W[2130];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 9, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_107(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2051] = W[6] * W[2050] + W[224] * W[1832] + W[442] * W[1614] + W[660] * W[1396] + W[878] * W[1178]
+            + W[1096] * W[960] + W[1314] * W[742] + W[1532] * W[524] + W[1750] * W[306] + W[1968] * W[88];
+    W[2076] = W[5] * W[2075] + W[223] * W[1857] + W[441] * W[1639] + W[659] * W[1421] + W[877] * W[1203]
+            + W[1095] * W[985] + W[1313] * W[767] + W[1531] * W[549] + W[1749] * W[331] + W[1967] * W[113];
+    W[2079] = W[6] * W[2078] + W[224] * W[1860] + W[442] * W[1642] + W[660] * W[1424] + W[878] * W[1206]
+            + W[1096] * W[988] + W[1314] * W[770] + W[1532] * W[552] + W[1750] * W[334] + W[1968] * W[116];
+    W[2134] = W[17] * W[2133] + W[235] * W[1915] + W[453] * W[1697] + W[671] * W[1479] + W[889] * W[1261]
+            + W[1107] * W[1043] + W[1325] * W[825] + W[1543] * W[607] + W[1761] * W[389] + W[1979] * W[171];
+    W[2136] = W[18] * W[2135] + W[236] * W[1917] + W[454] * W[1699] + W[672] * W[1481] + W[890] * W[1263]
+            + W[1108] * W[1045] + W[1326] * W[827] + W[1544] * W[609] + W[1762] * W[391] + W[1980] * W[173];
+    W[2043] = W[2040] + W[2042];
+    W[2071] = W[2068] + W[2070];
+    W[2099] = W[2096] + W[2098];
+    W[2104] = W[33] * W[2040];
+    W[2105] = W[33] * W[2068];
+    W[2106] = W[33] * W[2096];
+    W[2118] = W[33] * W[2117];
+    W[2141] = W[2124] + W[2137];
+    W[2143] = W[2123] + W[2139];
+    W[2146] = W[2134] + W[2145];
+    W[2150] = W[33] * W[2145];
+    W[2138] = W[11] * W[2137] + W[229] * W[1919] + W[447] * W[1701] + W[665] * W[1483] + W[883] * W[1265]
+            + W[1101] * W[1047] + W[1319] * W[829] + W[1537] * W[611] + W[1755] * W[393] + W[1973] * W[175];
+    W[2140] = W[12] * W[2139] + W[230] * W[1921] + W[448] * W[1703] + W[666] * W[1485] + W[884] * W[1267]
+            + W[1102] * W[1049] + W[1320] * W[831] + W[1538] * W[613] + W[1756] * W[395] + W[1974] * W[177];
+    W[2153] = W[1] * W[2152] + W[219] * W[1934] + W[437] * W[1716] + W[655] * W[1498] + W[873] * W[1280]
+            + W[1091] * W[1062] + W[1309] * W[844] + W[1527] * W[626] + W[1745] * W[408] + W[1963] * W[190];
+    W[2156] = W[2] * W[2155] + W[220] * W[1937] + W[438] * W[1719] + W[656] * W[1501] + W[874] * W[1283]
+            + W[1092] * W[1065] + W[1310] * W[847] + W[1528] * W[629] + W[1746] * W[411] + W[1964] * W[193];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 9, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_109(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2149] = W[2023] + W[2148];
+    W[2160] = W[2159] - W[2140];
+    W[2053] = W[33] * W[2052];
+    W[2081] = W[33] * W[2080];
+    W[2154] = W[2052] + W[2153];
+    W[2161] = W[33] * W[2160];
+    W[2162] = W[2142] + W[2160];
+    W[2157] = W[2154] + W[2156];
+    W[2163] = W[2162] - W[2144];
+    W[2174] = W[2026] + W[2161];
+    W[2158] = W[33] * W[2157];
+    W[2164] = W[33] * W[2163];
+    W[2168] = W[2163] + W[2167];
+    W[2170] = W[2168] - W[2169];
+    W[2173] = W[2029] + W[2164];
+    W[2171] = W[33] * W[2170];
+    W[2172] = W[2031] + W[2171];
+    X[100] = X[95] / 10.0;
+    X[101] = X[96] / 10.0;
+    X[102] = X[97] / 10.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_111(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2181] = (X[10] * W[1964] + 2.0 * X[20] * W[1746] + 3.0 * X[30] * W[1528] + 4.0 * X[40] * W[1310]
+            + 5.0 * X[50] * W[1092] + 6.0 * X[60] * W[874] + 7.0 * X[70] * W[656] + 8.0 * X[80] * W[438]
+            + 9.0 * X[90] * W[220] + 10.0 * X[100] * W[2]) / 10.0;
+    W[2182] = -((X[10] * W[1963] + 2.0 * X[20] * W[1745] + 3.0 * X[30] * W[1527] + 4.0 * X[40] * W[1309]
+            + 5.0 * X[50] * W[1091] + 6.0 * X[60] * W[873] + 7.0 * X[70] * W[655] + 8.0 * X[80] * W[437]
+            + 9.0 * X[90] * W[219] + 10.0 * X[100] * W[1])) / 10.0;
+    W[2184] = X[100] + X[101];
+    W[2212] = (X[5] * X[105] + X[15] * X[95] + X[25] * X[85] + X[35] * X[75] + X[45] * X[65]) * 2.0
+            + X[55] * X[55];
+    W[2216] = X[105] + X[106];
+    W[2185] = (W[222] * W[1968] + 2.0 * W[440] * W[1750] + 3.0 * W[658] * W[1532] + 4.0 * W[876] * W[1314]
+            + 5.0 * W[1094] * W[1096] + 6.0 * W[1312] * W[878] + 7.0 * W[1530] * W[660] + 8.0 * W[1748] * W[442]
+            + 9.0 * W[1966] * W[224] + 10.0 * W[2184] * W[6]) / 10.0;
+    W[2186] = -((W[222] * W[1967] + 2.0 * W[440] * W[1749] + 3.0 * W[658] * W[1531] + 4.0 * W[876] * W[1313]
+            + 5.0 * W[1094] * W[1095] + 6.0 * W[1312] * W[877] + 7.0 * W[1530] * W[659] + 8.0 * W[1748] * W[441]
+            + 9.0 * W[1966] * W[223] + 10.0 * W[2184] * W[5])) / 10.0;
+    W[2190] = W[2184] + X[102];
+    W[2221] = X[107] + W[2216];
+    W[2248] = W[65] * W[2181];
+    W[2214] = W[1] * W[2212] + W[219] * W[1994] + W[437] * W[1776] + W[655] * W[1558] + W[873] * W[1340]
+            + W[1091] * W[1122] + W[1309] * W[904] + W[1527] * W[686] + W[1745] * W[468] + W[1963] * W[250]
+            + W[2181] * W[32];
+    W[2215] = W[2] * W[2212] + W[220] * W[1994] + W[438] * W[1776] + W[656] * W[1558] + W[874] * W[1340]
+            + W[1092] * W[1122] + W[1310] * W[904] + W[1528] * W[686] + W[1746] * W[468] + W[1964] * W[250]
+            + W[2182] * W[32];
+    W[2187] = W[2181] + W[2185];
+    W[2188] = W[2182] + W[2186];
+    W[2191] = (W[228] * W[1974] + 2.0 * W[446] * W[1756] + 3.0 * W[664] * W[1538] + 4.0 * W[882] * W[1320]
+            + 5.0 * W[1100] * W[1102] + 6.0 * W[1318] * W[884] + 7.0 * W[1536] * W[666] + 8.0 * W[1754] * W[448]
+            + 9.0 * W[1972] * W[230] + 10.0 * W[2190] * W[12]) / 10.0;
+    W[2192] = -((W[228] * W[1973] + 2.0 * W[446] * W[1755] + 3.0 * W[664] * W[1537] + 4.0 * W[882] * W[1319]
+            + 5.0 * W[1100] * W[1101] + 6.0 * W[1318] * W[883] + 7.0 * W[1536] * W[665] + 8.0 * W[1754] * W[447]
+            + 9.0 * W[1972] * W[229] + 10.0 * W[2190] * W[11])) / 10.0;
+    W[2196] = W[2190] + X[103];
+    W[2226] = X[108] + W[2221];
+    W[2246] = W[62] * W[2185];
+    W[2217] = W[6] * W[2216] + W[224] * W[1998] + W[442] * W[1780] + W[660] * W[1562] + W[878] * W[1344]
+            + W[1096] * W[1126] + W[1314] * W[908] + W[1532] * W[690] + W[1750] * W[472] + W[1968] * W[254]
+            + W[2186] * W[36];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_112(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2218] = W[5] * W[2216] + W[223] * W[1998] + W[441] * W[1780] + W[659] * W[1562] + W[877] * W[1344]
+            + W[1095] * W[1126] + W[1313] * W[908] + W[1531] * W[690] + W[1749] * W[472] + W[1967] * W[254]
+            + W[2185] * W[36];
+    W[2193] = W[2187] + W[2191];
+    W[2194] = W[2188] + W[2192];
+    W[2197] = (W[234] * W[1980] + 2.0 * W[452] * W[1762] + 3.0 * W[670] * W[1544] + 4.0 * W[888] * W[1326]
+            + 5.0 * W[1106] * W[1108] + 6.0 * W[1324] * W[890] + 7.0 * W[1542] * W[672] + 8.0 * W[1760] * W[454]
+            + 9.0 * W[1978] * W[236] + 10.0 * W[2196] * W[18]) / 10.0;
+    W[2198] = -((W[234] * W[1979] + 2.0 * W[452] * W[1761] + 3.0 * W[670] * W[1543] + 4.0 * W[888] * W[1325]
+            + 5.0 * W[1106] * W[1107] + 6.0 * W[1324] * W[889] + 7.0 * W[1542] * W[671] + 8.0 * W[1760] * W[453]
+            + 9.0 * W[1978] * W[235] + 10.0 * W[2196] * W[17])) / 10.0;
+    W[2202] = W[2196] + X[104];
+    W[2231] = X[109] + W[2226];
+    W[2243] = W[59] * W[2191];
+    W[2272] = W[2185] + W[2191];
+    W[2276] = W[2186] + W[2192];
+    W[2219] = W[36] * W[2218] + W[254] * W[2000] + W[472] * W[1782] + W[690] * W[1564] + W[908] * W[1346]
+            + W[1126] * W[1128] + W[1344] * W[910] + W[1562] * W[692] + W[1780] * W[474] + W[1998] * W[256]
+            + W[2216] * W[38];
+    W[2220] = W[36] * W[2217] + W[254] * W[1999] + W[472] * W[1781] + W[690] * W[1563] + W[908] * W[1345]
+            + W[1126] * W[1127] + W[1344] * W[909] + W[1562] * W[691] + W[1780] * W[473] + W[1998] * W[255]
+            + W[2216] * W[37];
+    W[2222] = W[12] * W[2221] + W[230] * W[2003] + W[448] * W[1785] + W[666] * W[1567] + W[884] * W[1349]
+            + W[1102] * W[1131] + W[1320] * W[913] + W[1538] * W[695] + W[1756] * W[477] + W[1974] * W[259]
+            + W[2192] * W[41];
+    W[2223] = W[11] * W[2221] + W[229] * W[2003] + W[447] * W[1785] + W[665] * W[1567] + W[883] * W[1349]
+            + W[1101] * W[1131] + W[1319] * W[913] + W[1537] * W[695] + W[1755] * W[477] + W[1973] * W[259]
+            + W[2191] * W[41];
+    W[2199] = W[2193] + W[2197];
+    W[2200] = W[2194] + W[2198];
+    W[2203] = (W[240] * W[1986] + 2.0 * W[458] * W[1768] + 3.0 * W[676] * W[1550] + 4.0 * W[894] * W[1332]
+            + 5.0 * W[1112] * W[1114] + 6.0 * W[1330] * W[896] + 7.0 * W[1548] * W[678] + 8.0 * W[1766] * W[460]
+            + 9.0 * W[1984] * W[242] + 10.0 * W[2202] * W[24]) / 10.0;
+    W[2204] = -((W[240] * W[1985] + 2.0 * W[458] * W[1767] + 3.0 * W[676] * W[1549] + 4.0 * W[894] * W[1331]
+            + 5.0 * W[1112] * W[1113] + 6.0 * W[1330] * W[895] + 7.0 * W[1548] * W[677] + 8.0 * W[1766] * W[459]
+            + 9.0 * W[1984] * W[241] + 10.0 * W[2202] * W[23])) / 10.0;
+    W[2240] = W[57] * W[2197];
+    W[2273] = W[2197] + W[2272];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_114(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2229] = W[46] * W[2228] + W[264] * W[2010] + W[482] * W[1792] + W[700] * W[1574] + W[918] * W[1356]
+            + W[1136] * W[1138] + W[1354] * W[920] + W[1572] * W[702] + W[1790] * W[484] + W[2008] * W[266]
+            + W[2226] * W[48];
+    W[2230] = W[46] * W[2227] + W[264] * W[2009] + W[482] * W[1791] + W[700] * W[1573] + W[918] * W[1355]
+            + W[1136] * W[1137] + W[1354] * W[919] + W[1572] * W[701] + W[1790] * W[483] + W[2008] * W[265]
+            + W[2226] * W[47];
+    W[2232] = W[24] * W[2231] + W[242] * W[2013] + W[460] * W[1795] + W[678] * W[1577] + W[896] * W[1359]
+            + W[1114] * W[1141] + W[1332] * W[923] + W[1550] * W[705] + W[1768] * W[487] + W[1986] * W[269]
+            + W[2204] * W[51];
+    W[2233] = W[23] * W[2231] + W[241] * W[2013] + W[459] * W[1795] + W[677] * W[1577] + W[895] * W[1359]
+            + W[1113] * W[1141] + W[1331] * W[923] + W[1549] * W[705] + W[1767] * W[487] + W[1985] * W[269]
+            + W[2203] * W[51];
+    W[2241] = W[2238] - W[2240];
+    W[2253] = W[2199] + W[2205];
+    W[2256] = W[2200] + W[2206];
+    W[2281] = W[2273] + W[2274];
+    W[2284] = W[2277] + W[2278];
+    W[2309] = W[2302] + W[2303];
+    W[2312] = W[2305] + W[2306];
+    W[2326] = W[2198] + W[2325];
+    W[2329] = W[2197] + W[2328];
+    W[2345] = W[2229] + W[2343];
+    W[2346] = W[2230] + W[2344];
+    W[2234] = W[51] * W[2233] + W[269] * W[2015] + W[487] * W[1797] + W[705] * W[1579] + W[923] * W[1361]
+            + W[1141] * W[1143] + W[1359] * W[925] + W[1577] * W[707] + W[1795] * W[489] + W[2013] * W[271]
+            + W[2231] * W[53];
+    W[2235] = W[51] * W[2232] + W[269] * W[2014] + W[487] * W[1796] + W[705] * W[1578] + W[923] * W[1360]
+            + W[1141] * W[1142] + W[1359] * W[924] + W[1577] * W[706] + W[1795] * W[488] + W[2013] * W[270]
+            + W[2231] * W[52];
+    W[2250] = W[23] * W[2205] + W[241] * W[1987] + W[459] * W[1769] + W[677] * W[1551] + W[895] * W[1333]
+            + W[1113] * W[1115] + W[1331] * W[897] + W[1549] * W[679] + W[1767] * W[461] + W[1985] * W[243]
+            + W[2203] * W[25];
+    W[2251] = W[24] * W[2206] + W[242] * W[1988] + W[460] * W[1770] + W[678] * W[1552] + W[896] * W[1334]
+            + W[1114] * W[1116] + W[1332] * W[898] + W[1550] * W[680] + W[1768] * W[462] + W[1986] * W[244]
+            + W[2204] * W[26];
+    W[2275] = W[23] * W[2274] + W[241] * W[2056] + W[459] * W[1838] + W[677] * W[1620] + W[895] * W[1402]
+            + W[1113] * W[1184] + W[1331] * W[966] + W[1549] * W[748] + W[1767] * W[530] + W[1985] * W[312]
+            + W[2203] * W[94];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_117(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2353] = W[2345] + W[2347];
+    W[2260] = W[11] * W[2259] + W[229] * W[2041] + W[447] * W[1823] + W[665] * W[1605] + W[883] * W[1387]
+            + W[1101] * W[1169] + W[1319] * W[951] + W[1537] * W[733] + W[1755] * W[515] + W[1973] * W[297]
+            + W[2191] * W[79];
+    W[2263] = W[12] * W[2262] + W[230] * W[2044] + W[448] * W[1826] + W[666] * W[1608] + W[884] * W[1390]
+            + W[1102] * W[1172] + W[1320] * W[954] + W[1538] * W[736] + W[1756] * W[518] + W[1974] * W[300]
+            + W[2192] * W[82];
+    W[2288] = W[11] * W[2287] + W[229] * W[2069] + W[447] * W[1851] + W[665] * W[1633] + W[883] * W[1415]
+            + W[1101] * W[1197] + W[1319] * W[979] + W[1537] * W[761] + W[1755] * W[543] + W[1973] * W[325]
+            + W[2191] * W[107];
+    W[2291] = W[12] * W[2290] + W[230] * W[2072] + W[448] * W[1854] + W[666] * W[1636] + W[884] * W[1418]
+            + W[1102] * W[1200] + W[1320] * W[982] + W[1538] * W[764] + W[1756] * W[546] + W[1974] * W[328]
+            + W[2192] * W[110];
+    W[2316] = W[11] * W[2315] + W[229] * W[2097] + W[447] * W[1879] + W[665] * W[1661] + W[883] * W[1443]
+            + W[1101] * W[1225] + W[1319] * W[1007] + W[1537] * W[789] + W[1755] * W[571] + W[1973] * W[353]
+            + W[2191] * W[135];
+    W[2319] = W[12] * W[2318] + W[230] * W[2100] + W[448] * W[1882] + W[666] * W[1664] + W[884] * W[1446]
+            + W[1102] * W[1228] + W[1320] * W[1010] + W[1538] * W[792] + W[1756] * W[574] + W[1974] * W[356]
+            + W[2192] * W[138];
+    W[2349] = W[23] * W[2348] + W[241] * W[2130] + W[459] * W[1912] + W[677] * W[1694] + W[895] * W[1476]
+            + W[1113] * W[1258] + W[1331] * W[1040] + W[1549] * W[822] + W[1767] * W[604] + W[1985] * W[386]
+            + W[2203] * W[168];
+    W[2350] = W[24] * W[2347] + W[242] * W[2129] + W[460] * W[1911] + W[678] * W[1693] + W[896] * W[1475]
+            + W[1114] * W[1257] + W[1332] * W[1039] + W[1550] * W[821] + W[1768] * W[603] + W[1986] * W[385]
+            + W[2204] * W[167];
+    W[2249] = W[2247] - W[2248];
+    W[2258] = W[2255] + W[2257];
+    W[2286] = W[2283] + W[2285];
+    W[2314] = W[2311] + W[2313];
+    W[2335] = W[2327] + W[2334];
+    W[2355] = W[2344] + W[2351];
+    W[2357] = W[2343] + W[2353];
+    W[2363] = W[2349] - W[2350];
+    W[2370] = W[2181] + W[2265];
+    W[2373] = W[2182] + W[2268];
+    W[2266] = W[5] * W[2265] + W[223] * W[2047] + W[441] * W[1829] + W[659] * W[1611] + W[877] * W[1393]
+            + W[1095] * W[1175] + W[1313] * W[957] + W[1531] * W[739] + W[1749] * W[521] + W[1967] * W[303]
+            + W[2185] * W[85];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_119(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2264] = W[2261] + W[2263];
+    W[2292] = W[2289] + W[2291];
+    W[2320] = W[2317] + W[2319];
+    W[2365] = W[2364] - W[2354];
+    W[2369] = W[2238] + W[2368];
+    W[2383] = W[2215] + W[2359];
+    W[2384] = W[2214] + W[2361];
+    W[2360] = W[5] * W[2359] + W[223] * W[2141] + W[441] * W[1923] + W[659] * W[1705] + W[877] * W[1487]
+            + W[1095] * W[1269] + W[1313] * W[1051] + W[1531] * W[833] + W[1749] * W[615] + W[1967] * W[397]
+            + W[2185] * W[179];
+    W[2362] = W[6] * W[2361] + W[224] * W[2143] + W[442] * W[1925] + W[660] * W[1707] + W[878] * W[1489]
+            + W[1096] * W[1271] + W[1314] * W[1053] + W[1532] * W[835] + W[1750] * W[617] + W[1968] * W[399]
+            + W[2186] * W[181];
+    W[2267] = W[2264] + W[2266];
+    W[2295] = W[2292] + W[2294];
+    W[2300] = W[33] * W[2264];
+    W[2301] = W[33] * W[2292];
+    W[2321] = W[33] * W[2320];
+    W[2366] = W[33] * W[2365];
+    W[2377] = W[2356] + W[2365];
+    W[2385] = W[1] * W[2383] + W[219] * W[2165] + W[437] * W[1947] + W[655] * W[1729] + W[873] * W[1511]
+            + W[1091] * W[1293] + W[1309] * W[1075] + W[1527] * W[857] + W[1745] * W[639] + W[1963] * W[421]
+            + W[2181] * W[203];
+    W[2387] = W[2] * W[2384] + W[220] * W[2166] + W[438] * W[1948] + W[656] * W[1730] + W[874] * W[1512]
+            + W[1092] * W[1294] + W[1310] * W[1076] + W[1528] * W[858] + W[1746] * W[640] + W[1964] * W[422]
+            + W[2182] * W[204];
+    W[2270] = W[2267] + W[2269];
+    W[2298] = W[2295] + W[2297];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_120(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2367] = W[2241] + W[2366];
+    W[2378] = W[2377] - W[2358];
+    W[2271] = W[33] * W[2270];
+    W[2299] = W[33] * W[2298];
+    W[2372] = W[2270] + W[2371];
+    W[2379] = W[33] * W[2378];
+    W[2380] = W[2360] + W[2378];
+    W[2375] = W[2372] + W[2374];
+    W[2381] = W[2380] - W[2362];
+    W[2392] = W[2244] + W[2379];
+    W[2376] = W[33] * W[2375];
+    W[2382] = W[33] * W[2381];
+    W[2386] = W[2381] + W[2385];
+    W[2388] = W[2386] - W[2387];
+    W[2391] = W[2247] + W[2382];
+    W[2389] = W[33] * W[2388];
+    W[2390] = W[2249] + W[2389];
+    X[110] = X[105] / 11.0;
+    X[111] = X[106] / 11.0;
+    X[112] = X[107] / 11.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 11, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_122(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2399] = (X[10] * W[2182] + 2.0 * X[20] * W[1964] + 3.0 * X[30] * W[1746] + 4.0 * X[40] * W[1528]
+            + 5.0 * X[50] * W[1310] + 6.0 * X[60] * W[1092] + 7.0 * X[70] * W[874] + 8.0 * X[80] * W[656]
+            + 9.0 * X[90] * W[438] + 10.0 * X[100] * W[220] + 11.0 * X[110] * W[2]) / 11.0;
+    W[2400] = -((X[10] * W[2181] + 2.0 * X[20] * W[1963] + 3.0 * X[30] * W[1745] + 4.0 * X[40] * W[1527]
+            + 5.0 * X[50] * W[1309] + 6.0 * X[60] * W[1091] + 7.0 * X[70] * W[873] + 8.0 * X[80] * W[655]
+            + 9.0 * X[90] * W[437] + 10.0 * X[100] * W[219] + 11.0 * X[110] * W[1])) / 11.0;
+    W[2402] = X[110] + X[111];
+    W[2430] = (X[5] * X[115] + X[15] * X[105] + X[25] * X[95] + X[35] * X[85] + X[45] * X[75]
+            + X[55] * X[65]) * 2.0;
+    W[2434] = X[115] + X[116];
+    W[2403] = (W[222] * W[2186] + 2.0 * W[440] * W[1968] + 3.0 * W[658] * W[1750] + 4.0 * W[876] * W[1532]
+            + 5.0 * W[1094] * W[1314] + 6.0 * W[1312] * W[1096] + 7.0 * W[1530] * W[878] + 8.0 * W[1748] * W[660]
+            + 9.0 * W[1966] * W[442] + 10.0 * W[2184] * W[224] + 11.0 * W[2402] * W[6]) / 11.0;
+    W[2404] = -((W[222] * W[2185] + 2.0 * W[440] * W[1967] + 3.0 * W[658] * W[1749] + 4.0 * W[876] * W[1531]
+            + 5.0 * W[1094] * W[1313] + 6.0 * W[1312] * W[1095] + 7.0 * W[1530] * W[877] + 8.0 * W[1748] * W[659]
+            + 9.0 * W[1966] * W[441] + 10.0 * W[2184] * W[223] + 11.0 * W[2402] * W[5])) / 11.0;
+    W[2408] = W[2402] + X[112];
+    W[2439] = X[117] + W[2434];
+    W[2466] = W[65] * W[2399];
+    W[2432] = W[1] * W[2430] + W[219] * W[2212] + W[437] * W[1994] + W[655] * W[1776] + W[873] * W[1558]
+            + W[1091] * W[1340] + W[1309] * W[1122] + W[1527] * W[904] + W[1745] * W[686] + W[1963] * W[468]
+            + W[2181] * W[250] + W[2399] * W[32];
+    W[2433] = W[2] * W[2430] + W[220] * W[2212] + W[438] * W[1994] + W[656] * W[1776] + W[874] * W[1558]
+            + W[1092] * W[1340] + W[1310] * W[1122] + W[1528] * W[904] + W[1746] * W[686] + W[1964] * W[468]
+            + W[2182] * W[250] + W[2400] * W[32];
+    W[2405] = W[2399] + W[2403];
+    W[2406] = W[2400] + W[2404];
+    W[2409] = (W[228] * W[2192] + 2.0 * W[446] * W[1974] + 3.0 * W[664] * W[1756] + 4.0 * W[882] * W[1538]
+            + 5.0 * W[1100] * W[1320] + 6.0 * W[1318] * W[1102] + 7.0 * W[1536] * W[884] + 8.0 * W[1754] * W[666]
+            + 9.0 * W[1972] * W[448] + 10.0 * W[2190] * W[230] + 11.0 * W[2408] * W[12]) / 11.0;
+    W[2410] = -((W[228] * W[2191] + 2.0 * W[446] * W[1973] + 3.0 * W[664] * W[1755] + 4.0 * W[882] * W[1537]
+            + 5.0 * W[1100] * W[1319] + 6.0 * W[1318] * W[1101] + 7.0 * W[1536] * W[883] + 8.0 * W[1754] * W[665]
+            + 9.0 * W[1972] * W[447] + 10.0 * W[2190] * W[229] + 11.0 * W[2408] * W[11])) / 11.0;
+    W[2414] = W[2408] + X[113];
+    W[2444] = X[118] + W[2439];
+    W[2464] = W[62] * W[2403];
+    W[2435] = W[6] * W[2434] + W[224] * W[2216] + W[442] * W[1998] + W[660] * W[1780] + W[878] * W[1562]
+            + W[1096] * W[1344] + W[1314] * W[1126] + W[1532] * W[908] + W[1750] * W[690] + W[1968] * W[472]
+            + W[2186] * W[254] + W[2404] * W[36];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 11, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_123(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2436] = W[5] * W[2434] + W[223] * W[2216] + W[441] * W[1998] + W[659] * W[1780] + W[877] * W[1562]
+            + W[1095] * W[1344] + W[1313] * W[1126] + W[1531] * W[908] + W[1749] * W[690] + W[1967] * W[472]
+            + W[2185] * W[254] + W[2403] * W[36];
+    W[2411] = W[2405] + W[2409];
+    W[2412] = W[2406] + W[2410];
+    W[2415] = (W[234] * W[2198] + 2.0 * W[452] * W[1980] + 3.0 * W[670] * W[1762] + 4.0 * W[888] * W[1544]
+            + 5.0 * W[1106] * W[1326] + 6.0 * W[1324] * W[1108] + 7.0 * W[1542] * W[890] + 8.0 * W[1760] * W[672]
+            + 9.0 * W[1978] * W[454] + 10.0 * W[2196] * W[236] + 11.0 * W[2414] * W[18]) / 11.0;
+    W[2416] = -((W[234] * W[2197] + 2.0 * W[452] * W[1979] + 3.0 * W[670] * W[1761] + 4.0 * W[888] * W[1543]
+            + 5.0 * W[1106] * W[1325] + 6.0 * W[1324] * W[1107] + 7.0 * W[1542] * W[889] + 8.0 * W[1760] * W[671]
+            + 9.0 * W[1978] * W[453] + 10.0 * W[2196] * W[235] + 11.0 * W[2414] * W[17])) / 11.0;
+    W[2420] = W[2414] + X[114];
+    W[2449] = X[119] + W[2444];
+    W[2461] = W[59] * W[2409];
+    W[2490] = W[2403] + W[2409];
+    W[2494] = W[2404] + W[2410];
+    W[2437] = W[36] * W[2436] + W[254] * W[2218] + W[472] * W[2000] + W[690] * W[1782] + W[908] * W[1564]
+            + W[1126] * W[1346] + W[1344] * W[1128] + W[1562] * W[910] + W[1780] * W[692] + W[1998] * W[474]
+            + W[2216] * W[256] + W[2434] * W[38];
+    W[2438] = W[36] * W[2435] + W[254] * W[2217] + W[472] * W[1999] + W[690] * W[1781] + W[908] * W[1563]
+            + W[1126] * W[1345] + W[1344] * W[1127] + W[1562] * W[909] + W[1780] * W[691] + W[1998] * W[473]
+            + W[2216] * W[255] + W[2434] * W[37];
+    W[2440] = W[12] * W[2439] + W[230] * W[2221] + W[448] * W[2003] + W[666] * W[1785] + W[884] * W[1567]
+            + W[1102] * W[1349] + W[1320] * W[1131] + W[1538] * W[913] + W[1756] * W[695] + W[1974] * W[477]
+            + W[2192] * W[259] + W[2410] * W[41];
+    W[2441] = W[11] * W[2439] + W[229] * W[2221] + W[447] * W[2003] + W[665] * W[1785] + W[883] * W[1567]
+            + W[1101] * W[1349] + W[1319] * W[1131] + W[1537] * W[913] + W[1755] * W[695] + W[1973] * W[477]
+            + W[2191] * W[259] + W[2409] * W[41];
+    W[2417] = W[2411] + W[2415];
+    W[2418] = W[2412] + W[2416];
+    W[2421] = (W[240] * W[2204] + 2.0 * W[458] * W[1986] + 3.0 * W[676] * W[1768] + 4.0 * W[894] * W[1550]
+            + 5.0 * W[1112] * W[1332] + 6.0 * W[1330] * W[1114] + 7.0 * W[1548] * W[896] + 8.0 * W[1766] * W[678]
+            + 9.0 * W[1984] * W[460] + 10.0 * W[2202] * W[242] + 11.0 * W[2420] * W[24]) / 11.0;
+    W[2422] = -((W[240] * W[2203] + 2.0 * W[458] * W[1985] + 3.0 * W[676] * W[1767] + 4.0 * W[894] * W[1549]
+            + 5.0 * W[1112] * W[1331] + 6.0 * W[1330] * W[1113] + 7.0 * W[1548] * W[895] + 8.0 * W[1766] * W[677]
+            + 9.0 * W[1984] * W[459] + 10.0 * W[2202] * W[241] + 11.0 * W[2420] * W[23])) / 11.0;
+    W[2458] = W[57] * W[2415];
+    W[2491] = W[2415] + W[2490];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 11, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_125(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2447] = W[46] * W[2446] + W[264] * W[2228] + W[482] * W[2010] + W[700] * W[1792] + W[918] * W[1574]
+            + W[1136] * W[1356] + W[1354] * W[1138] + W[1572] * W[920] + W[1790] * W[702] + W[2008] * W[484]
+            + W[2226] * W[266] + W[2444] * W[48];
+    W[2448] = W[46] * W[2445] + W[264] * W[2227] + W[482] * W[2009] + W[700] * W[1791] + W[918] * W[1573]
+            + W[1136] * W[1355] + W[1354] * W[1137] + W[1572] * W[919] + W[1790] * W[701] + W[2008] * W[483]
+            + W[2226] * W[265] + W[2444] * W[47];
+    W[2450] = W[24] * W[2449] + W[242] * W[2231] + W[460] * W[2013] + W[678] * W[1795] + W[896] * W[1577]
+            + W[1114] * W[1359] + W[1332] * W[1141] + W[1550] * W[923] + W[1768] * W[705] + W[1986] * W[487]
+            + W[2204] * W[269] + W[2422] * W[51];
+    W[2451] = W[23] * W[2449] + W[241] * W[2231] + W[459] * W[2013] + W[677] * W[1795] + W[895] * W[1577]
+            + W[1113] * W[1359] + W[1331] * W[1141] + W[1549] * W[923] + W[1767] * W[705] + W[1985] * W[487]
+            + W[2203] * W[269] + W[2421] * W[51];
+    W[2459] = W[2456] - W[2458];
+    W[2471] = W[2417] + W[2423];
+    W[2474] = W[2418] + W[2424];
+    W[2499] = W[2491] + W[2492];
+    W[2502] = W[2495] + W[2496];
+    W[2527] = W[2520] + W[2521];
+    W[2530] = W[2523] + W[2524];
+    W[2544] = W[2416] + W[2543];
+    W[2547] = W[2415] + W[2546];
+    W[2563] = W[2447] + W[2561];
+    W[2564] = W[2448] + W[2562];
+    W[2452] = W[51] * W[2451] + W[269] * W[2233] + W[487] * W[2015] + W[705] * W[1797] + W[923] * W[1579]
+            + W[1141] * W[1361] + W[1359] * W[1143] + W[1577] * W[925] + W[1795] * W[707] + W[2013] * W[489]
+            + W[2231] * W[271] + W[2449] * W[53];
+    W[2453] = W[51] * W[2450] + W[269] * W[2232] + W[487] * W[2014] + W[705] * W[1796] + W[923] * W[1578]
+            + W[1141] * W[1360] + W[1359] * W[1142] + W[1577] * W[924] + W[1795] * W[706] + W[2013] * W[488]
+            + W[2231] * W[270] + W[2449] * W[52];
+    W[2468] = W[23] * W[2423] + W[241] * W[2205] + W[459] * W[1987] + W[677] * W[1769] + W[895] * W[1551]
+            + W[1113] * W[1333] + W[1331] * W[1115] + W[1549] * W[897] + W[1767] * W[679] + W[1985] * W[461]
+            + W[2203] * W[243] + W[2421] * W[25];
+    W[2469] = W[24] * W[2424] + W[242] * W[2206] + W[460] * W[1988] + W[678] * W[1770] + W[896] * W[1552]
+            + W[1114] * W[1334] + W[1332] * W[1116] + W[1550] * W[898] + W[1768] * W[680] + W[1986] * W[462]
+            + W[2204] * W[244] + W[2422] * W[26];
+    W[2493] = W[23] * W[2492] + W[241] * W[2274] + W[459] * W[2056] + W[677] * W[1838] + W[895] * W[1620]
+            + W[1113] * W[1402] + W[1331] * W[1184] + W[1549] * W[966] + W[1767] * W[748] + W[1985] * W[530]
+            + W[2203] * W[312] + W[2421] * W[94];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 11, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_127(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2500] = W[17] * W[2499] + W[235] * W[2281] + W[453] * W[2063] + W[671] * W[1845] + W[889] * W[1627]
+            + W[1107] * W[1409] + W[1325] * W[1191] + W[1543] * W[973] + W[1761] * W[755] + W[1979] * W[537]
+            + W[2197] * W[319] + W[2415] * W[101];
+    W[2503] = W[18] * W[2502] + W[236] * W[2284] + W[454] * W[2066] + W[672] * W[1848] + W[890] * W[1630]
+            + W[1108] * W[1412] + W[1326] * W[1194] + W[1544] * W[976] + W[1762] * W[758] + W[1980] * W[540]
+            + W[2198] * W[322] + W[2416] * W[104];
+    W[2528] = W[17] * W[2527] + W[235] * W[2309] + W[453] * W[2091] + W[671] * W[1873] + W[889] * W[1655]
+            + W[1107] * W[1437] + W[1325] * W[1219] + W[1543] * W[1001] + W[1761] * W[783] + W[1979] * W[565]
+            + W[2197] * W[347] + W[2415] * W[129];
+    W[2531] = W[18] * W[2530] + W[236] * W[2312] + W[454] * W[2094] + W[672] * W[1876] + W[890] * W[1658]
+            + W[1108] * W[1440] + W[1326] * W[1222] + W[1544] * W[1004] + W[1762] * W[786] + W[1980] * W[568]
+            + W[2198] * W[350] + W[2416] * W[132];
+    W[2545] = W[18] * W[2544] + W[236] * W[2326] + W[454] * W[2108] + W[672] * W[1890] + W[890] * W[1672]
+            + W[1108] * W[1454] + W[1326] * W[1236] + W[1544] * W[1018] + W[1762] * W[800] + W[1980] * W[582]
+            + W[2198] * W[364] + W[2416] * W[146];
+    W[2548] = W[17] * W[2547] + W[235] * W[2329] + W[453] * W[2111] + W[671] * W[1893] + W[889] * W[1675]
+            + W[1107] * W[1457] + W[1325] * W[1239] + W[1543] * W[1021] + W[1761] * W[803] + W[1979] * W[585]
+            + W[2197] * W[367] + W[2415] * W[149];
+    W[2465] = W[2462] - W[2464];
+    W[2473] = W[2470] + W[2472];
+    W[2483] = W[2405] + W[2477];
+    W[2486] = W[2406] + W[2480];
+    W[2501] = W[2498] + W[2500];
+    W[2511] = W[2403] + W[2505];
+    W[2514] = W[2404] + W[2508];
+    W[2529] = W[2526] + W[2528];
+    W[2552] = W[2548] + W[2551];
+    W[2555] = W[33] * W[2470];
+    W[2556] = W[33] * W[2498];
+    W[2557] = W[33] * W[2526];
+    W[2558] = W[33] * W[2551];
+    W[2569] = W[2564] + W[2566];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 11, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_129(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2487] = W[6] * W[2486] + W[224] * W[2268] + W[442] * W[2050] + W[660] * W[1832] + W[878] * W[1614]
+            + W[1096] * W[1396] + W[1314] * W[1178] + W[1532] * W[960] + W[1750] * W[742] + W[1968] * W[524]
+            + W[2186] * W[306] + W[2404] * W[88];
+    W[2512] = W[5] * W[2511] + W[223] * W[2293] + W[441] * W[2075] + W[659] * W[1857] + W[877] * W[1639]
+            + W[1095] * W[1421] + W[1313] * W[1203] + W[1531] * W[985] + W[1749] * W[767] + W[1967] * W[549]
+            + W[2185] * W[331] + W[2403] * W[113];
+    W[2515] = W[6] * W[2514] + W[224] * W[2296] + W[442] * W[2078] + W[660] * W[1860] + W[878] * W[1642]
+            + W[1096] * W[1424] + W[1314] * W[1206] + W[1532] * W[988] + W[1750] * W[770] + W[1968] * W[552]
+            + W[2186] * W[334] + W[2404] * W[116];
+    W[2570] = W[17] * W[2569] + W[235] * W[2351] + W[453] * W[2133] + W[671] * W[1915] + W[889] * W[1697]
+            + W[1107] * W[1479] + W[1325] * W[1261] + W[1543] * W[1043] + W[1761] * W[825] + W[1979] * W[607]
+            + W[2197] * W[389] + W[2415] * W[171];
+    W[2572] = W[18] * W[2571] + W[236] * W[2353] + W[454] * W[2135] + W[672] * W[1917] + W[890] * W[1699]
+            + W[1108] * W[1481] + W[1326] * W[1263] + W[1544] * W[1045] + W[1762] * W[827] + W[1980] * W[609]
+            + W[2198] * W[391] + W[2416] * W[173];
+    W[2479] = W[2476] + W[2478];
+    W[2507] = W[2504] + W[2506];
+    W[2535] = W[2532] + W[2534];
+    W[2540] = W[33] * W[2476];
+    W[2541] = W[33] * W[2504];
+    W[2542] = W[33] * W[2532];
+    W[2554] = W[33] * W[2553];
+    W[2577] = W[2560] + W[2573];
+    W[2579] = W[2559] + W[2575];
+    W[2582] = W[2570] + W[2581];
+    W[2586] = W[33] * W[2581];
+    W[2574] = W[11] * W[2573] + W[229] * W[2355] + W[447] * W[2137] + W[665] * W[1919] + W[883] * W[1701]
+            + W[1101] * W[1483] + W[1319] * W[1265] + W[1537] * W[1047] + W[1755] * W[829] + W[1973] * W[611]
+            + W[2191] * W[393] + W[2409] * W[175];
+    W[2576] = W[12] * W[2575] + W[230] * W[2357] + W[448] * W[2139] + W[666] * W[1921] + W[884] * W[1703]
+            + W[1102] * W[1485] + W[1320] * W[1267] + W[1538] * W[1049] + W[1756] * W[831] + W[1974] * W[613]
+            + W[2192] * W[395] + W[2410] * W[177];
+    W[2589] = W[1] * W[2588] + W[219] * W[2370] + W[437] * W[2152] + W[655] * W[1934] + W[873] * W[1716]
+            + W[1091] * W[1498] + W[1309] * W[1280] + W[1527] * W[1062] + W[1745] * W[844] + W[1963] * W[626]
+            + W[2181] * W[408] + W[2399] * W[190];
+    W[2592] = W[2] * W[2591] + W[220] * W[2373] + W[438] * W[2155] + W[656] * W[1937] + W[874] * W[1719]
+            + W[1092] * W[1501] + W[1310] * W[1283] + W[1528] * W[1065] + W[1746] * W[847] + W[1964] * W[629]
+            + W[2182] * W[411] + W[2400] * W[193];
+    return 0;
+}
+
+/* Lines 200 .. 212 of taylor_run's order 11, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_132(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[123] = X[118] / 12.0;
+    X[124] = X[119] / 12.0;
+    W[2611] = W[414] * W[2393] + W[632] * W[2175] + W[850] * W[1957] + W[1068] * W[1739] + W[1286] * W[1521]
+            + W[1504] * W[1303] + W[1722] * W[1085] + W[1940] * W[867] + W[2158] * W[649] + W[2376] * W[431]
+            + W[2594] * W[213] + W[309] * W[2394] + W[527] * W[2176] + W[745] * W[1958] + W[963] * W[1740]
+            + W[1181] * W[1522] + W[1399] * W[1304] + W[1617] * W[1086] + W[1835] * W[868] + W[2053] * W[650]
+            + W[2271] * W[432] + W[2489] * W[214] + W[338] * W[2395] + W[556] * W[2177] + W[774] * W[1959]
+            + W[992] * W[1741] + W[1210] * W[1523] + W[1428] * W[1305] + W[1646] * W[1087] + W[1864] * W[869]
+            + W[2082] * W[651] + W[2300] * W[433] + W[2518] * W[215] + W[360] * W[2396] + W[578] * W[2178]
+            + W[796] * W[1960] + W[1014] * W[1742] + W[1232] * W[1524] + W[1450] * W[1306] + W[1668] * W[1088]
+            + W[1886] * W[870] + W[2104] * W[652] + W[2322] * W[434] + W[2540] * W[216] + W[375] * W[2397]
+            + W[593] * W[2179] + W[811] * W[1961] + W[1029] * W[1743] + W[1247] * W[1525] + W[1465] * W[1307]
+            + W[1683] * W[1089] + W[1901] * W[871] + W[2119] * W[653] + W[2337] * W[435] + W[2555] * W[217]
+            + W[2608];
+    W[2612] = W[309] * W[2393] + W[527] * W[2175] + W[745] * W[1957] + W[963] * W[1739] + W[1181] * W[1521]
+            + W[1399] * W[1303] + W[1617] * W[1085] + W[1835] * W[867] + W[2053] * W[649] + W[2271] * W[431]
+            + W[2489] * W[213] + W[337] * W[2394] + W[555] * W[2176] + W[773] * W[1958] + W[991] * W[1740]
+            + W[1209] * W[1522] + W[1427] * W[1304] + W[1645] * W[1086] + W[1863] * W[868] + W[2081] * W[650]
+            + W[2299] * W[432] + W[2517] * W[214] + W[339] * W[2395] + W[557] * W[2177] + W[775] * W[1959]
+            + W[993] * W[1741] + W[1211] * W[1523] + W[1429] * W[1305] + W[1647] * W[1087] + W[1865] * W[869]
+            + W[2083] * W[651] + W[2301] * W[433] + W[2519] * W[215] + W[361] * W[2396] + W[579] * W[2178]
+            + W[797] * W[1960] + W[1015] * W[1742] + W[1233] * W[1524] + W[1451] * W[1306] + W[1669] * W[1088]
+            + W[1887] * W[870] + W[2105] * W[652] + W[2323] * W[434] + W[2541] * W[216] + W[376] * W[2397]
+            + W[594] * W[2179] + W[812] * W[1961] + W[1030] * W[1743] + W[1248] * W[1525] + W[1466] * W[1307]
+            + W[1684] * W[1089] + W[1902] * W[871] + W[2120] * W[653] + W[2338] * W[435] + W[2556] * W[217]
+            + W[2609];
+    W[2613] = W[338] * W[2393] + W[556] * W[2175] + W[774] * W[1957] + W[992] * W[1739] + W[1210] * W[1521]
+            + W[1428] * W[1303] + W[1646] * W[1085] + W[1864] * W[867] + W[2082] * W[649] + W[2300] * W[431]
+            + W[2518] * W[213] + W[339] * W[2394] + W[557] * W[2176] + W[775] * W[1958] + W[993] * W[1740]
+            + W[1211] * W[1522] + W[1429] * W[1304] + W[1647] * W[1086] + W[1865] * W[868] + W[2083] * W[650]
+            + W[2301] * W[432] + W[2519] * W[214] + W[359] * W[2395] + W[577] * W[2177] + W[795] * W[1959]
+            + W[1013] * W[1741] + W[1231] * W[1523] + W[1449] * W[1305] + W[1667] * W[1087] + W[1885] * W[869]
+            + W[2103] * W[651] + W[2321] * W[433] + W[2539] * W[215] + W[362] * W[2396] + W[580] * W[2178]
+            + W[798] * W[1960] + W[1016] * W[1742] + W[1234] * W[1524] + W[1452] * W[1306] + W[1670] * W[1088]
+            + W[1888] * W[870] + W[2106] * W[652] + W[2324] * W[434] + W[2542] * W[216] + W[377] * W[2397]
+            + W[595] * W[2179] + W[813] * W[1961] + W[1031] * W[1743] + W[1249] * W[1525] + W[1467] * W[1307]
+            + W[1685] * W[1089] + W[1903] * W[871] + W[2121] * W[653] + W[2339] * W[435] + W[2557] * W[217]
+            + W[2610];
+    W[2614] = W[360] * W[2393] + W[578] * W[2175] + W[796] * W[1957] + W[1014] * W[1739] + W[1232] * W[1521]
+            + W[1450] * W[1303] + W[1668] * W[1085] + W[1886] * W[867] + W[2104] * W[649] + W[2322] * W[431]
+            + W[2540] * W[213] + W[361] * W[2394] + W[579] * W[2176] + W[797] * W[1958] + W[1015] * W[1740]
+            + W[1233] * W[1522] + W[1451] * W[1304] + W[1669] * W[1086] + W[1887] * W[868] + W[2105] * W[650]
+            + W[2323] * W[432] + W[2541] * W[214] + W[362] * W[2395] + W[580] * W[2177] + W[798] * W[1959]
+            + W[1016] * W[1741] + W[1234] * W[1523] + W[1452] * W[1305] + W[1670] * W[1087] + W[1888] * W[869]
+            + W[2106] * W[651] + W[2324] * W[433] + W[2542] * W[215] + W[374] * W[2396] + W[592] * W[2178]
+            + W[810] * W[1960] + W[1028] * W[1742] + W[1246] * W[1524] + W[1464] * W[1306] + W[1682] * W[1088]
+            + W[1900] * W[870] + W[2118] * W[652] + W[2336] * W[434] + W[2554] * W[216] + W[378] * W[2397]
+            + W[596] * W[2179] + W[814] * W[1961] + W[1032] * W[1743] + W[1250] * W[1525] + W[1468] * W[1307]
+            + W[1686] * W[1089] + W[1904] * W[871] + W[2122] * W[653] + W[2340] * W[435] + W[2558] * W[217]
+            + W[2585];
+    W[2615] = W[375] * W[2393] + W[593] * W[2175] + W[811] * W[1957] + W[1029] * W[1739] + W[1247] * W[1521]
+            + W[1465] * W[1303] + W[1683] * W[1085] + W[1901] * W[867] + W[2119] * W[649] + W[2337] * W[431]
+            + W[2555] * W[213] + W[376] * W[2394] + W[594] * W[2176] + W[812] * W[1958] + W[1030] * W[1740]
+            + W[1248] * W[1522] + W[1466] * W[1304] + W[1684] * W[1086] + W[1902] * W[868] + W[2120] * W[650]
+            + W[2338] * W[432] + W[2556] * W[214] + W[377] * W[2395] + W[595] * W[2177] + W[813] * W[1959]
+            + W[1031] * W[1741] + W[1249] * W[1523] + W[1467] * W[1305] + W[1685] * W[1087] + W[1903] * W[869]
+            + W[2121] * W[651] + W[2339] * W[433] + W[2557] * W[215] + W[378] * W[2396] + W[596] * W[2178]
+            + W[814] * W[1960] + W[1032] * W[1742] + W[1250] * W[1524] + W[1468] * W[1306] + W[1686] * W[1088]
+            + W[1904] * W[870] + W[2122] * W[652] + W[2340] * W[434] + W[2558] * W[216] + W[2587];
+    if (solve(ctx, 11, NULL, W + 2611))
+        return -1;
+    X[125] = W[2611] / 12.0;
+    X[126] = W[2612] / 12.0;
+    X[127] = W[2613] / 12.0;
+    X[128] = W[2614] / 12.0;
+    X[129] = W[2615] / 12.0;
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 12, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_135(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2713] = W[2634] + W[2712];
+    W[2738] = W[2627] + W[2633];
+    W[2741] = W[2628] + W[2634];
+    W[2777] = W[2650] + W[2655];
+    W[2778] = W[2651] + W[2656];
+    W[2660] = W[41] * W[2659] + W[259] * W[2441] + W[477] * W[2223] + W[695] * W[2005] + W[913] * W[1787]
+            + W[1131] * W[1569] + W[1349] * W[1351] + W[1567] * W[1133] + W[1785] * W[915] + W[2003] * W[697]
+            + W[2221] * W[479] + W[2439] * W[261] + W[2657] * W[43];
+    W[2661] = W[41] * W[2658] + W[259] * W[2440] + W[477] * W[2222] + W[695] * W[2004] + W[913] * W[1786]
+            + W[1131] * W[1568] + W[1349] * W[1350] + W[1567] * W[1132] + W[1785] * W[914] + W[2003] * W[696]
+            + W[2221] * W[478] + W[2439] * W[260] + W[2657] * W[42];
+    W[2663] = W[18] * W[2662] + W[236] * W[2444] + W[454] * W[2226] + W[672] * W[2008] + W[890] * W[1790]
+            + W[1108] * W[1572] + W[1326] * W[1354] + W[1544] * W[1136] + W[1762] * W[918] + W[1980] * W[700]
+            + W[2198] * W[482] + W[2416] * W[264] + W[2634] * W[46];
+    W[2664] = W[17] * W[2662] + W[235] * W[2444] + W[453] * W[2226] + W[671] * W[2008] + W[889] * W[1790]
+            + W[1107] * W[1572] + W[1325] * W[1354] + W[1543] * W[1136] + W[1761] * W[918] + W[1979] * W[700]
+            + W[2197] * W[482] + W[2415] * W[264] + W[2633] * W[46];
+    W[2641] = W[2635] + W[2639];
+    W[2642] = W[2636] + W[2640];
+    W[2674] = W[56] * W[2639];
+    W[2710] = W[2639] + W[2709];
+    W[2714] = W[2640] + W[2713];
+    W[2739] = W[2639] + W[2738];
+    W[2742] = W[2640] + W[2741];
+    W[2761] = W[2634] + W[2640];
+    W[2764] = W[2633] + W[2639];
+    W[2779] = W[2660] + W[2777];
+    W[2780] = W[2661] + W[2778];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 12, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_137(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2715] = W[24] * W[2714] + W[242] * W[2496] + W[460] * W[2278] + W[678] * W[2060] + W[896] * W[1842]
+            + W[1114] * W[1624] + W[1332] * W[1406] + W[1550] * W[1188] + W[1768] * W[970] + W[1986] * W[752]
+            + W[2204] * W[534] + W[2422] * W[316] + W[2640] * W[98];
+    W[2740] = W[23] * W[2739] + W[241] * W[2521] + W[459] * W[2303] + W[677] * W[2085] + W[895] * W[1867]
+            + W[1113] * W[1649] + W[1331] * W[1431] + W[1549] * W[1213] + W[1767] * W[995] + W[1985] * W[777]
+            + W[2203] * W[559] + W[2421] * W[341] + W[2639] * W[123];
+    W[2743] = W[24] * W[2742] + W[242] * W[2524] + W[460] * W[2306] + W[678] * W[2088] + W[896] * W[1870]
+            + W[1114] * W[1652] + W[1332] * W[1434] + W[1550] * W[1216] + W[1768] * W[998] + W[1986] * W[780]
+            + W[2204] * W[562] + W[2422] * W[344] + W[2640] * W[126];
+    W[2767] = W[23] * W[2764] + W[241] * W[2546] + W[459] * W[2328] + W[677] * W[2110] + W[895] * W[1892]
+            + W[1113] * W[1674] + W[1331] * W[1456] + W[1549] * W[1238] + W[1767] * W[1020] + W[1985] * W[802]
+            + W[2203] * W[584] + W[2421] * W[366] + W[2639] * W[148];
+    W[2768] = W[24] * W[2761] + W[242] * W[2543] + W[460] * W[2325] + W[678] * W[2107] + W[896] * W[1889]
+            + W[1114] * W[1671] + W[1332] * W[1453] + W[1550] * W[1235] + W[1768] * W[1017] + W[1986] * W[799]
+            + W[2204] * W[581] + W[2422] * W[363] + W[2640] * W[145];
+    W[2680] = W[2677] - W[2679];
+    W[2688] = W[2686] + W[2687];
+    W[2695] = W[2629] + W[2689];
+    W[2698] = W[2630] + W[2692];
+    W[2716] = W[2711] + W[2715];
+    W[2723] = W[2708] + W[2717];
+    W[2726] = W[2712] + W[2720];
+    W[2744] = W[2740] + W[2743];
+    W[2751] = W[2627] + W[2745];
+    W[2754] = W[2628] + W[2748];
+    W[2769] = W[2767] + W[2768];
+    W[2783] = W[2670] + W[2781];
+    W[2784] = W[2671] + W[2782];
+    W[2690] = W[17] * W[2689] + W[235] * W[2471] + W[453] * W[2253] + W[671] * W[2035] + W[889] * W[1817]
+            + W[1107] * W[1599] + W[1325] * W[1381] + W[1543] * W[1163] + W[1761] * W[945] + W[1979] * W[727]
+            + W[2197] * W[509] + W[2415] * W[291] + W[2633] * W[73];
+    W[2693] = W[18] * W[2692] + W[236] * W[2474] + W[454] * W[2256] + W[672] * W[2038] + W[890] * W[1820]
+            + W[1108] * W[1602] + W[1326] * W[1384] + W[1544] * W[1166] + W[1762] * W[948] + W[1980] * W[730]
+            + W[2198] * W[512] + W[2416] * W[294] + W[2634] * W[76];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 12, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_139(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2789] = W[2781] + W[2783];
+    W[2696] = W[11] * W[2695] + W[229] * W[2477] + W[447] * W[2259] + W[665] * W[2041] + W[883] * W[1823]
+            + W[1101] * W[1605] + W[1319] * W[1387] + W[1537] * W[1169] + W[1755] * W[951] + W[1973] * W[733]
+            + W[2191] * W[515] + W[2409] * W[297] + W[2627] * W[79];
+    W[2699] = W[12] * W[2698] + W[230] * W[2480] + W[448] * W[2262] + W[666] * W[2044] + W[884] * W[1826]
+            + W[1102] * W[1608] + W[1320] * W[1390] + W[1538] * W[1172] + W[1756] * W[954] + W[1974] * W[736]
+            + W[2192] * W[518] + W[2410] * W[300] + W[2628] * W[82];
+    W[2724] = W[11] * W[2723] + W[229] * W[2505] + W[447] * W[2287] + W[665] * W[2069] + W[883] * W[1851]
+            + W[1101] * W[1633] + W[1319] * W[1415] + W[1537] * W[1197] + W[1755] * W[979] + W[1973] * W[761]
+            + W[2191] * W[543] + W[2409] * W[325] + W[2627] * W[107];
+    W[2727] = W[12] * W[2726] + W[230] * W[2508] + W[448] * W[2290] + W[666] * W[2072] + W[884] * W[1854]
+            + W[1102] * W[1636] + W[1320] * W[1418] + W[1538] * W[1200] + W[1756] * W[982] + W[1974] * W[764]
+            + W[2192] * W[546] + W[2410] * W[328] + W[2628] * W[110];
+    W[2752] = W[11] * W[2751] + W[229] * W[2533] + W[447] * W[2315] + W[665] * W[2097] + W[883] * W[1879]
+            + W[1101] * W[1661] + W[1319] * W[1443] + W[1537] * W[1225] + W[1755] * W[1007] + W[1973] * W[789]
+            + W[2191] * W[571] + W[2409] * W[353] + W[2627] * W[135];
+    W[2755] = W[12] * W[2754] + W[230] * W[2536] + W[448] * W[2318] + W[666] * W[2100] + W[884] * W[1882]
+            + W[1102] * W[1664] + W[1320] * W[1446] + W[1538] * W[1228] + W[1756] * W[1010] + W[1974] * W[792]
+            + W[2192] * W[574] + W[2410] * W[356] + W[2628] * W[138];
+    W[2785] = W[23] * W[2784] + W[241] * W[2566] + W[459] * W[2348] + W[677] * W[2130] + W[895] * W[1912]
+            + W[1113] * W[1694] + W[1331] * W[1476] + W[1549] * W[1258] + W[1767] * W[1040] + W[1985] * W[822]
+            + W[2203] * W[604] + W[2421] * W[386] + W[2639] * W[168];
+    W[2786] = W[24] * W[2783] + W[242] * W[2565] + W[460] * W[2347] + W[678] * W[2129] + W[896] * W[1911]
+            + W[1114] * W[1693] + W[1332] * W[1475] + W[1550] * W[1257] + W[1768] * W[1039] + W[1986] * W[821]
+            + W[2204] * W[603] + W[2422] * W[385] + W[2640] * W[167];
+    W[2685] = W[2683] - W[2684];
+    W[2694] = W[2691] + W[2693];
+    W[2722] = W[2719] + W[2721];
+    W[2750] = W[2747] + W[2749];
+    W[2771] = W[2763] + W[2770];
+    W[2791] = W[2780] + W[2787];
+    W[2793] = W[2779] + W[2789];
+    W[2799] = W[2785] - W[2786];
+    W[2806] = W[2617] + W[2701];
+    W[2809] = W[2618] + W[2704];
+    W[2702] = W[5] * W[2701] + W[223] * W[2483] + W[441] * W[2265] + W[659] * W[2047] + W[877] * W[1829]
+            + W[1095] * W[1611] + W[1313] * W[1393] + W[1531] * W[1175] + W[1749] * W[957] + W[1967] * W[739]
+            + W[2185] * W[521] + W[2403] * W[303] + W[2621] * W[85];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 12, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_141(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2700] = W[2697] + W[2699];
+    W[2728] = W[2725] + W[2727];
+    W[2756] = W[2753] + W[2755];
+    W[2801] = W[2800] - W[2790];
+    W[2805] = W[2674] + W[2804];
+    W[2819] = W[2651] + W[2795];
+    W[2820] = W[2650] + W[2797];
+    W[2796] = W[5] * W[2795] + W[223] * W[2577] + W[441] * W[2359] + W[659] * W[2141] + W[877] * W[1923]
+            + W[1095] * W[1705] + W[1313] * W[1487] + W[1531] * W[1269] + W[1749] * W[1051] + W[1967] * W[833]
+            + W[2185] * W[615] + W[2403] * W[397] + W[2621] * W[179];
+    W[2798] = W[6] * W[2797] + W[224] * W[2579] + W[442] * W[2361] + W[660] * W[2143] + W[878] * W[1925]
+            + W[1096] * W[1707] + W[1314] * W[1489] + W[1532] * W[1271] + W[1750] * W[1053] + W[1968] * W[835]
+            + W[2186] * W[617] + W[2404] * W[399] + W[2622] * W[181];
+    W[2703] = W[2700] + W[2702];
+    W[2731] = W[2728] + W[2730];
+    W[2736] = W[33] * W[2700];
+    W[2737] = W[33] * W[2728];
+    W[2757] = W[33] * W[2756];
+    W[2802] = W[33] * W[2801];
+    W[2813] = W[2792] + W[2801];
+    W[2821] = W[1] * W[2819] + W[219] * W[2601] + W[437] * W[2383] + W[655] * W[2165] + W[873] * W[1947]
+            + W[1091] * W[1729] + W[1309] * W[1511] + W[1527] * W[1293] + W[1745] * W[1075] + W[1963] * W[857]
+            + W[2181] * W[639] + W[2399] * W[421] + W[2617] * W[203];
+    W[2823] = W[2] * W[2820] + W[220] * W[2602] + W[438] * W[2384] + W[656] * W[2166] + W[874] * W[1948]
+            + W[1092] * W[1730] + W[1310] * W[1512] + W[1528] * W[1294] + W[1746] * W[1076] + W[1964] * W[858]
+            + W[2182] * W[640] + W[2400] * W[422] + W[2618] * W[204];
+    W[2706] = W[2703] + W[2705];
+    W[2734] = W[2731] + W[2733];
+    return 0;
+}
+
+/* Lines 200 .. 212 of taylor_run's order 12, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_143(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[133] = X[128] / 13.0;
+    X[134] = X[129] / 13.0;
+    W[2829] = W[414] * W[2611] + W[632] * W[2393] + W[850] * W[2175] + W[1068] * W[1957] + W[1286] * W[1739]
+            + W[1504] * W[1521] + W[1722] * W[1303] + W[1940] * W[1085] + W[2158] * W[867] + W[2376] * W[649]
+            + W[2594] * W[431] + W[2812] * W[213] + W[309] * W[2612] + W[527] * W[2394] + W[745] * W[2176]
+            + W[963] * W[1958] + W[1181] * W[1740] + W[1399] * W[1522] + W[1617] * W[1304] + W[1835] * W[1086]
+            + W[2053] * W[868] + W[2271] * W[650] + W[2489] * W[432] + W[2707] * W[214] + W[338] * W[2613]
+            + W[556] * W[2395] + W[774] * W[2177] + W[992] * W[1959] + W[1210] * W[1741] + W[1428] * W[1523]
+            + W[1646] * W[1305] + W[1864] * W[1087] + W[2082] * W[869] + W[2300] * W[651] + W[2518] * W[433]
+            + W[2736] * W[215] + W[360] * W[2614] + W[578] * W[2396] + W[796] * W[2178] + W[1014] * W[1960]
+            + W[1232] * W[1742] + W[1450] * W[1524] + W[1668] * W[1306] + W[1886] * W[1088] + W[2104] * W[870]
+            + W[2322] * W[652] + W[2540] * W[434] + W[2758] * W[216] + W[375] * W[2615] + W[593] * W[2397]
+            + W[811] * W[2179] + W[1029] * W[1961] + W[1247] * W[1743] + W[1465] * W[1525] + W[1683] * W[1307]
+            + W[1901] * W[1089] + W[2119] * W[871] + W[2337] * W[653] + W[2555] * W[435] + W[2773] * W[217]
+            + W[2826];
+    W[2830] = W[309] * W[2611] + W[527] * W[2393] + W[745] * W[2175] + W[963] * W[1957] + W[1181] * W[1739]
+            + W[1399] * W[1521] + W[1617] * W[1303] + W[1835] * W[1085] + W[2053] * W[867] + W[2271] * W[649]
+            + W[2489] * W[431] + W[2707] * W[213] + W[337] * W[2612] + W[555] * W[2394] + W[773] * W[2176]
+            + W[991] * W[1958] + W[1209] * W[1740] + W[1427] * W[1522] + W[1645] * W[1304] + W[1863] * W[1086]
+            + W[2081] * W[868] + W[2299] * W[650] + W[2517] * W[432] + W[2735] * W[214] + W[339] * W[2613]
+            + W[557] * W[2395] + W[775] * W[2177] + W[993] * W[1959] + W[1211] * W[1741] + W[1429] * W[1523]
+            + W[1647] * W[1305] + W[1865] * W[1087] + W[2083] * W[869] + W[2301] * W[651] + W[2519] * W[433]
+            + W[2737] * W[215] + W[361] * W[2614] + W[579] * W[2396] + W[797] * W[2178] + W[1015] * W[1960]
+            + W[1233] * W[1742] + W[1451] * W[1524] + W[1669] * W[1306] + W[1887] * W[1088] + W[2105] * W[870]
+            + W[2323] * W[652] + W[2541] * W[434] + W[2759] * W[216] + W[376] * W[2615] + W[594] * W[2397]
+            + W[812] * W[2179] + W[1030] * W[1961] + W[1248] * W[1743] + W[1466] * W[1525] + W[1684] * W[1307]
+            + W[1902] * W[1089] + W[2120] * W[871] + W[2338] * W[653] + W[2556] * W[435] + W[2774] * W[217]
+            + W[2827];
+    W[2831] = W[338] * W[2611] + W[556] * W[2393] + W[774] * W[2175] + W[992] * W[1957] + W[1210] * W[1739]
+            + W[1428] * W[1521] + W[1646] * W[1303] + W[1864] * W[1085] + W[2082] * W[867] + W[2300] * W[649]
+            + W[2518] * W[431] + W[2736] * W[213] + W[339] * W[2612] + W[557] * W[2394] + W[775] * W[2176]
+            + W[993] * W[1958] + W[1211] * W[1740] + W[1429] * W[1522] + W[1647] * W[1304] + W[1865] * W[1086]
+            + W[2083] * W[868] + W[2301] * W[650] + W[2519] * W[432] + W[2737] * W[214] + W[359] * W[2613]
+            + W[577] * W[2395] + W[795] * W[2177] + W[1013] * W[1959] + W[1231] * W[1741] + W[1449] * W[1523]
+            + W[1667] * W[1305] + W[1885] * W[1087] + W[2103] * W[869] + W[2321] * W[651] + W[2539] * W[433]
+            + W[2757] * W[215] + W[362] * W[2614] + W[580] * W[2396] + W[798] * W[2178] + W[1016] * W[1960]
+            + W[1234] * W[1742] + W[1452] * W[1524] + W[1670] * W[1306] + W[1888] * W[1088] + W[2106] * W[870]
+            + W[2324] * W[652] + W[2542] * W[434] + W[2760] * W[216] + W[377] * W[2615] + W[595] * W[2397]
+            + W[813] * W[2179] + W[1031] * W[1961] + W[1249] * W[1743] + W[1467] * W[1525] + W[1685] * W[1307]
+            + W[1903] * W[1089] + W[2121] * W[871] + W[2339] * W[653] + W[2557] * W[435] + W[2775] * W[217]
+            + W[2828];
+    W[2832] = W[360] * W[2611] + W[578] * W[2393] + W[796] * W[2175] + W[1014] * W[1957] + W[1232] * W[1739]
+            + W[1450] * W[1521] + W[1668] * W[1303] + W[1886] * W[1085] + W[2104] * W[867] + W[2322] * W[649]
+            + W[2540] * W[431] + W[2758] * W[213] + W[361] * W[2612] + W[579] * W[2394] + W[797] * W[2176]
+            + W[1015] * W[1958] + W[1233] * W[1740] + W[1451] * W[1522] + W[1669] * W[1304] + W[1887] * W[1086]
+            + W[2105] * W[868] + W[2323] * W[650] + W[2541] * W[432] + W[2759] * W[214] + W[362] * W[2613]
+            + W[580] * W[2395] + W[798] * W[2177] + W[1016] * W[1959] + W[1234] * W[1741] + W[1452] * W[1523]
+            + W[1670] * W[1305] + W[1888] * W[1087] + W[2106] * W[869] + W[2324] * W[651] + W[2542] * W[433]
+            + W[2760] * W[215] + W[374] * W[2614] + W[592] * W[2396] + W[810] * W[2178] + W[1028] * W[1960]
+            + W[1246] * W[1742] + W[1464] * W[1524] + W[1682] * W[1306] + W[1900] * W[1088] + W[2118] * W[870]
+            + W[2336] * W[652] + W[2554] * W[434] + W[2772] * W[216] + W[378] * W[2615] + W[596] * W[2397]
+            + W[814] * W[2179] + W[1032] * W[1961] + W[1250] * W[1743] + W[1468] * W[1525] + W[1686] * W[1307]
+            + W[1904] * W[1089] + W[2122] * W[871] + W[2340] * W[653] + W[2558] * W[435] + W[2776] * W[217]
+            + W[2803];
+    W[2833] = W[375] * W[2611] + W[593] * W[2393] + W[811] * W[2175] + W[1029] * W[1957] + W[1247] * W[1739]
+            + W[1465] * W[1521] + W[1683] * W[1303] + W[1901] * W[1085] + W[2119] * W[867] + W[2337] * W[649]
+            + W[2555] * W[431] + W[2773] * W[213] + W[376] * W[2612] + W[594] * W[2394] + W[812] * W[2176]
+            + W[1030] * W[1958] + W[1248] * W[1740] + W[1466] * W[1522] + W[1684] * W[1304] + W[1902] * W[1086]
+            + W[2120] * W[868] + W[2338] * W[650] + W[2556] * W[432] + W[2774] * W[214] + W[377] * W[2613]
+            + W[595] * W[2395] + W[813] * W[2177] + W[1031] * W[1959] + W[1249] * W[1741] + W[1467] * W[1523]
+            + W[1685] * W[1305] + W[1903] * W[1087] + W[2121] * W[869] + W[2339] * W[651] + W[2557] * W[433]
+            + W[2775] * W[215] + W[378] * W[2614] + W[596] * W[2396] + W[814] * W[2178] + W[1032] * W[1960]
+            + W[1250] * W[1742] + W[1468] * W[1524] + W[1686] * W[1306] + W[1904] * W[1088] + W[2122] * W[870]
+            + W[2340] * W[652] + W[2558] * W[434] + W[2776] * W[216] + W[2805];
+    if (solve(ctx, 12, NULL, W + 2829))
+        return -1;
+    X[135] = W[2829] / 13.0;
+    X[136] = W[2830] / 13.0;
+    X[137] = W[2831] / 13.0;
+    X[138] = W[2832] / 13.0;
+    X[139] = W[2833] / 13.0;
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_146(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2931] = W[2852] + W[2930];
+    W[2956] = W[2845] + W[2851];
+    W[2959] = W[2846] + W[2852];
+    W[2995] = W[2868] + W[2873];
+    W[2996] = W[2869] + W[2874];
+    W[2878] = W[41] * W[2877] + W[259] * W[2659] + W[477] * W[2441] + W[695] * W[2223] + W[913] * W[2005]
+            + W[1131] * W[1787] + W[1349] * W[1569] + W[1567] * W[1351] + W[1785] * W[1133] + W[2003] * W[915]
+            + W[2221] * W[697] + W[2439] * W[479] + W[2657] * W[261] + W[2875] * W[43];
+    W[2879] = W[41] * W[2876] + W[259] * W[2658] + W[477] * W[2440] + W[695] * W[2222] + W[913] * W[2004]
+            + W[1131] * W[1786] + W[1349] * W[1568] + W[1567] * W[1350] + W[1785] * W[1132] + W[2003] * W[914]
+            + W[2221] * W[696] + W[2439] * W[478] + W[2657] * W[260] + W[2875] * W[42];
+    W[2881] = W[18] * W[2880] + W[236] * W[2662] + W[454] * W[2444] + W[672] * W[2226] + W[890] * W[2008]
+            + W[1108] * W[1790] + W[1326] * W[1572] + W[1544] * W[1354] + W[1762] * W[1136] + W[1980] * W[918]
+            + W[2198] * W[700] + W[2416] * W[482] + W[2634] * W[264] + W[2852] * W[46];
+    W[2882] = W[17] * W[2880] + W[235] * W[2662] + W[453] * W[2444] + W[671] * W[2226] + W[889] * W[2008]
+            + W[1107] * W[1790] + W[1325] * W[1572] + W[1543] * W[1354] + W[1761] * W[1136] + W[1979] * W[918]
+            + W[2197] * W[700] + W[2415] * W[482] + W[2633] * W[264] + W[2851] * W[46];
+    W[2859] = W[2853] + W[2857];
+    W[2860] = W[2854] + W[2858];
+    W[2892] = W[56] * W[2857];
+    W[2928] = W[2857] + W[2927];
+    W[2932] = W[2858] + W[2931];
+    W[2957] = W[2857] + W[2956];
+    W[2960] = W[2858] + W[2959];
+    W[2979] = W[2852] + W[2858];
+    W[2982] = W[2851] + W[2857];
+    W[2997] = W[2878] + W[2995];
+    W[2998] = W[2879] + W[2996];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_148(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2933] = W[24] * W[2932] + W[242] * W[2714] + W[460] * W[2496] + W[678] * W[2278] + W[896] * W[2060]
+            + W[1114] * W[1842] + W[1332] * W[1624] + W[1550] * W[1406] + W[1768] * W[1188] + W[1986] * W[970]
+            + W[2204] * W[752] + W[2422] * W[534] + W[2640] * W[316] + W[2858] * W[98];
+    W[2958] = W[23] * W[2957] + W[241] * W[2739] + W[459] * W[2521] + W[677] * W[2303] + W[895] * W[2085]
+            + W[1113] * W[1867] + W[1331] * W[1649] + W[1549] * W[1431] + W[1767] * W[1213] + W[1985] * W[995]
+            + W[2203] * W[777] + W[2421] * W[559] + W[2639] * W[341] + W[2857] * W[123];
+    W[2961] = W[24] * W[2960] + W[242] * W[2742] + W[460] * W[2524] + W[678] * W[2306] + W[896] * W[2088]
+            + W[1114] * W[1870] + W[1332] * W[1652] + W[1550] * W[1434] + W[1768] * W[1216] + W[1986] * W[998]
+            + W[2204] * W[780] + W[2422] * W[562] + W[2640] * W[344] + W[2858] * W[126];
+    W[2985] = W[23] * W[2982] + W[241] * W[2764] + W[459] * W[2546] + W[677] * W[2328] + W[895] * W[2110]
+            + W[1113] * W[1892] + W[1331] * W[1674] + W[1549] * W[1456] + W[1767] * W[1238] + W[1985] * W[1020]
+            + W[2203] * W[802] + W[2421] * W[584] + W[2639] * W[366] + W[2857] * W[148];
+    W[2986] = W[24] * W[2979] + W[242] * W[2761] + W[460] * W[2543] + W[678] * W[2325] + W[896] * W[2107]
+            + W[1114] * W[1889] + W[1332] * W[1671] + W[1550] * W[1453] + W[1768] * W[1235] + W[1986] * W[1017]
+            + W[2204] * W[799] + W[2422] * W[581] + W[2640] * W[363] + W[2858] * W[145];
+    W[2898] = W[2895] - W[2897];
+    W[2906] = W[2904] + W[2905];
+    W[2913] = W[2847] + W[2907];
+    W[2916] = W[2848] + W[2910];
+    W[2934] = W[2929] + W[2933];
+    W[2941] = W[2926] + W[2935];
+    W[2944] = W[2930] + W[2938];
+    W[2962] = W[2958] + W[2961];
+    W[2969] = W[2845] + W[2963];
+    W[2972] = W[2846] + W[2966];
+    W[2987] = W[2985] + W[2986];
+    W[3001] = W[2888] + W[2999];
+    W[3002] = W[2889] + W[3000];
+    W[2908] = W[17] * W[2907] + W[235] * W[2689] + W[453] * W[2471] + W[671] * W[2253] + W[889] * W[2035]
+            + W[1107] * W[1817] + W[1325] * W[1599] + W[1543] * W[1381] + W[1761] * W[1163] + W[1979] * W[945]
+            + W[2197] * W[727] + W[2415] * W[509] + W[2633] * W[291] + W[2851] * W[73];
+    W[2911] = W[18] * W[2910] + W[236] * W[2692] + W[454] * W[2474] + W[672] * W[2256] + W[890] * W[2038]
+            + W[1108] * W[1820] + W[1326] * W[1602] + W[1544] * W[1384] + W[1762] * W[1166] + W[1980] * W[948]
+            + W[2198] * W[730] + W[2416] * W[512] + W[2634] * W[294] + W[2852] * W[76];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_150(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3007] = W[2999] + W[3001];
+    W[2914] = W[11] * W[2913] + W[229] * W[2695] + W[447] * W[2477] + W[665] * W[2259] + W[883] * W[2041]
+            + W[1101] * W[1823] + W[1319] * W[1605] + W[1537] * W[1387] + W[1755] * W[1169] + W[1973] * W[951]
+            + W[2191] * W[733] + W[2409] * W[515] + W[2627] * W[297] + W[2845] * W[79];
+    W[2917] = W[12] * W[2916] + W[230] * W[2698] + W[448] * W[2480] + W[666] * W[2262] + W[884] * W[2044]
+            + W[1102] * W[1826] + W[1320] * W[1608] + W[1538] * W[1390] + W[1756] * W[1172] + W[1974] * W[954]
+            + W[2192] * W[736] + W[2410] * W[518] + W[2628] * W[300] + W[2846] * W[82];
+    W[2942] = W[11] * W[2941] + W[229] * W[2723] + W[447] * W[2505] + W[665] * W[2287] + W[883] * W[2069]
+            + W[1101] * W[1851] + W[1319] * W[1633] + W[1537] * W[1415] + W[1755] * W[1197] + W[1973] * W[979]
+            + W[2191] * W[761] + W[2409] * W[543] + W[2627] * W[325] + W[2845] * W[107];
+    W[2945] = W[12] * W[2944] + W[230] * W[2726] + W[448] * W[2508] + W[666] * W[2290] + W[884] * W[2072]
+            + W[1102] * W[1854] + W[1320] * W[1636] + W[1538] * W[1418] + W[1756] * W[1200] + W[1974] * W[982]
+            + W[2192] * W[764] + W[2410] * W[546] + W[2628] * W[328] + W[2846] * W[110];
+    W[2970] = W[11] * W[2969] + W[229] * W[2751] + W[447] * W[2533] + W[665] * W[2315] + W[883] * W[2097]
+            + W[1101] * W[1879] + W[1319] * W[1661] + W[1537] * W[1443] + W[1755] * W[1225] + W[1973] * W[1007]
+            + W[2191] * W[789] + W[2409] * W[571] + W[2627] * W[353] + W[2845] * W[135];
+    W[2973] = W[12] * W[2972] + W[230] * W[2754] + W[448] * W[2536] + W[666] * W[2318] + W[884] * W[2100]
+            + W[1102] * W[1882] + W[1320] * W[1664] + W[1538] * W[1446] + W[1756] * W[1228] + W[1974] * W[1010]
+            + W[2192] * W[792] + W[2410] * W[574] + W[2628] * W[356] + W[2846] * W[138];
+    W[3003] = W[23] * W[3002] + W[241] * W[2784] + W[459] * W[2566] + W[677] * W[2348] + W[895] * W[2130]
+            + W[1113] * W[1912] + W[1331] * W[1694] + W[1549] * W[1476] + W[1767] * W[1258] + W[1985] * W[1040]
+            + W[2203] * W[822] + W[2421] * W[604] + W[2639] * W[386] + W[2857] * W[168];
+    W[3004] = W[24] * W[3001] + W[242] * W[2783] + W[460] * W[2565] + W[678] * W[2347] + W[896] * W[2129]
+            + W[1114] * W[1911] + W[1332] * W[1693] + W[1550] * W[1475] + W[1768] * W[1257] + W[1986] * W[1039]
+            + W[2204] * W[821] + W[2422] * W[603] + W[2640] * W[385] + W[2858] * W[167];
+    W[2903] = W[2901] - W[2902];
+    W[2912] = W[2909] + W[2911];
+    W[2940] = W[2937] + W[2939];
+    W[2968] = W[2965] + W[2967];
+    W[2989] = W[2981] + W[2988];
+    W[3009] = W[2998] + W[3005];
+    W[3011] = W[2997] + W[3007];
+    W[3017] = W[3003] - W[3004];
+    W[3024] = W[2835] + W[2919];
+    W[3027] = W[2836] + W[2922];
+    W[2920] = W[5] * W[2919] + W[223] * W[2701] + W[441] * W[2483] + W[659] * W[2265] + W[877] * W[2047]
+            + W[1095] * W[1829] + W[1313] * W[1611] + W[1531] * W[1393] + W[1749] * W[1175] + W[1967] * W[957]
+            + W[2185] * W[739] + W[2403] * W[521] + W[2621] * W[303] + W[2839] * W[85];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_152(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2918] = W[2915] + W[2917];
+    W[2946] = W[2943] + W[2945];
+    W[2974] = W[2971] + W[2973];
+    W[3019] = W[3018] - W[3008];
+    W[3023] = W[2892] + W[3022];
+    W[3037] = W[2869] + W[3013];
+    W[3038] = W[2868] + W[3015];
+    W[3014] = W[5] * W[3013] + W[223] * W[2795] + W[441] * W[2577] + W[659] * W[2359] + W[877] * W[2141]
+            + W[1095] * W[1923] + W[1313] * W[1705] + W[1531] * W[1487] + W[1749] * W[1269] + W[1967] * W[1051]
+            + W[2185] * W[833] + W[2403] * W[615] + W[2621] * W[397] + W[2839] * W[179];
+    W[3016] = W[6] * W[3015] + W[224] * W[2797] + W[442] * W[2579] + W[660] * W[2361] + W[878] * W[2143]
+            + W[1096] * W[1925] + W[1314] * W[1707] + W[1532] * W[1489] + W[1750] * W[1271] + W[1968] * W[1053]
+            + W[2186] * W[835] + W[2404] * W[617] + W[2622] * W[399] + W[2840] * W[181];
+    W[2921] = W[2918] + W[2920];
+    W[2949] = W[2946] + W[2948];
+    W[2954] = W[33] * W[2918];
+    W[2955] = W[33] * W[2946];
+    W[2975] = W[33] * W[2974];
+    W[3020] = W[33] * W[3019];
+    W[3031] = W[3010] + W[3019];
+    W[3039] = W[1] * W[3037] + W[219] * W[2819] + W[437] * W[2601] + W[655] * W[2383] + W[873] * W[2165]
+            + W[1091] * W[1947] + W[1309] * W[1729] + W[1527] * W[1511] + W[1745] * W[1293] + W[1963] * W[1075]
+            + W[2181] * W[857] + W[2399] * W[639] + W[2617] * W[421] + W[2835] * W[203];
+    W[3041] = W[2] * W[3038] + W[220] * W[2820] + W[438] * W[2602] + W[656] * W[2384] + W[874] * W[2166]
+            + W[1092] * W[1948] + W[1310] * W[1730] + W[1528] * W[1512] + W[1746] * W[1294] + W[1964] * W[1076]
+            + W[2182] * W[858] + W[2400] * W[640] + W[2618] * W[422] + W[2836] * W[204];
+    W[2924] = W[2921] + W[2923];
+    W[2952] = W[2949] + W[2951];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_153(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3021] = W[2895] + W[3020];
+    W[3032] = W[3031] - W[3012];
+    W[2925] = W[33] * W[2924];
+    W[2953] = W[33] * W[2952];
+    W[3026] = W[2924] + W[3025];
+    W[3033] = W[33] * W[3032];
+    W[3034] = W[3014] + W[3032];
+    W[3029] = W[3026] + W[3028];
+    W[3035] = W[3034] - W[3016];
+    W[3046] = W[2898] + W[3033];
+    W[3030] = W[33] * W[3029];
+    W[3036] = W[33] * W[3035];
+    W[3040] = W[3035] + W[3039];
+    W[3042] = W[3040] - W[3041];
+    W[3045] = W[2901] + W[3036];
+    W[3043] = W[33] * W[3042];
+    W[3044] = W[2903] + W[3043];
+    X[140] = X[135] / 14.0;
+    X[141] = X[136] / 14.0;
+    X[142] = X[137] / 14.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_155(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3053] = (X[10] * W[2836] + 2.0 * X[20] * W[2618] + 3.0 * X[30] * W[2400] + 4.0 * X[40] * W[2182]
+            + 5.0 * X[50] * W[1964] + 6.0 * X[60] * W[1746] + 7.0 * X[70] * W[1528] + 8.0 * X[80] * W[1310]
+            + 9.0 * X[90] * W[1092] + 10.0 * X[100] * W[874] + 11.0 * X[110] * W[656] + 12.0 * X[120] * W[438]
+            + 13.0 * X[130] * W[220] + 14.0 * X[140] * W[2]) / 14.0;
+    W[3054] = -((X[10] * W[2835] + 2.0 * X[20] * W[2617] + 3.0 * X[30] * W[2399] + 4.0 * X[40] * W[2181]
+            + 5.0 * X[50] * W[1963] + 6.0 * X[60] * W[1745] + 7.0 * X[70] * W[1527] + 8.0 * X[80] * W[1309]
+            + 9.0 * X[90] * W[1091] + 10.0 * X[100] * W[873] + 11.0 * X[110] * W[655] + 12.0 * X[120] * W[437]
+            + 13.0 * X[130] * W[219] + 14.0 * X[140] * W[1])) / 14.0;
+    W[3056] = X[140] + X[141];
+    W[3084] = (X[5] * X[145] + X[15] * X[135] + X[25] * X[125] + X[35] * X[115] + X[45] * X[105]
+            + X[55] * X[95] + X[65] * X[85]) * 2.0 + X[75] * X[75];
+    W[3088] = X[145] + X[146];
+    W[3057] = (W[222] * W[2840] + 2.0 * W[440] * W[2622] + 3.0 * W[658] * W[2404] + 4.0 * W[876] * W[2186]
+            + 5.0 * W[1094] * W[1968] + 6.0 * W[1312] * W[1750] + 7.0 * W[1530] * W[1532] + 8.0 * W[1748] * W[1314]
+            + 9.0 * W[1966] * W[1096] + 10.0 * W[2184] * W[878] + 11.0 * W[2402] * W[660] + 12.0 * W[2620] * W[442]
+            + 13.0 * W[2838] * W[224] + 14.0 * W[3056] * W[6]) / 14.0;
+    W[3058] = -((W[222] * W[2839] + 2.0 * W[440] * W[2621] + 3.0 * W[658] * W[2403] + 4.0 * W[876] * W[2185]
+            + 5.0 * W[1094] * W[1967] + 6.0 * W[1312] * W[1749] + 7.0 * W[1530] * W[1531] + 8.0 * W[1748] * W[1313]
+            + 9.0 * W[1966] * W[1095] + 10.0 * W[2184] * W[877] + 11.0 * W[2402] * W[659] + 12.0 * W[2620] * W[441]
+            + 13.0 * W[2838] * W[223] + 14.0 * W[3056] * W[5])) / 14.0;
+    W[3062] = W[3056] + X[142];
+    W[3093] = X[147] + W[3088];
+    W[3120] = W[65] * W[3053];
+    W[3086] = W[1] * W[3084] + W[219] * W[2866] + W[437] * W[2648] + W[655] * W[2430] + W[873] * W[2212]
+            + W[1091] * W[1994] + W[1309] * W[1776] + W[1527] * W[1558] + W[1745] * W[1340] + W[1963] * W[1122]
+            + W[2181] * W[904] + W[2399] * W[686] + W[2617] * W[468] + W[2835] * W[250] + W[3053] * W[32];
+    W[3087] = W[2] * W[3084] + W[220] * W[2866] + W[438] * W[2648] + W[656] * W[2430] + W[874] * W[2212]
+            + W[1092] * W[1994] + W[1310] * W[1776] + W[1528] * W[1558] + W[1746] * W[1340] + W[1964] * W[1122]
+            + W[2182] * W[904] + W[2400] * W[686] + W[2618] * W[468] + W[2836] * W[250] + W[3054] * W[32];
+    W[3059] = W[3053] + W[3057];
+    W[3060] = W[3054] + W[3058];
+    W[3063] = (W[228] * W[2846] + 2.0 * W[446] * W[2628] + 3.0 * W[664] * W[2410] + 4.0 * W[882] * W[2192]
+            + 5.0 * W[1100] * W[1974] + 6.0 * W[1318] * W[1756] + 7.0 * W[1536] * W[1538] + 8.0 * W[1754] * W[1320]
+            + 9.0 * W[1972] * W[1102] + 10.0 * W[2190] * W[884] + 11.0 * W[2408] * W[666] + 12.0 * W[2626] * W[448]
+            + 13.0 * W[2844] * W[230] + 14.0 * W[3062] * W[12]) / 14.0;
+    W[3064] = -((W[228] * W[2845] + 2.0 * W[446] * W[2627] + 3.0 * W[664] * W[2409] + 4.0 * W[882] * W[2191]
+            + 5.0 * W[1100] * W[1973] + 6.0 * W[1318] * W[1755] + 7.0 * W[1536] * W[1537] + 8.0 * W[1754] * W[1319]
+            + 9.0 * W[1972] * W[1101] + 10.0 * W[2190] * W[883] + 11.0 * W[2408] * W[665] + 12.0 * W[2626] * W[447]
+            + 13.0 * W[2844] * W[229] + 14.0 * W[3062] * W[11])) / 14.0;
+    W[3068] = W[3062] + X[143];
+    W[3098] = X[148] + W[3093];
+    W[3118] = W[62] * W[3057];
+    W[3089] = W[6] * W[3088] + W[224] * W[2870] + W[442] * W[2652] + W[660] * W[2434] + W[878] * W[2216]
+            + W[1096] * W[1998] + W[1314] * W[1780] + W[1532] * W[1562] + W[1750] * W[1344] + W[1968] * W[1126]
+            + W[2186] * W[908] + W[2404] * W[690] + W[2622] * W[472] + W[2840] * W[254] + W[3058] * W[36];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_156(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3090] = W[5] * W[3088] + W[223] * W[2870] + W[441] * W[2652] + W[659] * W[2434] + W[877] * W[2216]
+            + W[1095] * W[1998] + W[1313] * W[1780] + W[1531] * W[1562] + W[1749] * W[1344] + W[1967] * W[1126]
+            + W[2185] * W[908] + W[2403] * W[690] + W[2621] * W[472] + W[2839] * W[254] + W[3057] * W[36];
+    W[3065] = W[3059] + W[3063];
+    W[3066] = W[3060] + W[3064];
+    W[3069] = (W[234] * W[2852] + 2.0 * W[452] * W[2634] + 3.0 * W[670] * W[2416] + 4.0 * W[888] * W[2198]
+            + 5.0 * W[1106] * W[1980] + 6.0 * W[1324] * W[1762] + 7.0 * W[1542] * W[1544] + 8.0 * W[1760] * W[1326]
+            + 9.0 * W[1978] * W[1108] + 10.0 * W[2196] * W[890] + 11.0 * W[2414] * W[672] + 12.0 * W[2632] * W[454]
+            + 13.0 * W[2850] * W[236] + 14.0 * W[3068] * W[18]) / 14.0;
+    W[3070] = -((W[234] * W[2851] + 2.0 * W[452] * W[2633] + 3.0 * W[670] * W[2415] + 4.0 * W[888] * W[2197]
+            + 5.0 * W[1106] * W[1979] + 6.0 * W[1324] * W[1761] + 7.0 * W[1542] * W[1543] + 8.0 * W[1760] * W[1325]
+            + 9.0 * W[1978] * W[1107] + 10.0 * W[2196] * W[889] + 11.0 * W[2414] * W[671] + 12.0 * W[2632] * W[453]
+            + 13.0 * W[2850] * W[235] + 14.0 * W[3068] * W[17])) / 14.0;
+    W[3074] = W[3068] + X[144];
+    W[3103] = X[149] + W[3098];
+    W[3115] = W[59] * W[3063];
+    W[3144] = W[3057] + W[3063];
+    W[3148] = W[3058] + W[3064];
+    W[3091] = W[36] * W[3090] + W[254] * W[2872] + W[472] * W[2654] + W[690] * W[2436] + W[908] * W[2218]
+            + W[1126] * W[2000] + W[1344] * W[1782] + W[1562] * W[1564] + W[1780] * W[1346] + W[1998] * W[1128]
+            + W[2216] * W[910] + W[2434] * W[692] + W[2652] * W[474] + W[2870] * W[256] + W[3088] * W[38];
+    W[3092] = W[36] * W[3089] + W[254] * W[2871] + W[472] * W[2653] + W[690] * W[2435] + W[908] * W[2217]
+            + W[1126] * W[1999] + W[1344] * W[1781] + W[1562] * W[1563] + W[1780] * W[1345] + W[1998] * W[1127]
+            + W[2216] * W[909] + W[2434] * W[691] + W[2652] * W[473] + W[2870] * W[255] + W[3088] * W[37];
+    W[3094] = W[12] * W[3093] + W[230] * W[2875] + W[448] * W[2657] + W[666] * W[2439] + W[884] * W[2221]
+            + W[1102] * W[2003] + W[1320] * W[1785] + W[1538] * W[1567] + W[1756] * W[1349] + W[1974] * W[1131]
+            + W[2192] * W[913] + W[2410] * W[695] + W[2628] * W[477] + W[2846] * W[259] + W[3064] * W[41];
+    W[3095] = W[11] * W[3093] + W[229] * W[2875] + W[447] * W[2657] + W[665] * W[2439] + W[883] * W[2221]
+            + W[1101] * W[2003] + W[1319] * W[1785] + W[1537] * W[1567] + W[1755] * W[1349] + W[1973] * W[1131]
+            + W[2191] * W[913] + W[2409] * W[695] + W[2627] * W[477] + W[2845] * W[259] + W[3063] * W[41];
+    W[3071] = W[3065] + W[3069];
+    W[3072] = W[3066] + W[3070];
+    W[3075] = (W[240] * W[2858] + 2.0 * W[458] * W[2640] + 3.0 * W[676] * W[2422] + 4.0 * W[894] * W[2204]
+            + 5.0 * W[1112] * W[1986] + 6.0 * W[1330] * W[1768] + 7.0 * W[1548] * W[1550] + 8.0 * W[1766] * W[1332]
+            + 9.0 * W[1984] * W[1114] + 10.0 * W[2202] * W[896] + 11.0 * W[2420] * W[678] + 12.0 * W[2638] * W[460]
+            + 13.0 * W[2856] * W[242] + 14.0 * W[3074] * W[24]) / 14.0;
+    W[3076] = -((W[240] * W[2857] + 2.0 * W[458] * W[2639] + 3.0 * W[676] * W[2421] + 4.0 * W[894] * W[2203]
+            + 5.0 * W[1112] * W[1985] + 6.0 * W[1330] * W[1767] + 7.0 * W[1548] * W[1549] + 8.0 * W[1766] * W[1331]
+            + 9.0 * W[1984] * W[1113] + 10.0 * W[2202] * W[895] + 11.0 * W[2420] * W[677] + 12.0 * W[2638] * W[459]
+            + 13.0 * W[2856] * W[241] + 14.0 * W[3074] * W[23])) / 14.0;
+    W[3112] = W[57] * W[3069];
+    W[3145] = W[3069] + W[3144];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_158(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3101] = W[46] * W[3100] + W[264] * W[2882] + W[482] * W[2664] + W[700] * W[2446] + W[918] * W[2228]
+            + W[1136] * W[2010] + W[1354] * W[1792] + W[1572] * W[1574] + W[1790] * W[1356] + W[2008] * W[1138]
+            + W[2226] * W[920] + W[2444] * W[702] + W[2662] * W[484] + W[2880] * W[266] + W[3098] * W[48];
+    W[3102] = W[46] * W[3099] + W[264] * W[2881] + W[482] * W[2663] + W[700] * W[2445] + W[918] * W[2227]
+            + W[1136] * W[2009] + W[1354] * W[1791] + W[1572] * W[1573] + W[1790] * W[1355] + W[2008] * W[1137]
+            + W[2226] * W[919] + W[2444] * W[701] + W[2662] * W[483] + W[2880] * W[265] + W[3098] * W[47];
+    W[3104] = W[24] * W[3103] + W[242] * W[2885] + W[460] * W[2667] + W[678] * W[2449] + W[896] * W[2231]
+            + W[1114] * W[2013] + W[1332] * W[1795] + W[1550] * W[1577] + W[1768] * W[1359] + W[1986] * W[1141]
+            + W[2204] * W[923] + W[2422] * W[705] + W[2640] * W[487] + W[2858] * W[269] + W[3076] * W[51];
+    W[3105] = W[23] * W[3103] + W[241] * W[2885] + W[459] * W[2667] + W[677] * W[2449] + W[895] * W[2231]
+            + W[1113] * W[2013] + W[1331] * W[1795] + W[1549] * W[1577] + W[1767] * W[1359] + W[1985] * W[1141]
+            + W[2203] * W[923] + W[2421] * W[705] + W[2639] * W[487] + W[2857] * W[269] + W[3075] * W[51];
+    W[3113] = W[3110] - W[3112];
+    W[3125] = W[3071] + W[3077];
+    W[3128] = W[3072] + W[3078];
+    W[3153] = W[3145] + W[3146];
+    W[3156] = W[3149] + W[3150];
+    W[3181] = W[3174] + W[3175];
+    W[3184] = W[3177] + W[3178];
+    W[3198] = W[3070] + W[3197];
+    W[3201] = W[3069] + W[3200];
+    W[3217] = W[3101] + W[3215];
+    W[3218] = W[3102] + W[3216];
+    W[3106] = W[51] * W[3105] + W[269] * W[2887] + W[487] * W[2669] + W[705] * W[2451] + W[923] * W[2233]
+            + W[1141] * W[2015] + W[1359] * W[1797] + W[1577] * W[1579] + W[1795] * W[1361] + W[2013] * W[1143]
+            + W[2231] * W[925] + W[2449] * W[707] + W[2667] * W[489] + W[2885] * W[271] + W[3103] * W[53];
+    W[3107] = W[51] * W[3104] + W[269] * W[2886] + W[487] * W[2668] + W[705] * W[2450] + W[923] * W[2232]
+            + W[1141] * W[2014] + W[1359] * W[1796] + W[1577] * W[1578] + W[1795] * W[1360] + W[2013] * W[1142]
+            + W[2231] * W[924] + W[2449] * W[706] + W[2667] * W[488] + W[2885] * W[270] + W[3103] * W[52];
+    W[3122] = W[23] * W[3077] + W[241] * W[2859] + W[459] * W[2641] + W[677] * W[2423] + W[895] * W[2205]
+            + W[1113] * W[1987] + W[1331] * W[1769] + W[1549] * W[1551] + W[1767] * W[1333] + W[1985] * W[1115]
+            + W[2203] * W[897] + W[2421] * W[679] + W[2639] * W[461] + W[2857] * W[243] + W[3075] * W[25];
+    W[3123] = W[24] * W[3078] + W[242] * W[2860] + W[460] * W[2642] + W[678] * W[2424] + W[896] * W[2206]
+            + W[1114] * W[1988] + W[1332] * W[1770] + W[1550] * W[1552] + W[1768] * W[1334] + W[1986] * W[1116]
+            + W[2204] * W[898] + W[2422] * W[680] + W[2640] * W[462] + W[2858] * W[244] + W[3076] * W[26];
+    W[3147] = W[23] * W[3146] + W[241] * W[2928] + W[459] * W[2710] + W[677] * W[2492] + W[895] * W[2274]
+            + W[1113] * W[2056] + W[1331] * W[1838] + W[1549] * W[1620] + W[1767] * W[1402] + W[1985] * W[1184]
+            + W[2203] * W[966] + W[2421] * W[748] + W[2639] * W[530] + W[2857] * W[312] + W[3075] * W[94];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_160(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3154] = W[17] * W[3153] + W[235] * W[2935] + W[453] * W[2717] + W[671] * W[2499] + W[889] * W[2281]
+            + W[1107] * W[2063] + W[1325] * W[1845] + W[1543] * W[1627] + W[1761] * W[1409] + W[1979] * W[1191]
+            + W[2197] * W[973] + W[2415] * W[755] + W[2633] * W[537] + W[2851] * W[319] + W[3069] * W[101];
+    W[3157] = W[18] * W[3156] + W[236] * W[2938] + W[454] * W[2720] + W[672] * W[2502] + W[890] * W[2284]
+            + W[1108] * W[2066] + W[1326] * W[1848] + W[1544] * W[1630] + W[1762] * W[1412] + W[1980] * W[1194]
+            + W[2198] * W[976] + W[2416] * W[758] + W[2634] * W[540] + W[2852] * W[322] + W[3070] * W[104];
+    W[3182] = W[17] * W[3181] + W[235] * W[2963] + W[453] * W[2745] + W[671] * W[2527] + W[889] * W[2309]
+            + W[1107] * W[2091] + W[1325] * W[1873] + W[1543] * W[1655] + W[1761] * W[1437] + W[1979] * W[1219]
+            + W[2197] * W[1001] + W[2415] * W[783] + W[2633] * W[565] + W[2851] * W[347] + W[3069] * W[129];
+    W[3185] = W[18] * W[3184] + W[236] * W[2966] + W[454] * W[2748] + W[672] * W[2530] + W[890] * W[2312]
+            + W[1108] * W[2094] + W[1326] * W[1876] + W[1544] * W[1658] + W[1762] * W[1440] + W[1980] * W[1222]
+            + W[2198] * W[1004] + W[2416] * W[786] + W[2634] * W[568] + W[2852] * W[350] + W[3070] * W[132];
+    W[3199] = W[18] * W[3198] + W[236] * W[2980] + W[454] * W[2762] + W[672] * W[2544] + W[890] * W[2326]
+            + W[1108] * W[2108] + W[1326] * W[1890] + W[1544] * W[1672] + W[1762] * W[1454] + W[1980] * W[1236]
+            + W[2198] * W[1018] + W[2416] * W[800] + W[2634] * W[582] + W[2852] * W[364] + W[3070] * W[146];
+    W[3202] = W[17] * W[3201] + W[235] * W[2983] + W[453] * W[2765] + W[671] * W[2547] + W[889] * W[2329]
+            + W[1107] * W[2111] + W[1325] * W[1893] + W[1543] * W[1675] + W[1761] * W[1457] + W[1979] * W[1239]
+            + W[2197] * W[1021] + W[2415] * W[803] + W[2633] * W[585] + W[2851] * W[367] + W[3069] * W[149];
+    W[3119] = W[3116] - W[3118];
+    W[3127] = W[3124] + W[3126];
+    W[3137] = W[3059] + W[3131];
+    W[3140] = W[3060] + W[3134];
+    W[3155] = W[3152] + W[3154];
+    W[3165] = W[3057] + W[3159];
+    W[3168] = W[3058] + W[3162];
+    W[3183] = W[3180] + W[3182];
+    W[3206] = W[3202] + W[3205];
+    W[3209] = W[33] * W[3124];
+    W[3210] = W[33] * W[3152];
+    W[3211] = W[33] * W[3180];
+    W[3212] = W[33] * W[3205];
+    W[3223] = W[3218] + W[3220];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_162(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3141] = W[6] * W[3140] + W[224] * W[2922] + W[442] * W[2704] + W[660] * W[2486] + W[878] * W[2268]
+            + W[1096] * W[2050] + W[1314] * W[1832] + W[1532] * W[1614] + W[1750] * W[1396] + W[1968] * W[1178]
+            + W[2186] * W[960] + W[2404] * W[742] + W[2622] * W[524] + W[2840] * W[306] + W[3058] * W[88];
+    W[3166] = W[5] * W[3165] + W[223] * W[2947] + W[441] * W[2729] + W[659] * W[2511] + W[877] * W[2293]
+            + W[1095] * W[2075] + W[1313] * W[1857] + W[1531] * W[1639] + W[1749] * W[1421] + W[1967] * W[1203]
+            + W[2185] * W[985] + W[2403] * W[767] + W[2621] * W[549] + W[2839] * W[331] + W[3057] * W[113];
+    W[3169] = W[6] * W[3168] + W[224] * W[2950] + W[442] * W[2732] + W[660] * W[2514] + W[878] * W[2296]
+            + W[1096] * W[2078] + W[1314] * W[1860] + W[1532] * W[1642] + W[1750] * W[1424] + W[1968] * W[1206]
+            + W[2186] * W[988] + W[2404] * W[770] + W[2622] * W[552] + W[2840] * W[334] + W[3058] * W[116];
+    W[3224] = W[17] * W[3223] + W[235] * W[3005] + W[453] * W[2787] + W[671] * W[2569] + W[889] * W[2351]
+            + W[1107] * W[2133] + W[1325] * W[1915] + W[1543] * W[1697] + W[1761] * W[1479] + W[1979] * W[1261]
+            + W[2197] * W[1043] + W[2415] * W[825] + W[2633] * W[607] + W[2851] * W[389] + W[3069] * W[171];
+    W[3226] = W[18] * W[3225] + W[236] * W[3007] + W[454] * W[2789] + W[672] * W[2571] + W[890] * W[2353]
+            + W[1108] * W[2135] + W[1326] * W[1917] + W[1544] * W[1699] + W[1762] * W[1481] + W[1980] * W[1263]
+            + W[2198] * W[1045] + W[2416] * W[827] + W[2634] * W[609] + W[2852] * W[391] + W[3070] * W[173];
+    W[3133] = W[3130] + W[3132];
+    W[3161] = W[3158] + W[3160];
+    W[3189] = W[3186] + W[3188];
+    W[3194] = W[33] * W[3130];
+    W[3195] = W[33] * W[3158];
+    W[3196] = W[33] * W[3186];
+    W[3208] = W[33] * W[3207];
+    W[3231] = W[3214] + W[3227];
+    W[3233] = W[3213] + W[3229];
+    W[3236] = W[3224] + W[3235];
+    W[3240] = W[33] * W[3235];
+    W[3228] = W[11] * W[3227] + W[229] * W[3009] + W[447] * W[2791] + W[665] * W[2573] + W[883] * W[2355]
+            + W[1101] * W[2137] + W[1319] * W[1919] + W[1537] * W[1701] + W[1755] * W[1483] + W[1973] * W[1265]
+            + W[2191] * W[1047] + W[2409] * W[829] + W[2627] * W[611] + W[2845] * W[393] + W[3063] * W[175];
+    W[3230] = W[12] * W[3229] + W[230] * W[3011] + W[448] * W[2793] + W[666] * W[2575] + W[884] * W[2357]
+            + W[1102] * W[2139] + W[1320] * W[1921] + W[1538] * W[1703] + W[1756] * W[1485] + W[1974] * W[1267]
+            + W[2192] * W[1049] + W[2410] * W[831] + W[2628] * W[613] + W[2846] * W[395] + W[3064] * W[177];
+    W[3243] = W[1] * W[3242] + W[219] * W[3024] + W[437] * W[2806] + W[655] * W[2588] + W[873] * W[2370]
+            + W[1091] * W[2152] + W[1309] * W[1934] + W[1527] * W[1716] + W[1745] * W[1498] + W[1963] * W[1280]
+            + W[2181] * W[1062] + W[2399] * W[844] + W[2617] * W[626] + W[2835] * W[408] + W[3053] * W[190];
+    W[3246] = W[2] * W[3245] + W[220] * W[3027] + W[438] * W[2809] + W[656] * W[2591] + W[874] * W[2373]
+            + W[1092] * W[2155] + W[1310] * W[1937] + W[1528] * W[1719] + W[1746] * W[1501] + W[1964] * W[1283]
+            + W[2182] * W[1065] + W[2400] * W[847] + W[2618] * W[629] + W[2836] * W[411] + W[3054] * W[193];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_164(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3239] = W[3113] + W[3238];
+    W[3250] = W[3249] - W[3230];
+    W[3143] = W[33] * W[3142];
+    W[3171] = W[33] * W[3170];
+    W[3244] = W[3142] + W[3243];
+    W[3251] = W[33] * W[3250];
+    W[3252] = W[3232] + W[3250];
+    W[3247] = W[3244] + W[3246];
+    W[3253] = W[3252] - W[3234];
+    W[3264] = W[3116] + W[3251];
+    W[3248] = W[33] * W[3247];
+    W[3254] = W[33] * W[3253];
+    W[3258] = W[3253] + W[3257];
+    W[3260] = W[3258] - W[3259];
+    W[3263] = W[3119] + W[3254];
+    W[3261] = W[33] * W[3260];
+    W[3262] = W[3121] + W[3261];
+    X[150] = X[145] / 15.0;
+    X[151] = X[146] / 15.0;
+    X[152] = X[147] / 15.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_166(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3271] = (X[10] * W[3054] + 2.0 * X[20] * W[2836] + 3.0 * X[30] * W[2618] + 4.0 * X[40] * W[2400]
+            + 5.0 * X[50] * W[2182] + 6.0 * X[60] * W[1964] + 7.0 * X[70] * W[1746] + 8.0 * X[80] * W[1528]
+            + 9.0 * X[90] * W[1310] + 10.0 * X[100] * W[1092] + 11.0 * X[110] * W[874] + 12.0 * X[120] * W[656]
+            + 13.0 * X[130] * W[438] + 14.0 * X[140] * W[220] + 15.0 * X[150] * W[2]) / 15.0;
+    W[3272] = -((X[10] * W[3053] + 2.0 * X[20] * W[2835] + 3.0 * X[30] * W[2617] + 4.0 * X[40] * W[2399]
+            + 5.0 * X[50] * W[2181] + 6.0 * X[60] * W[1963] + 7.0 * X[70] * W[1745] + 8.0 * X[80] * W[1527]
+            + 9.0 * X[90] * W[1309] + 10.0 * X[100] * W[1091] + 11.0 * X[110] * W[873] + 12.0 * X[120] * W[655]
+            + 13.0 * X[130] * W[437] + 14.0 * X[140] * W[219] + 15.0 * X[150] * W[1])) / 15.0;
+    W[3274] = X[150] + X[151];
+    W[3302] = (X[5] * X[155] + X[15] * X[145] + X[25] * X[135] + X[35] * X[125] + X[45] * X[115]
+            + X[55] * X[105] + X[65] * X[95] + X[75] * X[85]) * 2.0;
+    W[3306] = X[155] + X[156];
+    W[3275] = (W[222] * W[3058] + 2.0 * W[440] * W[2840] + 3.0 * W[658] * W[2622] + 4.0 * W[876] * W[2404]
+            + 5.0 * W[1094] * W[2186] + 6.0 * W[1312] * W[1968] + 7.0 * W[1530] * W[1750] + 8.0 * W[1748] * W[1532]
+            + 9.0 * W[1966] * W[1314] + 10.0 * W[2184] * W[1096] + 11.0 * W[2402] * W[878] + 12.0 * W[2620] * W[660]
+            + 13.0 * W[2838] * W[442] + 14.0 * W[3056] * W[224] + 15.0 * W[3274] * W[6]) / 15.0;
+    W[3276] = -((W[222] * W[3057] + 2.0 * W[440] * W[2839] + 3.0 * W[658] * W[2621] + 4.0 * W[876] * W[2403]
+            + 5.0 * W[1094] * W[2185] + 6.0 * W[1312] * W[1967] + 7.0 * W[1530] * W[1749] + 8.0 * W[1748] * W[1531]
+            + 9.0 * W[1966] * W[1313] + 10.0 * W[2184] * W[1095] + 11.0 * W[2402] * W[877] + 12.0 * W[2620] * W[659]
+            + 13.0 * W[2838] * W[441] + 14.0 * W[3056] * W[223] + 15.0 * W[3274] * W[5])) / 15.0;
+    W[3280] = W[3274] + X[152];
+    W[3311] = X[157] + W[3306];
+    W[3338] = W[65] * W[3271];
+    W[3304] = W[1] * W[3302] + W[219] * W[3084] + W[437] * W[2866] + W[655] * W[2648] + W[873] * W[2430]
+            + W[1091] * W[2212] + W[1309] * W[1994] + W[1527] * W[1776] + W[1745] * W[1558] + W[1963] * W[1340]
+            + W[2181] * W[1122] + W[2399] * W[904] + W[2617] * W[686] + W[2835] * W[468] + W[3053] * W[250]
+            + W[3271] * W[32];
+    W[3305] = W[2] * W[3302] + W[220] * W[3084] + W[438] * W[2866] + W[656] * W[2648] + W[874] * W[2430]
+            + W[1092] * W[2212] + W[1310] * W[1994] + W[1528] * W[1776] + W[1746] * W[1558] + W[1964] * W[1340]
+            + W[2182] * W[1122] + W[2400] * W[904] + W[2618] * W[686] + W[2836] * W[468] + W[3054] * W[250]
+            + W[3272] * W[32];
+    W[3277] = W[3271] + W[3275];
+    W[3278] = W[3272] + W[3276];
+    W[3281] = (W[228] * W[3064] + 2.0 * W[446] * W[2846] + 3.0 * W[664] * W[2628] + 4.0 * W[882] * W[2410]
+            + 5.0 * W[1100] * W[2192] + 6.0 * W[1318] * W[1974] + 7.0 * W[1536] * W[1756] + 8.0 * W[1754] * W[1538]
+            + 9.0 * W[1972] * W[1320] + 10.0 * W[2190] * W[1102] + 11.0 * W[2408] * W[884] + 12.0 * W[2626] * W[666]
+            + 13.0 * W[2844] * W[448] + 14.0 * W[3062] * W[230] + 15.0 * W[3280] * W[12]) / 15.0;
+    W[3282] = -((W[228] * W[3063] + 2.0 * W[446] * W[2845] + 3.0 * W[664] * W[2627] + 4.0 * W[882] * W[2409]
+            + 5.0 * W[1100] * W[2191] + 6.0 * W[1318] * W[1973] + 7.0 * W[1536] * W[1755] + 8.0 * W[1754] * W[1537]
+            + 9.0 * W[1972] * W[1319] + 10.0 * W[2190] * W[1101] + 11.0 * W[2408] * W[883] + 12.0 * W[2626] * W[665]
+            + 13.0 * W[2844] * W[447] + 14.0 * W[3062] * W[229] + 15.0 * W[3280] * W[11])) / 15.0;
+    W[3286] = W[3280] + X[153];
+    W[3316] = X[158] + W[3311];
+    W[3336] = W[62] * W[3275];
+    W[3307] = W[6] * W[3306] + W[224] * W[3088] + W[442] * W[2870] + W[660] * W[2652] + W[878] * W[2434]
+            + W[1096] * W[2216] + W[1314] * W[1998] + W[1532] * W[1780] + W[1750] * W[1562] + W[1968] * W[1344]
+            + W[2186] * W[1126] + W[2404] * W[908] + W[2622] * W[690] + W[2840] * W[472] + W[3058] * W[254]
+            + W[3276] * W[36];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_167(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3308] = W[5] * W[3306] + W[223] * W[3088] + W[441] * W[2870] + W[659] * W[2652] + W[877] * W[2434]
+            + W[1095] * W[2216] + W[1313] * W[1998] + W[1531] * W[1780] + W[1749] * W[1562] + W[1967] * W[1344]
+            + W[2185] * W[1126] + W[2403] * W[908] + W[2621] * W[690] + W[2839] * W[472] + W[3057] * W[254]
+            + W[3275] * W[36];
+    W[3283] = W[3277] + W[3281];
+    W[3284] = W[3278] + W[3282];
+    W[3287] = (W[234] * W[3070] + 2.0 * W[452] * W[2852] + 3.0 * W[670] * W[2634] + 4.0 * W[888] * W[2416]
+            + 5.0 * W[1106] * W[2198] + 6.0 * W[1324] * W[1980] + 7.0 * W[1542] * W[1762] + 8.0 * W[1760] * W[1544]
+            + 9.0 * W[1978] * W[1326] + 10.0 * W[2196] * W[1108] + 11.0 * W[2414] * W[890] + 12.0 * W[2632] * W[672]
+            + 13.0 * W[2850] * W[454] + 14.0 * W[3068] * W[236] + 15.0 * W[3286] * W[18]) / 15.0;
+    W[3288] = -((W[234] * W[3069] + 2.0 * W[452] * W[2851] + 3.0 * W[670] * W[2633] + 4.0 * W[888] * W[2415]
+            + 5.0 * W[1106] * W[2197] + 6.0 * W[1324] * W[1979] + 7.0 * W[1542] * W[1761] + 8.0 * W[1760] * W[1543]
+            + 9.0 * W[1978] * W[1325] + 10.0 * W[2196] * W[1107] + 11.0 * W[2414] * W[889] + 12.0 * W[2632] * W[671]
+            + 13.0 * W[2850] * W[453] + 14.0 * W[3068] * W[235] + 15.0 * W[3286] * W[17])) / 15.0;
+    W[3292] = W[3286] + X[154];
+    W[3321] = X[159] + W[3316];
+    W[3333] = W[59] * W[3281];
+    W[3362] = W[3275] + W[3281];
+    W[3366] = W[3276] + W[3282];
+    W[3309] = W[36] * W[3308] + W[254] * W[3090] + W[472] * W[2872] + W[690] * W[2654] + W[908] * W[2436]
+            + W[1126] * W[2218] + W[1344] * W[2000] + W[1562] * W[1782] + W[1780] * W[1564] + W[1998] * W[1346]
+            + W[2216] * W[1128] + W[2434] * W[910] + W[2652] * W[692] + W[2870] * W[474] + W[3088] * W[256]
+            + W[3306] * W[38];
+    W[3310] = W[36] * W[3307] + W[254] * W[3089] + W[472] * W[2871] + W[690] * W[2653] + W[908] * W[2435]
+            + W[1126] * W[2217] + W[1344] * W[1999] + W[1562] * W[1781] + W[1780] * W[1563] + W[1998] * W[1345]
+            + W[2216] * W[1127] + W[2434] * W[909] + W[2652] * W[691] + W[2870] * W[473] + W[3088] * W[255]
+            + W[3306] * W[37];
+    W[3312] = W[12] * W[3311] + W[230] * W[3093] + W[448] * W[2875] + W[666] * W[2657] + W[884] * W[2439]
+            + W[1102] * W[2221] + W[1320] * W[2003] + W[1538] * W[1785] + W[1756] * W[1567] + W[1974] * W[1349]
+            + W[2192] * W[1131] + W[2410] * W[913] + W[2628] * W[695] + W[2846] * W[477] + W[3064] * W[259]
+            + W[3282] * W[41];
+    W[3313] = W[11] * W[3311] + W[229] * W[3093] + W[447] * W[2875] + W[665] * W[2657] + W[883] * W[2439]
+            + W[1101] * W[2221] + W[1319] * W[2003] + W[1537] * W[1785] + W[1755] * W[1567] + W[1973] * W[1349]
+            + W[2191] * W[1131] + W[2409] * W[913] + W[2627] * W[695] + W[2845] * W[477] + W[3063] * W[259]
+            + W[3281] * W[41];
+    W[3289] = W[3283] + W[3287];
+    W[3290] = W[3284] + W[3288];
+    W[3293] = (W[240] * W[3076] + 2.0 * W[458] * W[2858] + 3.0 * W[676] * W[2640] + 4.0 * W[894] * W[2422]
+            + 5.0 * W[1112] * W[2204] + 6.0 * W[1330] * W[1986] + 7.0 * W[1548] * W[1768] + 8.0 * W[1766] * W[1550]
+            + 9.0 * W[1984] * W[1332] + 10.0 * W[2202] * W[1114] + 11.0 * W[2420] * W[896] + 12.0 * W[2638] * W[678]
+            + 13.0 * W[2856] * W[460] + 14.0 * W[3074] * W[242] + 15.0 * W[3292] * W[24]) / 15.0;
+    W[3294] = -((W[240] * W[3075] + 2.0 * W[458] * W[2857] + 3.0 * W[676] * W[2639] + 4.0 * W[894] * W[2421]
+            + 5.0 * W[1112] * W[2203] + 6.0 * W[1330] * W[1985] + 7.0 * W[1548] * W[1767] + 8.0 * W[1766] * W[1549]
+            + 9.0 * W[1984] * W[1331] + 10.0 * W[2202] * W[1113] + 11.0 * W[2420] * W[895] + 12.0 * W[2638] * W[677]
+            + 13.0 * W[2856] * W[459] + 14.0 * W[3074] * W[241] + 15.0 * W[3292] * W[23])) / 15.0;
+    W[3330] = W[57] * W[3287];
+    W[3363] = W[3287] + W[3362];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_169(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3319] = W[46] * W[3318] + W[264] * W[3100] + W[482] * W[2882] + W[700] * W[2664] + W[918] * W[2446]
+            + W[1136] * W[2228] + W[1354] * W[2010] + W[1572] * W[1792] + W[1790] * W[1574] + W[2008] * W[1356]
+            + W[2226] * W[1138] + W[2444] * W[920] + W[2662] * W[702] + W[2880] * W[484] + W[3098] * W[266]
+            + W[3316] * W[48];
+    W[3320] = W[46] * W[3317] + W[264] * W[3099] + W[482] * W[2881] + W[700] * W[2663] + W[918] * W[2445]
+            + W[1136] * W[2227] + W[1354] * W[2009] + W[1572] * W[1791] + W[1790] * W[1573] + W[2008] * W[1355]
+            + W[2226] * W[1137] + W[2444] * W[919] + W[2662] * W[701] + W[2880] * W[483] + W[3098] * W[265]
+            + W[3316] * W[47];
+    W[3322] = W[24] * W[3321] + W[242] * W[3103] + W[460] * W[2885] + W[678] * W[2667] + W[896] * W[2449]
+            + W[1114] * W[2231] + W[1332] * W[2013] + W[1550] * W[1795] + W[1768] * W[1577] + W[1986] * W[1359]
+            + W[2204] * W[1141] + W[2422] * W[923] + W[2640] * W[705] + W[2858] * W[487] + W[3076] * W[269]
+            + W[3294] * W[51];
+    W[3323] = W[23] * W[3321] + W[241] * W[3103] + W[459] * W[2885] + W[677] * W[2667] + W[895] * W[2449]
+            + W[1113] * W[2231] + W[1331] * W[2013] + W[1549] * W[1795] + W[1767] * W[1577] + W[1985] * W[1359]
+            + W[2203] * W[1141] + W[2421] * W[923] + W[2639] * W[705] + W[2857] * W[487] + W[3075] * W[269]
+            + W[3293] * W[51];
+    W[3331] = W[3328] - W[3330];
+    W[3343] = W[3289] + W[3295];
+    W[3346] = W[3290] + W[3296];
+    W[3371] = W[3363] + W[3364];
+    W[3374] = W[3367] + W[3368];
+    W[3399] = W[3392] + W[3393];
+    W[3402] = W[3395] + W[3396];
+    W[3416] = W[3288] + W[3415];
+    W[3419] = W[3287] + W[3418];
+    W[3435] = W[3319] + W[3433];
+    W[3436] = W[3320] + W[3434];
+    W[3324] = W[51] * W[3323] + W[269] * W[3105] + W[487] * W[2887] + W[705] * W[2669] + W[923] * W[2451]
+            + W[1141] * W[2233] + W[1359] * W[2015] + W[1577] * W[1797] + W[1795] * W[1579] + W[2013] * W[1361]
+            + W[2231] * W[1143] + W[2449] * W[925] + W[2667] * W[707] + W[2885] * W[489] + W[3103] * W[271]
+            + W[3321] * W[53];
+    W[3325] = W[51] * W[3322] + W[269] * W[3104] + W[487] * W[2886] + W[705] * W[2668] + W[923] * W[2450]
+            + W[1141] * W[2232] + W[1359] * W[2014] + W[1577] * W[1796] + W[1795] * W[1578] + W[2013] * W[1360]
+            + W[2231] * W[1142] + W[2449] * W[924] + W[2667] * W[706] + W[2885] * W[488] + W[3103] * W[270]
+            + W[3321] * W[52];
+    W[3340] = W[23] * W[3295] + W[241] * W[3077] + W[459] * W[2859] + W[677] * W[2641] + W[895] * W[2423]
+            + W[1113] * W[2205] + W[1331] * W[1987] + W[1549] * W[1769] + W[1767] * W[1551] + W[1985] * W[1333]
+            + W[2203] * W[1115] + W[2421] * W[897] + W[2639] * W[679] + W[2857] * W[461] + W[3075] * W[243]
+            + W[3293] * W[25];
+    W[3341] = W[24] * W[3296] + W[242] * W[3078] + W[460] * W[2860] + W[678] * W[2642] + W[896] * W[2424]
+            + W[1114] * W[2206] + W[1332] * W[1988] + W[1550] * W[1770] + W[1768] * W[1552] + W[1986] * W[1334]
+            + W[2204] * W[1116] + W[2422] * W[898] + W[2640] * W[680] + W[2858] * W[462] + W[3076] * W[244]
+            + W[3294] * W[26];
+    W[3365] = W[23] * W[3364] + W[241] * W[3146] + W[459] * W[2928] + W[677] * W[2710] + W[895] * W[2492]
+            + W[1113] * W[2274] + W[1331] * W[2056] + W[1549] * W[1838] + W[1767] * W[1620] + W[1985] * W[1402]
+            + W[2203] * W[1184] + W[2421] * W[966] + W[2639] * W[748] + W[2857] * W[530] + W[3075] * W[312]
+            + W[3293] * W[94];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_171(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3372] = W[17] * W[3371] + W[235] * W[3153] + W[453] * W[2935] + W[671] * W[2717] + W[889] * W[2499]
+            + W[1107] * W[2281] + W[1325] * W[2063] + W[1543] * W[1845] + W[1761] * W[1627] + W[1979] * W[1409]
+            + W[2197] * W[1191] + W[2415] * W[973] + W[2633] * W[755] + W[2851] * W[537] + W[3069] * W[319]
+            + W[3287] * W[101];
+    W[3375] = W[18] * W[3374] + W[236] * W[3156] + W[454] * W[2938] + W[672] * W[2720] + W[890] * W[2502]
+            + W[1108] * W[2284] + W[1326] * W[2066] + W[1544] * W[1848] + W[1762] * W[1630] + W[1980] * W[1412]
+            + W[2198] * W[1194] + W[2416] * W[976] + W[2634] * W[758] + W[2852] * W[540] + W[3070] * W[322]
+            + W[3288] * W[104];
+    W[3400] = W[17] * W[3399] + W[235] * W[3181] + W[453] * W[2963] + W[671] * W[2745] + W[889] * W[2527]
+            + W[1107] * W[2309] + W[1325] * W[2091] + W[1543] * W[1873] + W[1761] * W[1655] + W[1979] * W[1437]
+            + W[2197] * W[1219] + W[2415] * W[1001] + W[2633] * W[783] + W[2851] * W[565] + W[3069] * W[347]
+            + W[3287] * W[129];
+    W[3403] = W[18] * W[3402] + W[236] * W[3184] + W[454] * W[2966] + W[672] * W[2748] + W[890] * W[2530]
+            + W[1108] * W[2312] + W[1326] * W[2094] + W[1544] * W[1876] + W[1762] * W[1658] + W[1980] * W[1440]
+            + W[2198] * W[1222] + W[2416] * W[1004] + W[2634] * W[786] + W[2852] * W[568] + W[3070] * W[350]
+            + W[3288] * W[132];
+    W[3417] = W[18] * W[3416] + W[236] * W[3198] + W[454] * W[2980] + W[672] * W[2762] + W[890] * W[2544]
+            + W[1108] * W[2326] + W[1326] * W[2108] + W[1544] * W[1890] + W[1762] * W[1672] + W[1980] * W[1454]
+            + W[2198] * W[1236] + W[2416] * W[1018] + W[2634] * W[800] + W[2852] * W[582] + W[3070] * W[364]
+            + W[3288] * W[146];
+    W[3420] = W[17] * W[3419] + W[235] * W[3201] + W[453] * W[2983] + W[671] * W[2765] + W[889] * W[2547]
+            + W[1107] * W[2329] + W[1325] * W[2111] + W[1543] * W[1893] + W[1761] * W[1675] + W[1979] * W[1457]
+            + W[2197] * W[1239] + W[2415] * W[1021] + W[2633] * W[803] + W[2851] * W[585] + W[3069] * W[367]
+            + W[3287] * W[149];
+    W[3337] = W[3334] - W[3336];
+    W[3345] = W[3342] + W[3344];
+    W[3355] = W[3277] + W[3349];
+    W[3358] = W[3278] + W[3352];
+    W[3373] = W[3370] + W[3372];
+    W[3383] = W[3275] + W[3377];
+    W[3386] = W[3276] + W[3380];
+    W[3401] = W[3398] + W[3400];
+    W[3424] = W[3420] + W[3423];
+    W[3427] = W[33] * W[3342];
+    W[3428] = W[33] * W[3370];
+    W[3429] = W[33] * W[3398];
+    W[3430] = W[33] * W[3423];
+    W[3441] = W[3436] + W[3438];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_173(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3359] = W[6] * W[3358] + W[224] * W[3140] + W[442] * W[2922] + W[660] * W[2704] + W[878] * W[2486]
+            + W[1096] * W[2268] + W[1314] * W[2050] + W[1532] * W[1832] + W[1750] * W[1614] + W[1968] * W[1396]
+            + W[2186] * W[1178] + W[2404] * W[960] + W[2622] * W[742] + W[2840] * W[524] + W[3058] * W[306]
+            + W[3276] * W[88];
+    W[3384] = W[5] * W[3383] + W[223] * W[3165] + W[441] * W[2947] + W[659] * W[2729] + W[877] * W[2511]
+            + W[1095] * W[2293] + W[1313] * W[2075] + W[1531] * W[1857] + W[1749] * W[1639] + W[1967] * W[1421]
+            + W[2185] * W[1203] + W[2403] * W[985] + W[2621] * W[767] + W[2839] * W[549] + W[3057] * W[331]
+            + W[3275] * W[113];
+    W[3387] = W[6] * W[3386] + W[224] * W[3168] + W[442] * W[2950] + W[660] * W[2732] + W[878] * W[2514]
+            + W[1096] * W[2296] + W[1314] * W[2078] + W[1532] * W[1860] + W[1750] * W[1642] + W[1968] * W[1424]
+            + W[2186] * W[1206] + W[2404] * W[988] + W[2622] * W[770] + W[2840] * W[552] + W[3058] * W[334]
+            + W[3276] * W[116];
+    W[3442] = W[17] * W[3441] + W[235] * W[3223] + W[453] * W[3005] + W[671] * W[2787] + W[889] * W[2569]
+            + W[1107] * W[2351] + W[1325] * W[2133] + W[1543] * W[1915] + W[1761] * W[1697] + W[1979] * W[1479]
+            + W[2197] * W[1261] + W[2415] * W[1043] + W[2633] * W[825] + W[2851] * W[607] + W[3069] * W[389]
+            + W[3287] * W[171];
+    W[3444] = W[18] * W[3443] + W[236] * W[3225] + W[454] * W[3007] + W[672] * W[2789] + W[890] * W[2571]
+            + W[1108] * W[2353] + W[1326] * W[2135] + W[1544] * W[1917] + W[1762] * W[1699] + W[1980] * W[1481]
+            + W[2198] * W[1263] + W[2416] * W[1045] + W[2634] * W[827] + W[2852] * W[609] + W[3070] * W[391]
+            + W[3288] * W[173];
+    W[3351] = W[3348] + W[3350];
+    W[3379] = W[3376] + W[3378];
+    W[3407] = W[3404] + W[3406];
+    W[3412] = W[33] * W[3348];
+    W[3413] = W[33] * W[3376];
+    W[3414] = W[33] * W[3404];
+    W[3426] = W[33] * W[3425];
+    W[3449] = W[3432] + W[3445];
+    W[3451] = W[3431] + W[3447];
+    W[3454] = W[3442] + W[3453];
+    W[3458] = W[33] * W[3453];
+    W[3446] = W[11] * W[3445] + W[229] * W[3227] + W[447] * W[3009] + W[665] * W[2791] + W[883] * W[2573]
+            + W[1101] * W[2355] + W[1319] * W[2137] + W[1537] * W[1919] + W[1755] * W[1701] + W[1973] * W[1483]
+            + W[2191] * W[1265] + W[2409] * W[1047] + W[2627] * W[829] + W[2845] * W[611] + W[3063] * W[393]
+            + W[3281] * W[175];
+    W[3448] = W[12] * W[3447] + W[230] * W[3229] + W[448] * W[3011] + W[666] * W[2793] + W[884] * W[2575]
+            + W[1102] * W[2357] + W[1320] * W[2139] + W[1538] * W[1921] + W[1756] * W[1703] + W[1974] * W[1485]
+            + W[2192] * W[1267] + W[2410] * W[1049] + W[2628] * W[831] + W[2846] * W[613] + W[3064] * W[395]
+            + W[3282] * W[177];
+    W[3461] = W[1] * W[3460] + W[219] * W[3242] + W[437] * W[3024] + W[655] * W[2806] + W[873] * W[2588]
+            + W[1091] * W[2370] + W[1309] * W[2152] + W[1527] * W[1934] + W[1745] * W[1716] + W[1963] * W[1498]
+            + W[2181] * W[1280] + W[2399] * W[1062] + W[2617] * W[844] + W[2835] * W[626] + W[3053] * W[408]
+            + W[3271] * W[190];
+    W[3464] = W[2] * W[3463] + W[220] * W[3245] + W[438] * W[3027] + W[656] * W[2809] + W[874] * W[2591]
+            + W[1092] * W[2373] + W[1310] * W[2155] + W[1528] * W[1937] + W[1746] * W[1719] + W[1964] * W[1501]
+            + W[2182] * W[1283] + W[2400] * W[1065] + W[2618] * W[847] + W[2836] * W[629] + W[3054] * W[411]
+            + W[3272] * W[193];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_175(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3457] = W[3331] + W[3456];
+    W[3468] = W[3467] - W[3448];
+    W[3361] = W[33] * W[3360];
+    W[3389] = W[33] * W[3388];
+    W[3462] = W[3360] + W[3461];
+    W[3469] = W[33] * W[3468];
+    W[3470] = W[3450] + W[3468];
+    W[3465] = W[3462] + W[3464];
+    W[3471] = W[3470] - W[3452];
+    W[3482] = W[3334] + W[3469];
+    W[3466] = W[33] * W[3465];
+    W[3472] = W[33] * W[3471];
+    W[3476] = W[3471] + W[3475];
+    W[3478] = W[3476] - W[3477];
+    W[3481] = W[3337] + W[3472];
+    W[3479] = W[33] * W[3478];
+    W[3480] = W[3339] + W[3479];
+    X[160] = X[155] / 16.0;
+    X[161] = X[156] / 16.0;
+    X[162] = X[157] / 16.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 16, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_177(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3489] = (X[10] * W[3272] + 2.0 * X[20] * W[3054] + 3.0 * X[30] * W[2836] + 4.0 * X[40] * W[2618]
+            + 5.0 * X[50] * W[2400] + 6.0 * X[60] * W[2182] + 7.0 * X[70] * W[1964] + 8.0 * X[80] * W[1746]
+            + 9.0 * X[90] * W[1528] + 10.0 * X[100] * W[1310] + 11.0 * X[110] * W[1092] + 12.0 * X[120] * W[874]
+            + 13.0 * X[130] * W[656] + 14.0 * X[140] * W[438] + 15.0 * X[150] * W[220] + 16.0 * X[160] * W[2]) / 16.0;
+    W[3490] = -((X[10] * W[3271] + 2.0 * X[20] * W[3053] + 3.0 * X[30] * W[2835] + 4.0 * X[40] * W[2617]
+            + 5.0 * X[50] * W[2399] + 6.0 * X[60] * W[2181] + 7.0 * X[70] * W[1963] + 8.0 * X[80] * W[1745]
+            + 9.0 * X[90] * W[1527] + 10.0 * X[100] * W[1309] + 11.0 * X[110] * W[1091] + 12.0 * X[120] * W[873]
+            + 13.0 * X[130] * W[655] + 14.0 * X[140] * W[437] + 15.0 * X[150] * W[219] + 16.0 * X[160] * W[1])) / 16.0;
+    W[3492] = X[160] + X[161];
+    W[3520] = (X[5] * X[165] + X[15] * X[155] + X[25] * X[145] + X[35] * X[135] + X[45] * X[125]
+            + X[55] * X[115] + X[65] * X[105] + X[75] * X[95]) * 2.0 + X[85] * X[85];
+    W[3524] = X[165] + X[166];
+    W[3493] = (W[222] * W[3276] + 2.0 * W[440] * W[3058] + 3.0 * W[658] * W[2840] + 4.0 * W[876] * W[2622]
+            + 5.0 * W[1094] * W[2404] + 6.0 * W[1312] * W[2186] + 7.0 * W[1530] * W[1968] + 8.0 * W[1748] * W[1750]
+            + 9.0 * W[1966] * W[1532] + 10.0 * W[2184] * W[1314] + 11.0 * W[2402] * W[1096] + 12.0 * W[2620] * W[878]
+            + 13.0 * W[2838] * W[660] + 14.0 * W[3056] * W[442] + 15.0 * W[3274] * W[224] + 16.0 * W[3492] * W[6]) / 16.0;
+    W[3494] = -((W[222] * W[3275] + 2.0 * W[440] * W[3057] + 3.0 * W[658] * W[2839] + 4.0 * W[876] * W[2621]
+            + 5.0 * W[1094] * W[2403] + 6.0 * W[1312] * W[2185] + 7.0 * W[1530] * W[1967] + 8.0 * W[1748] * W[1749]
+            + 9.0 * W[1966] * W[1531] + 10.0 * W[2184] * W[1313] + 11.0 * W[2402] * W[1095] + 12.0 * W[2620] * W[877]
+            + 13.0 * W[2838] * W[659] + 14.0 * W[3056] * W[441] + 15.0 * W[3274] * W[223] + 16.0 * W[3492] * W[5])) / 16.0;
+    W[3498] = W[3492] + X[162];
+    W[3529] = X[167] + W[3524];
+    W[3556] = W[65] * W[3489];
+    W[3522] = W[1] * W[3520] + W[219] * W[3302] + W[437] * W[3084] + W[655] * W[2866] + W[873] * W[2648]
+            + W[1091] * W[2430] + W[1309] * W[2212] + W[1527] * W[1994] + W[1745] * W[1776] + W[1963] * W[1558]
+            + W[2181] * W[1340] + W[2399] * W[1122] + W[2617] * W[904] + W[2835] * W[686] + W[3053] * W[468]
+            + W[3271] * W[250] + W[3489] * W[32];
+    W[3523] = W[2] * W[3520] + W[220] * W[3302] + W[438] * W[3084] + W[656] * W[2866] + W[874] * W[2648]
+            + W[1092] * W[2430] + W[1310] * W[2212] + W[1528] * W[1994] + W[1746] * W[1776] + W[1964] * W[1558]
+            + W[2182] * W[1340] + W[2400] * W[1122] + W[2618] * W[904] + W[2836] * W[686] + W[3054] * W[468]
+            + W[3272] * W[250] + W[3490] * W[32];
+    W[3495] = W[3489] + W[3493];
+    W[3496] = W[3490] + W[3494];
+    W[3499] = (W[228] * W[3282] + 2.0 * W[446] * W[3064] + 3.0 * W[664] * W[2846] + 4.0 * W[882] * W[2628]
+            + 5.0 * W[1100] * W[2410] + 6.0 * W[1318] * W[2192] + 7.0 * W[1536] * W[1974] + 8.0 * W[1754] * W[1756]
+            + 9.0 * W[1972] * W[1538] + 10.0 * W[2190] * W[1320] + 11.0 * W[2408] * W[1102] + 12.0 * W[2626] * W[884]
+            + 13.0 * W[2844] * W[666] + 14.0 * W[3062] * W[448] + 15.0 * W[3280] * W[230] + 16.0 * W[3498] * W[12]) / 16.0;
+    W[3500] = -((W[228] * W[3281] + 2.0 * W[446] * W[3063] + 3.0 * W[664] * W[2845] + 4.0 * W[882] * W[2627]
+            + 5.0 * W[1100] * W[2409] + 6.0 * W[1318] * W[2191] + 7.0 * W[1536] * W[1973] + 8.0 * W[1754] * W[1755]
+            + 9.0 * W[1972] * W[1537] + 10.0 * W[2190] * W[1319] + 11.0 * W[2408] * W[1101] + 12.0 * W[2626] * W[883]
+            + 13.0 * W[2844] * W[665] + 14.0 * W[3062] * W[447] + 15.0 * W[3280] * W[229] + 16.0 * W[3498] * W[11])) / 16.0;
+    W[3504] = W[3498] + X[163];
+    W[3534] = X[168] + W[3529];
+    W[3554] = W[62] * W[3493];
+    W[3525] = W[6] * W[3524] + W[224] * W[3306] + W[442] * W[3088] + W[660] * W[2870] + W[878] * W[2652]
+            + W[1096] * W[2434] + W[1314] * W[2216] + W[1532] * W[1998] + W[1750] * W[1780] + W[1968] * W[1562]
+            + W[2186] * W[1344] + W[2404] * W[1126] + W[2622] * W[908] + W[2840] * W[690] + W[3058] * W[472]
+            + W[3276] * W[254] + W[3494] * W[36];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 16, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_178(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3526] = W[5] * W[3524] + W[223] * W[3306] + W[441] * W[3088] + W[659] * W[2870] + W[877] * W[2652]
+            + W[1095] * W[2434] + W[1313] * W[2216] + W[1531] * W[1998] + W[1749] * W[1780] + W[1967] * W[1562]
+            + W[2185] * W[1344] + W[2403] * W[1126] + W[2621] * W[908] + W[2839] * W[690] + W[3057] * W[472]
+            + W[3275] * W[254] + W[3493] * W[36];
+    W[3501] = W[3495] + W[3499];
+    W[3502] = W[3496] + W[3500];
+    W[3505] = (W[234] * W[3288] + 2.0 * W[452] * W[3070] + 3.0 * W[670] * W[2852] + 4.0 * W[888] * W[2634]
+            + 5.0 * W[1106] * W[2416] + 6.0 * W[1324] * W[2198] + 7.0 * W[1542] * W[1980] + 8.0 * W[1760] * W[1762]
+            + 9.0 * W[1978] * W[1544] + 10.0 * W[2196] * W[1326] + 11.0 * W[2414] * W[1108] + 12.0 * W[2632] * W[890]
+            + 13.0 * W[2850] * W[672] + 14.0 * W[3068] * W[454] + 15.0 * W[3286] * W[236] + 16.0 * W[3504] * W[18]) / 16.0;
+    W[3506] = -((W[234] * W[3287] + 2.0 * W[452] * W[3069] + 3.0 * W[670] * W[2851] + 4.0 * W[888] * W[2633]
+            + 5.0 * W[1106] * W[2415] + 6.0 * W[1324] * W[2197] + 7.0 * W[1542] * W[1979] + 8.0 * W[1760] * W[1761]
+            + 9.0 * W[1978] * W[1543] + 10.0 * W[2196] * W[1325] + 11.0 * W[2414] * W[1107] + 12.0 * W[2632] * W[889]
+            + 13.0 * W[2850] * W[671] + 14.0 * W[3068] * W[453] + 15.0 * W[3286] * W[235] + 16.0 * W[3504] * W[17])) / 16.0;
+    W[3510] = W[3504] + X[164];
+    W[3539] = X[169] + W[3534];
+    W[3551] = W[59] * W[3499];
+    W[3580] = W[3493] + W[3499];
+    W[3584] = W[3494] + W[3500];
+    W[3527] = W[36] * W[3526] + W[254] * W[3308] + W[472] * W[3090] + W[690] * W[2872] + W[908] * W[2654]
+            + W[1126] * W[2436] + W[1344] * W[2218] + W[1562] * W[2000] + W[1780] * W[1782] + W[1998] * W[1564]
+            + W[2216] * W[1346] + W[2434] * W[1128] + W[2652] * W[910] + W[2870] * W[692] + W[3088] * W[474]
+            + W[3306] * W[256] + W[3524] * W[38];
+    W[3528] = W[36] * W[3525] + W[254] * W[3307] + W[472] * W[3089] + W[690] * W[2871] + W[908] * W[2653]
+            + W[1126] * W[2435] + W[1344] * W[2217] + W[1562] * W[1999] + W[1780] * W[1781] + W[1998] * W[1563]
+            + W[2216] * W[1345] + W[2434] * W[1127] + W[2652] * W[909] + W[2870] * W[691] + W[3088] * W[473]
+            + W[3306] * W[255] + W[3524] * W[37];
+    W[3530] = W[12] * W[3529] + W[230] * W[3311] + W[448] * W[3093] + W[666] * W[2875] + W[884] * W[2657]
+            + W[1102] * W[2439] + W[1320] * W[2221] + W[1538] * W[2003] + W[1756] * W[1785] + W[1974] * W[1567]
+            + W[2192] * W[1349] + W[2410] * W[1131] + W[2628] * W[913] + W[2846] * W[695] + W[3064] * W[477]
+            + W[3282] * W[259] + W[3500] * W[41];
+    W[3531] = W[11] * W[3529] + W[229] * W[3311] + W[447] * W[3093] + W[665] * W[2875] + W[883] * W[2657]
+            + W[1101] * W[2439] + W[1319] * W[2221] + W[1537] * W[2003] + W[1755] * W[1785] + W[1973] * W[1567]
+            + W[2191] * W[1349] + W[2409] * W[1131] + W[2627] * W[913] + W[2845] * W[695] + W[3063] * W[477]
+            + W[3281] * W[259] + W[3499] * W[41];
+    W[3507] = W[3501] + W[3505];
+    W[3508] = W[3502] + W[3506];
+    W[3511] = (W[240] * W[3294] + 2.0 * W[458] * W[3076] + 3.0 * W[676] * W[2858] + 4.0 * W[894] * W[2640]
+            + 5.0 * W[1112] * W[2422] + 6.0 * W[1330] * W[2204] + 7.0 * W[1548] * W[1986] + 8.0 * W[1766] * W[1768]
+            + 9.0 * W[1984] * W[1550] + 10.0 * W[2202] * W[1332] + 11.0 * W[2420] * W[1114] + 12.0 * W[2638] * W[896]
+            + 13.0 * W[2856] * W[678] + 14.0 * W[3074] * W[460] + 15.0 * W[3292] * W[242] + 16.0 * W[3510] * W[24]) / 16.0;
+    W[3512] = -((W[240] * W[3293] + 2.0 * W[458] * W[3075] + 3.0 * W[676] * W[2857] + 4.0 * W[894] * W[2639]
+            + 5.0 * W[1112] * W[2421] + 6.0 * W[1330] * W[2203] + 7.0 * W[1548] * W[1985] + 8.0 * W[1766] * W[1767]
+            + 9.0 * W[1984] * W[1549] + 10.0 * W[2202] * W[1331] + 11.0 * W[2420] * W[1113] + 12.0 * W[2638] * W[895]
+            + 13.0 * W[2856] * W[677] + 14.0 * W[3074] * W[459] + 15.0 * W[3292] * W[241] + 16.0 * W[3510] * W[23])) / 16.0;
+    W[3548] = W[57] * W[3505];
+    W[3581] = W[3505] + W[3580];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 16, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_180(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3537] = W[46] * W[3536] + W[264] * W[3318] + W[482] * W[3100] + W[700] * W[2882] + W[918] * W[2664]
+            + W[1136] * W[2446] + W[1354] * W[2228] + W[1572] * W[2010] + W[1790] * W[1792] + W[2008] * W[1574]
+            + W[2226] * W[1356] + W[2444] * W[1138] + W[2662] * W[920] + W[2880] * W[702] + W[3098] * W[484]
+            + W[3316] * W[266] + W[3534] * W[48];
+    W[3538] = W[46] * W[3535] + W[264] * W[3317] + W[482] * W[3099] + W[700] * W[2881] + W[918] * W[2663]
+            + W[1136] * W[2445] + W[1354] * W[2227] + W[1572] * W[2009] + W[1790] * W[1791] + W[2008] * W[1573]
+            + W[2226] * W[1355] + W[2444] * W[1137] + W[2662] * W[919] + W[2880] * W[701] + W[3098] * W[483]
+            + W[3316] * W[265] + W[3534] * W[47];
+    W[3540] = W[24] * W[3539] + W[242] * W[3321] + W[460] * W[3103] + W[678] * W[2885] + W[896] * W[2667]
+            + W[1114] * W[2449] + W[1332] * W[2231] + W[1550] * W[2013] + W[1768] * W[1795] + W[1986] * W[1577]
+            + W[2204] * W[1359] + W[2422] * W[1141] + W[2640] * W[923] + W[2858] * W[705] + W[3076] * W[487]
+            + W[3294] * W[269] + W[3512] * W[51];
+    W[3541] = W[23] * W[3539] + W[241] * W[3321] + W[459] * W[3103] + W[677] * W[2885] + W[895] * W[2667]
+            + W[1113] * W[2449] + W[1331] * W[2231] + W[1549] * W[2013] + W[1767] * W[1795] + W[1985] * W[1577]
+            + W[2203] * W[1359] + W[2421] * W[1141] + W[2639] * W[923] + W[2857] * W[705] + W[3075] * W[487]
+            + W[3293] * W[269] + W[3511] * W[51];
+    W[3549] = W[3546] - W[3548];
+    W[3561] = W[3507] + W[3513];
+    W[3564] = W[3508] + W[3514];
+    W[3589] = W[3581] + W[3582];
+    W[3592] = W[3585] + W[3586];
+    W[3617] = W[3610] + W[3611];
+    W[3620] = W[3613] + W[3614];
+    W[3634] = W[3506] + W[3633];
+    W[3637] = W[3505] + W[3636];
+    W[3653] = W[3537] + W[3651];
+    W[3654] = W[3538] + W[3652];
+    W[3542] = W[51] * W[3541] + W[269] * W[3323] + W[487] * W[3105] + W[705] * W[2887] + W[923] * W[2669]
+            + W[1141] * W[2451] + W[1359] * W[2233] + W[1577] * W[2015] + W[1795] * W[1797] + W[2013] * W[1579]
+            + W[2231] * W[1361] + W[2449] * W[1143] + W[2667] * W[925] + W[2885] * W[707] + W[3103] * W[489]
+            + W[3321] * W[271] + W[3539] * W[53];
+    W[3543] = W[51] * W[3540] + W[269] * W[3322] + W[487] * W[3104] + W[705] * W[2886] + W[923] * W[2668]
+            + W[1141] * W[2450] + W[1359] * W[2232] + W[1577] * W[2014] + W[1795] * W[1796] + W[2013] * W[1578]
+            + W[2231] * W[1360] + W[2449] * W[1142] + W[2667] * W[924] + W[2885] * W[706] + W[3103] * W[488]
+            + W[3321] * W[270] + W[3539] * W[52];
+    W[3558] = W[23] * W[3513] + W[241] * W[3295] + W[459] * W[3077] + W[677] * W[2859] + W[895] * W[2641]
+            + W[1113] * W[2423] + W[1331] * W[2205] + W[1549] * W[1987] + W[1767] * W[1769] + W[1985] * W[1551]
+            + W[2203] * W[1333] + W[2421] * W[1115] + W[2639] * W[897] + W[2857] * W[679] + W[3075] * W[461]
+            + W[3293] * W[243] + W[3511] * W[25];
+    W[3559] = W[24] * W[3514] + W[242] * W[3296] + W[460] * W[3078] + W[678] * W[2860] + W[896] * W[2642]
+            + W[1114] * W[2424] + W[1332] * W[2206] + W[1550] * W[1988] + W[1768] * W[1770] + W[1986] * W[1552]
+            + W[2204] * W[1334] + W[2422] * W[1116] + W[2640] * W[898] + W[2858] * W[680] + W[3076] * W[462]
+            + W[3294] * W[244] + W[3512] * W[26];
+    W[3583] = W[23] * W[3582] + W[241] * W[3364] + W[459] * W[3146] + W[677] * W[2928] + W[895] * W[2710]
+            + W[1113] * W[2492] + W[1331] * W[2274] + W[1549] * W[2056] + W[1767] * W[1838] + W[1985] * W[1620]
+            + W[2203] * W[1402] + W[2421] * W[1184] + W[2639] * W[966] + W[2857] * W[748] + W[3075] * W[530]
+            + W[3293] * W[312] + W[3511] * W[94];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 16, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_182(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3590] = W[17] * W[3589] + W[235] * W[3371] + W[453] * W[3153] + W[671] * W[2935] + W[889] * W[2717]
+            + W[1107] * W[2499] + W[1325] * W[2281] + W[1543] * W[2063] + W[1761] * W[1845] + W[1979] * W[1627]
+            + W[2197] * W[1409] + W[2415] * W[1191] + W[2633] * W[973] + W[2851] * W[755] + W[3069] * W[537]
+            + W[3287] * W[319] + W[3505] * W[101];
+    W[3593] = W[18] * W[3592] + W[236] * W[3374] + W[454] * W[3156] + W[672] * W[2938] + W[890] * W[2720]
+            + W[1108] * W[2502] + W[1326] * W[2284] + W[1544] * W[2066] + W[1762] * W[1848] + W[1980] * W[1630]
+            + W[2198] * W[1412] + W[2416] * W[1194] + W[2634] * W[976] + W[2852] * W[758] + W[3070] * W[540]
+            + W[3288] * W[322] + W[3506] * W[104];
+    W[3618] = W[17] * W[3617] + W[235] * W[3399] + W[453] * W[3181] + W[671] * W[2963] + W[889] * W[2745]
+            + W[1107] * W[2527] + W[1325] * W[2309] + W[1543] * W[2091] + W[1761] * W[1873] + W[1979] * W[1655]
+            + W[2197] * W[1437] + W[2415] * W[1219] + W[2633] * W[1001] + W[2851] * W[783] + W[3069] * W[565]
+            + W[3287] * W[347] + W[3505] * W[129];
+    W[3621] = W[18] * W[3620] + W[236] * W[3402] + W[454] * W[3184] + W[672] * W[2966] + W[890] * W[2748]
+            + W[1108] * W[2530] + W[1326] * W[2312] + W[1544] * W[2094] + W[1762] * W[1876] + W[1980] * W[1658]
+            + W[2198] * W[1440] + W[2416] * W[1222] + W[2634] * W[1004] + W[2852] * W[786] + W[3070] * W[568]
+            + W[3288] * W[350] + W[3506] * W[132];
+    W[3635] = W[18] * W[3634] + W[236] * W[3416] + W[454] * W[3198] + W[672] * W[2980] + W[890] * W[2762]
+            + W[1108] * W[2544] + W[1326] * W[2326] + W[1544] * W[2108] + W[1762] * W[1890] + W[1980] * W[1672]
+            + W[2198] * W[1454] + W[2416] * W[1236] + W[2634] * W[1018] + W[2852] * W[800] + W[3070] * W[582]
+            + W[3288] * W[364] + W[3506] * W[146];
+    W[3638] = W[17] * W[3637] + W[235] * W[3419] + W[453] * W[3201] + W[671] * W[2983] + W[889] * W[2765]
+            + W[1107] * W[2547] + W[1325] * W[2329] + W[1543] * W[2111] + W[1761] * W[1893] + W[1979] * W[1675]
+            + W[2197] * W[1457] + W[2415] * W[1239] + W[2633] * W[1021] + W[2851] * W[803] + W[3069] * W[585]
+            + W[3287] * W[367] + W[3505] * W[149];
+    W[3555] = W[3552] - W[3554];
+    W[3563] = W[3560] + W[3562];
+    W[3573] = W[3495] + W[3567];
+    W[3576] = W[3496] + W[3570];
+    W[3591] = W[3588] + W[3590];
+    W[3601] = W[3493] + W[3595];
+    W[3604] = W[3494] + W[3598];
+    W[3619] = W[3616] + W[3618];
+    W[3642] = W[3638] + W[3641];
+    W[3645] = W[33] * W[3560];
+    W[3646] = W[33] * W[3588];
+    W[3647] = W[33] * W[3616];
+    W[3648] = W[33] * W[3641];
+    W[3659] = W[3654] + W[3656];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 16, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_184(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3577] = W[6] * W[3576] + W[224] * W[3358] + W[442] * W[3140] + W[660] * W[2922] + W[878] * W[2704]
+            + W[1096] * W[2486] + W[1314] * W[2268] + W[1532] * W[2050] + W[1750] * W[1832] + W[1968] * W[1614]
+            + W[2186] * W[1396] + W[2404] * W[1178] + W[2622] * W[960] + W[2840] * W[742] + W[3058] * W[524]
+            + W[3276] * W[306] + W[3494] * W[88];
+    W[3602] = W[5] * W[3601] + W[223] * W[3383] + W[441] * W[3165] + W[659] * W[2947] + W[877] * W[2729]
+            + W[1095] * W[2511] + W[1313] * W[2293] + W[1531] * W[2075] + W[1749] * W[1857] + W[1967] * W[1639]
+            + W[2185] * W[1421] + W[2403] * W[1203] + W[2621] * W[985] + W[2839] * W[767] + W[3057] * W[549]
+            + W[3275] * W[331] + W[3493] * W[113];
+    W[3605] = W[6] * W[3604] + W[224] * W[3386] + W[442] * W[3168] + W[660] * W[2950] + W[878] * W[2732]
+            + W[1096] * W[2514] + W[1314] * W[2296] + W[1532] * W[2078] + W[1750] * W[1860] + W[1968] * W[1642]
+            + W[2186] * W[1424] + W[2404] * W[1206] + W[2622] * W[988] + W[2840] * W[770] + W[3058] * W[552]
+            + W[3276] * W[334] + W[3494] * W[116];
+    W[3660] = W[17] * W[3659] + W[235] * W[3441] + W[453] * W[3223] + W[671] * W[3005] + W[889] * W[2787]
+            + W[1107] * W[2569] + W[1325] * W[2351] + W[1543] * W[2133] + W[1761] * W[1915] + W[1979] * W[1697]
+            + W[2197] * W[1479] + W[2415] * W[1261] + W[2633] * W[1043] + W[2851] * W[825] + W[3069] * W[607]
+            + W[3287] * W[389] + W[3505] * W[171];
+    W[3662] = W[18] * W[3661] + W[236] * W[3443] + W[454] * W[3225] + W[672] * W[3007] + W[890] * W[2789]
+            + W[1108] * W[2571] + W[1326] * W[2353] + W[1544] * W[2135] + W[1762] * W[1917] + W[1980] * W[1699]
+            + W[2198] * W[1481] + W[2416] * W[1263] + W[2634] * W[1045] + W[2852] * W[827] + W[3070] * W[609]
+            + W[3288] * W[391] + W[3506] * W[173];
+    W[3569] = W[3566] + W[3568];
+    W[3597] = W[3594] + W[3596];
+    W[3625] = W[3622] + W[3624];
+    W[3630] = W[33] * W[3566];
+    W[3631] = W[33] * W[3594];
+    W[3632] = W[33] * W[3622];
+    W[3644] = W[33] * W[3643];
+    W[3667] = W[3650] + W[3663];
+    W[3669] = W[3649] + W[3665];
+    W[3672] = W[3660] + W[3671];
+    W[3676] = W[33] * W[3671];
+    W[3664] = W[11] * W[3663] + W[229] * W[3445] + W[447] * W[3227] + W[665] * W[3009] + W[883] * W[2791]
+            + W[1101] * W[2573] + W[1319] * W[2355] + W[1537] * W[2137] + W[1755] * W[1919] + W[1973] * W[1701]
+            + W[2191] * W[1483] + W[2409] * W[1265] + W[2627] * W[1047] + W[2845] * W[829] + W[3063] * W[611]
+            + W[3281] * W[393] + W[3499] * W[175];
+    W[3666] = W[12] * W[3665] + W[230] * W[3447] + W[448] * W[3229] + W[666] * W[3011] + W[884] * W[2793]
+            + W[1102] * W[2575] + W[1320] * W[2357] + W[1538] * W[2139] + W[1756] * W[1921] + W[1974] * W[1703]
+            + W[2192] * W[1485] + W[2410] * W[1267] + W[2628] * W[1049] + W[2846] * W[831] + W[3064] * W[613]
+            + W[3282] * W[395] + W[3500] * W[177];
+    W[3679] = W[1] * W[3678] + W[219] * W[3460] + W[437] * W[3242] + W[655] * W[3024] + W[873] * W[2806]
+            + W[1091] * W[2588] + W[1309] * W[2370] + W[1527] * W[2152] + W[1745] * W[1934] + W[1963] * W[1716]
+            + W[2181] * W[1498] + W[2399] * W[1280] + W[2617] * W[1062] + W[2835] * W[844] + W[3053] * W[626]
+            + W[3271] * W[408] + W[3489] * W[190];
+    W[3682] = W[2] * W[3681] + W[220] * W[3463] + W[438] * W[3245] + W[656] * W[3027] + W[874] * W[2809]
+            + W[1092] * W[2591] + W[1310] * W[2373] + W[1528] * W[2155] + W[1746] * W[1937] + W[1964] * W[1719]
+            + W[2182] * W[1501] + W[2400] * W[1283] + W[2618] * W[1065] + W[2836] * W[847] + W[3054] * W[629]
+            + W[3272] * W[411] + W[3490] * W[193];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 16, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_186(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3675] = W[3549] + W[3674];
+    W[3686] = W[3685] - W[3666];
+    W[3579] = W[33] * W[3578];
+    W[3607] = W[33] * W[3606];
+    W[3680] = W[3578] + W[3679];
+    W[3687] = W[33] * W[3686];
+    W[3688] = W[3668] + W[3686];
+    W[3683] = W[3680] + W[3682];
+    W[3689] = W[3688] - W[3670];
+    W[3700] = W[3552] + W[3687];
+    W[3684] = W[33] * W[3683];
+    W[3690] = W[33] * W[3689];
+    W[3694] = W[3689] + W[3693];
+    W[3696] = W[3694] - W[3695];
+    W[3699] = W[3555] + W[3690];
+    W[3697] = W[33] * W[3696];
+    W[3698] = W[3557] + W[3697];
+    X[170] = X[165] / 17.0;
+    X[171] = X[166] / 17.0;
+    X[172] = X[167] / 17.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_188(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3707] = (X[10] * W[3490] + 2.0 * X[20] * W[3272] + 3.0 * X[30] * W[3054] + 4.0 * X[40] * W[2836]
+            + 5.0 * X[50] * W[2618] + 6.0 * X[60] * W[2400] + 7.0 * X[70] * W[2182] + 8.0 * X[80] * W[1964]
+            + 9.0 * X[90] * W[1746] + 10.0 * X[100] * W[1528] + 11.0 * X[110] * W[1310] + 12.0 * X[120] * W[1092]
+            + 13.0 * X[130] * W[874] + 14.0 * X[140] * W[656] + 15.0 * X[150] * W[438] + 16.0 * X[160] * W[220]
+            + 17.0 * X[170] * W[2]) / 17.0;
+    W[3708] = -((X[10] * W[3489] + 2.0 * X[20] * W[3271] + 3.0 * X[30] * W[3053] + 4.0 * X[40] * W[2835]
+            + 5.0 * X[50] * W[2617] + 6.0 * X[60] * W[2399] + 7.0 * X[70] * W[2181] + 8.0 * X[80] * W[1963]
+            + 9.0 * X[90] * W[1745] + 10.0 * X[100] * W[1527] + 11.0 * X[110] * W[1309] + 12.0 * X[120] * W[1091]
+            + 13.0 * X[130] * W[873] + 14.0 * X[140] * W[655] + 15.0 * X[150] * W[437] + 16.0 * X[160] * W[219]
+            + 17.0 * X[170] * W[1])) / 17.0;
+    W[3710] = X[170] + X[171];
+    W[3738] = (X[5] * X[175] + X[15] * X[165] + X[25] * X[155] + X[35] * X[145] + X[45] * X[135]
+            + X[55] * X[125] + X[65] * X[115] + X[75] * X[105] + X[85] * X[95]) * 2.0;
+    W[3742] = X[175] + X[176];
+    W[3711] = (W[222] * W[3494] + 2.0 * W[440] * W[3276] + 3.0 * W[658] * W[3058] + 4.0 * W[876] * W[2840]
+            + 5.0 * W[1094] * W[2622] + 6.0 * W[1312] * W[2404] + 7.0 * W[1530] * W[2186] + 8.0 * W[1748] * W[1968]
+            + 9.0 * W[1966] * W[1750] + 10.0 * W[2184] * W[1532] + 11.0 * W[2402] * W[1314] + 12.0 * W[2620] * W[1096]
+            + 13.0 * W[2838] * W[878] + 14.0 * W[3056] * W[660] + 15.0 * W[3274] * W[442] + 16.0 * W[3492] * W[224]
+            + 17.0 * W[3710] * W[6]) / 17.0;
+    W[3712] = -((W[222] * W[3493] + 2.0 * W[440] * W[3275] + 3.0 * W[658] * W[3057] + 4.0 * W[876] * W[2839]
+            + 5.0 * W[1094] * W[2621] + 6.0 * W[1312] * W[2403] + 7.0 * W[1530] * W[2185] + 8.0 * W[1748] * W[1967]
+            + 9.0 * W[1966] * W[1749] + 10.0 * W[2184] * W[1531] + 11.0 * W[2402] * W[1313] + 12.0 * W[2620] * W[1095]
+            + 13.0 * W[2838] * W[877] + 14.0 * W[3056] * W[659] + 15.0 * W[3274] * W[441] + 16.0 * W[3492] * W[223]
+            + 17.0 * W[3710] * W[5])) / 17.0;
+    W[3716] = W[3710] + X[172];
+    W[3747] = X[177] + W[3742];
+    W[3774] = W[65] * W[3707];
+    W[3740] = W[1] * W[3738] + W[219] * W[3520] + W[437] * W[3302] + W[655] * W[3084] + W[873] * W[2866]
+            + W[1091] * W[2648] + W[1309] * W[2430] + W[1527] * W[2212] + W[1745] * W[1994] + W[1963] * W[1776]
+            + W[2181] * W[1558] + W[2399] * W[1340] + W[2617] * W[1122] + W[2835] * W[904] + W[3053] * W[686]
+            + W[3271] * W[468] + W[3489] * W[250] + W[3707] * W[32];
+    W[3741] = W[2] * W[3738] + W[220] * W[3520] + W[438] * W[3302] + W[656] * W[3084] + W[874] * W[2866]
+            + W[1092] * W[2648] + W[1310] * W[2430] + W[1528] * W[2212] + W[1746] * W[1994] + W[1964] * W[1776]
+            + W[2182] * W[1558] + W[2400] * W[1340] + W[2618] * W[1122] + W[2836] * W[904] + W[3054] * W[686]
+            + W[3272] * W[468] + W[3490] * W[250] + W[3708] * W[32];
+    W[3713] = W[3707] + W[3711];
+    W[3714] = W[3708] + W[3712];
+    W[3717] = (W[228] * W[3500] + 2.0 * W[446] * W[3282] + 3.0 * W[664] * W[3064] + 4.0 * W[882] * W[2846]
+            + 5.0 * W[1100] * W[2628] + 6.0 * W[1318] * W[2410] + 7.0 * W[1536] * W[2192] + 8.0 * W[1754] * W[1974]
+            + 9.0 * W[1972] * W[1756] + 10.0 * W[2190] * W[1538] + 11.0 * W[2408] * W[1320] + 12.0 * W[2626] * W[1102]
+            + 13.0 * W[2844] * W[884] + 14.0 * W[3062] * W[666] + 15.0 * W[3280] * W[448] + 16.0 * W[3498] * W[230]
+            + 17.0 * W[3716] * W[12]) / 17.0;
+    W[3718] = -((W[228] * W[3499] + 2.0 * W[446] * W[3281] + 3.0 * W[664] * W[3063] + 4.0 * W[882] * W[2845]
+            + 5.0 * W[1100] * W[2627] + 6.0 * W[1318] * W[2409] + 7.0 * W[1536] * W[2191] + 8.0 * W[1754] * W[1973]
+            + 9.0 * W[1972] * W[1755] + 10.0 * W[2190] * W[1537] + 11.0 * W[2408] * W[1319] + 12.0 * W[2626] * W[1101]
+            + 13.0 * W[2844] * W[883] + 14.0 * W[3062] * W[665] + 15.0 * W[3280] * W[447] + 16.0 * W[3498] * W[229]
+            + 17.0 * W[3716] * W[11])) / 17.0;
+    W[3722] = W[3716] + X[173];
+    W[3752] = X[178] + W[3747];
+    W[3772] = W[62] * W[3711];
+    W[3743] = W[6] * W[3742] + W[224] * W[3524] + W[442] * W[3306] + W[660] * W[3088] + W[878] * W[2870]
+            + W[1096] * W[2652] + W[1314] * W[2434] + W[1532] * W[2216] + W[1750] * W[1998] + W[1968] * W[1780]
+            + W[2186] * W[1562] + W[2404] * W[1344] + W[2622] * W[1126] + W[2840] * W[908] + W[3058] * W[690]
+            + W[3276] * W[472] + W[3494] * W[254] + W[3712] * W[36];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_189(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3744] = W[5] * W[3742] + W[223] * W[3524] + W[441] * W[3306] + W[659] * W[3088] + W[877] * W[2870]
+            + W[1095] * W[2652] + W[1313] * W[2434] + W[1531] * W[2216] + W[1749] * W[1998] + W[1967] * W[1780]
+            + W[2185] * W[1562] + W[2403] * W[1344] + W[2621] * W[1126] + W[2839] * W[908] + W[3057] * W[690]
+            + W[3275] * W[472] + W[3493] * W[254] + W[3711] * W[36];
+    W[3719] = W[3713] + W[3717];
+    W[3720] = W[3714] + W[3718];
+    W[3723] = (W[234] * W[3506] + 2.0 * W[452] * W[3288] + 3.0 * W[670] * W[3070] + 4.0 * W[888] * W[2852]
+            + 5.0 * W[1106] * W[2634] + 6.0 * W[1324] * W[2416] + 7.0 * W[1542] * W[2198] + 8.0 * W[1760] * W[1980]
+            + 9.0 * W[1978] * W[1762] + 10.0 * W[2196] * W[1544] + 11.0 * W[2414] * W[1326] + 12.0 * W[2632] * W[1108]
+            + 13.0 * W[2850] * W[890] + 14.0 * W[3068] * W[672] + 15.0 * W[3286] * W[454] + 16.0 * W[3504] * W[236]
+            + 17.0 * W[3722] * W[18]) / 17.0;
+    W[3724] = -((W[234] * W[3505] + 2.0 * W[452] * W[3287] + 3.0 * W[670] * W[3069] + 4.0 * W[888] * W[2851]
+            + 5.0 * W[1106] * W[2633] + 6.0 * W[1324] * W[2415] + 7.0 * W[1542] * W[2197] + 8.0 * W[1760] * W[1979]
+            + 9.0 * W[1978] * W[1761] + 10.0 * W[2196] * W[1543] + 11.0 * W[2414] * W[1325] + 12.0 * W[2632] * W[1107]
+            + 13.0 * W[2850] * W[889] + 14.0 * W[3068] * W[671] + 15.0 * W[3286] * W[453] + 16.0 * W[3504] * W[235]
+            + 17.0 * W[3722] * W[17])) / 17.0;
+    W[3728] = W[3722] + X[174];
+    W[3757] = X[179] + W[3752];
+    W[3769] = W[59] * W[3717];
+    W[3798] = W[3711] + W[3717];
+    W[3802] = W[3712] + W[3718];
+    W[3745] = W[36] * W[3744] + W[254] * W[3526] + W[472] * W[3308] + W[690] * W[3090] + W[908] * W[2872]
+            + W[1126] * W[2654] + W[1344] * W[2436] + W[1562] * W[2218] + W[1780] * W[2000] + W[1998] * W[1782]
+            + W[2216] * W[1564] + W[2434] * W[1346] + W[2652] * W[1128] + W[2870] * W[910] + W[3088] * W[692]
+            + W[3306] * W[474] + W[3524] * W[256] + W[3742] * W[38];
+    W[3746] = W[36] * W[3743] + W[254] * W[3525] + W[472] * W[3307] + W[690] * W[3089] + W[908] * W[2871]
+            + W[1126] * W[2653] + W[1344] * W[2435] + W[1562] * W[2217] + W[1780] * W[1999] + W[1998] * W[1781]
+            + W[2216] * W[1563] + W[2434] * W[1345] + W[2652] * W[1127] + W[2870] * W[909] + W[3088] * W[691]
+            + W[3306] * W[473] + W[3524] * W[255] + W[3742] * W[37];
+    W[3748] = W[12] * W[3747] + W[230] * W[3529] + W[448] * W[3311] + W[666] * W[3093] + W[884] * W[2875]
+            + W[1102] * W[2657] + W[1320] * W[2439] + W[1538] * W[2221] + W[1756] * W[2003] + W[1974] * W[1785]
+            + W[2192] * W[1567] + W[2410] * W[1349] + W[2628] * W[1131] + W[2846] * W[913] + W[3064] * W[695]
+            + W[3282] * W[477] + W[3500] * W[259] + W[3718] * W[41];
+    W[3749] = W[11] * W[3747] + W[229] * W[3529] + W[447] * W[3311] + W[665] * W[3093] + W[883] * W[2875]
+            + W[1101] * W[2657] + W[1319] * W[2439] + W[1537] * W[2221] + W[1755] * W[2003] + W[1973] * W[1785]
+            + W[2191] * W[1567] + W[2409] * W[1349] + W[2627] * W[1131] + W[2845] * W[913] + W[3063] * W[695]
+            + W[3281] * W[477] + W[3499] * W[259] + W[3717] * W[41];
+    W[3725] = W[3719] + W[3723];
+    W[3726] = W[3720] + W[3724];
+    W[3729] = (W[240] * W[3512] + 2.0 * W[458] * W[3294] + 3.0 * W[676] * W[3076] + 4.0 * W[894] * W[2858]
+            + 5.0 * W[1112] * W[2640] + 6.0 * W[1330] * W[2422] + 7.0 * W[1548] * W[2204] + 8.0 * W[1766] * W[1986]
+            + 9.0 * W[1984] * W[1768] + 10.0 * W[2202] * W[1550] + 11.0 * W[2420] * W[1332] + 12.0 * W[2638] * W[1114]
+            + 13.0 * W[2856] * W[896] + 14.0 * W[3074] * W[678] + 15.0 * W[3292] * W[460] + 16.0 * W[3510] * W[242]
+            + 17.0 * W[3728] * W[24]) / 17.0;
+    W[3730] = -((W[240] * W[3511] + 2.0 * W[458] * W[3293] + 3.0 * W[676] * W[3075] + 4.0 * W[894] * W[2857]
+            + 5.0 * W[1112] * W[2639] + 6.0 * W[1330] * W[2421] + 7.0 * W[1548] * W[2203] + 8.0 * W[1766] * W[1985]
+            + 9.0 * W[1984] * W[1767] + 10.0 * W[2202] * W[1549] + 11.0 * W[2420] * W[1331] + 12.0 * W[2638] * W[1113]
+            + 13.0 * W[2856] * W[895] + 14.0 * W[3074] * W[677] + 15.0 * W[3292] * W[459] + 16.0 * W[3510] * W[241]
+            + 17.0 * W[3728] * W[23])) / 17.0;
+    W[3766] = W[57] * W[3723];
+    W[3799] = W[3723] + W[3798];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_191(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3755] = W[46] * W[3754] + W[264] * W[3536] + W[482] * W[3318] + W[700] * W[3100] + W[918] * W[2882]
+            + W[1136] * W[2664] + W[1354] * W[2446] + W[1572] * W[2228] + W[1790] * W[2010] + W[2008] * W[1792]
+            + W[2226] * W[1574] + W[2444] * W[1356] + W[2662] * W[1138] + W[2880] * W[920] + W[3098] * W[702]
+            + W[3316] * W[484] + W[3534] * W[266] + W[3752] * W[48];
+    W[3756] = W[46] * W[3753] + W[264] * W[3535] + W[482] * W[3317] + W[700] * W[3099] + W[918] * W[2881]
+            + W[1136] * W[2663] + W[1354] * W[2445] + W[1572] * W[2227] + W[1790] * W[2009] + W[2008] * W[1791]
+            + W[2226] * W[1573] + W[2444] * W[1355] + W[2662] * W[1137] + W[2880] * W[919] + W[3098] * W[701]
+            + W[3316] * W[483] + W[3534] * W[265] + W[3752] * W[47];
+    W[3758] = W[24] * W[3757] + W[242] * W[3539] + W[460] * W[3321] + W[678] * W[3103] + W[896] * W[2885]
+            + W[1114] * W[2667] + W[1332] * W[2449] + W[1550] * W[2231] + W[1768] * W[2013] + W[1986] * W[1795]
+            + W[2204] * W[1577] + W[2422] * W[1359] + W[2640] * W[1141] + W[2858] * W[923] + W[3076] * W[705]
+            + W[3294] * W[487] + W[3512] * W[269] + W[3730] * W[51];
+    W[3759] = W[23] * W[3757] + W[241] * W[3539] + W[459] * W[3321] + W[677] * W[3103] + W[895] * W[2885]
+            + W[1113] * W[2667] + W[1331] * W[2449] + W[1549] * W[2231] + W[1767] * W[2013] + W[1985] * W[1795]
+            + W[2203] * W[1577] + W[2421] * W[1359] + W[2639] * W[1141] + W[2857] * W[923] + W[3075] * W[705]
+            + W[3293] * W[487] + W[3511] * W[269] + W[3729] * W[51];
+    W[3767] = W[3764] - W[3766];
+    W[3779] = W[3725] + W[3731];
+    W[3782] = W[3726] + W[3732];
+    W[3807] = W[3799] + W[3800];
+    W[3810] = W[3803] + W[3804];
+    W[3835] = W[3828] + W[3829];
+    W[3838] = W[3831] + W[3832];
+    W[3852] = W[3724] + W[3851];
+    W[3855] = W[3723] + W[3854];
+    W[3871] = W[3755] + W[3869];
+    W[3872] = W[3756] + W[3870];
+    W[3760] = W[51] * W[3759] + W[269] * W[3541] + W[487] * W[3323] + W[705] * W[3105] + W[923] * W[2887]
+            + W[1141] * W[2669] + W[1359] * W[2451] + W[1577] * W[2233] + W[1795] * W[2015] + W[2013] * W[1797]
+            + W[2231] * W[1579] + W[2449] * W[1361] + W[2667] * W[1143] + W[2885] * W[925] + W[3103] * W[707]
+            + W[3321] * W[489] + W[3539] * W[271] + W[3757] * W[53];
+    W[3761] = W[51] * W[3758] + W[269] * W[3540] + W[487] * W[3322] + W[705] * W[3104] + W[923] * W[2886]
+            + W[1141] * W[2668] + W[1359] * W[2450] + W[1577] * W[2232] + W[1795] * W[2014] + W[2013] * W[1796]
+            + W[2231] * W[1578] + W[2449] * W[1360] + W[2667] * W[1142] + W[2885] * W[924] + W[3103] * W[706]
+            + W[3321] * W[488] + W[3539] * W[270] + W[3757] * W[52];
+    W[3776] = W[23] * W[3731] + W[241] * W[3513] + W[459] * W[3295] + W[677] * W[3077] + W[895] * W[2859]
+            + W[1113] * W[2641] + W[1331] * W[2423] + W[1549] * W[2205] + W[1767] * W[1987] + W[1985] * W[1769]
+            + W[2203] * W[1551] + W[2421] * W[1333] + W[2639] * W[1115] + W[2857] * W[897] + W[3075] * W[679]
+            + W[3293] * W[461] + W[3511] * W[243] + W[3729] * W[25];
+    W[3777] = W[24] * W[3732] + W[242] * W[3514] + W[460] * W[3296] + W[678] * W[3078] + W[896] * W[2860]
+            + W[1114] * W[2642] + W[1332] * W[2424] + W[1550] * W[2206] + W[1768] * W[1988] + W[1986] * W[1770]
+            + W[2204] * W[1552] + W[2422] * W[1334] + W[2640] * W[1116] + W[2858] * W[898] + W[3076] * W[680]
+            + W[3294] * W[462] + W[3512] * W[244] + W[3730] * W[26];
+    W[3801] = W[23] * W[3800] + W[241] * W[3582] + W[459] * W[3364] + W[677] * W[3146] + W[895] * W[2928]
+            + W[1113] * W[2710] + W[1331] * W[2492] + W[1549] * W[2274] + W[1767] * W[2056] + W[1985] * W[1838]
+            + W[2203] * W[1620] + W[2421] * W[1402] + W[2639] * W[1184] + W[2857] * W[966] + W[3075] * W[748]
+            + W[3293] * W[530] + W[3511] * W[312] + W[3729] * W[94];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_193(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3808] = W[17] * W[3807] + W[235] * W[3589] + W[453] * W[3371] + W[671] * W[3153] + W[889] * W[2935]
+            + W[1107] * W[2717] + W[1325] * W[2499] + W[1543] * W[2281] + W[1761] * W[2063] + W[1979] * W[1845]
+            + W[2197] * W[1627] + W[2415] * W[1409] + W[2633] * W[1191] + W[2851] * W[973] + W[3069] * W[755]
+            + W[3287] * W[537] + W[3505] * W[319] + W[3723] * W[101];
+    W[3811] = W[18] * W[3810] + W[236] * W[3592] + W[454] * W[3374] + W[672] * W[3156] + W[890] * W[2938]
+            + W[1108] * W[2720] + W[1326] * W[2502] + W[1544] * W[2284] + W[1762] * W[2066] + W[1980] * W[1848]
+            + W[2198] * W[1630] + W[2416] * W[1412] + W[2634] * W[1194] + W[2852] * W[976] + W[3070] * W[758]
+            + W[3288] * W[540] + W[3506] * W[322] + W[3724] * W[104];
+    W[3836] = W[17] * W[3835] + W[235] * W[3617] + W[453] * W[3399] + W[671] * W[3181] + W[889] * W[2963]
+            + W[1107] * W[2745] + W[1325] * W[2527] + W[1543] * W[2309] + W[1761] * W[2091] + W[1979] * W[1873]
+            + W[2197] * W[1655] + W[2415] * W[1437] + W[2633] * W[1219] + W[2851] * W[1001] + W[3069] * W[783]
+            + W[3287] * W[565] + W[3505] * W[347] + W[3723] * W[129];
+    W[3839] = W[18] * W[3838] + W[236] * W[3620] + W[454] * W[3402] + W[672] * W[3184] + W[890] * W[2966]
+            + W[1108] * W[2748] + W[1326] * W[2530] + W[1544] * W[2312] + W[1762] * W[2094] + W[1980] * W[1876]
+            + W[2198] * W[1658] + W[2416] * W[1440] + W[2634] * W[1222] + W[2852] * W[1004] + W[3070] * W[786]
+            + W[3288] * W[568] + W[3506] * W[350] + W[3724] * W[132];
+    W[3853] = W[18] * W[3852] + W[236] * W[3634] + W[454] * W[3416] + W[672] * W[3198] + W[890] * W[2980]
+            + W[1108] * W[2762] + W[1326] * W[2544] + W[1544] * W[2326] + W[1762] * W[2108] + W[1980] * W[1890]
+            + W[2198] * W[1672] + W[2416] * W[1454] + W[2634] * W[1236] + W[2852] * W[1018] + W[3070] * W[800]
+            + W[3288] * W[582] + W[3506] * W[364] + W[3724] * W[146];
+    W[3856] = W[17] * W[3855] + W[235] * W[3637] + W[453] * W[3419] + W[671] * W[3201] + W[889] * W[2983]
+            + W[1107] * W[2765] + W[1325] * W[2547] + W[1543] * W[2329] + W[1761] * W[2111] + W[1979] * W[1893]
+            + W[2197] * W[1675] + W[2415] * W[1457] + W[2633] * W[1239] + W[2851] * W[1021] + W[3069] * W[803]
+            + W[3287] * W[585] + W[3505] * W[367] + W[3723] * W[149];
+    W[3773] = W[3770] - W[3772];
+    W[3781] = W[3778] + W[3780];
+    W[3791] = W[3713] + W[3785];
+    W[3794] = W[3714] + W[3788];
+    W[3809] = W[3806] + W[3808];
+    W[3819] = W[3711] + W[3813];
+    W[3822] = W[3712] + W[3816];
+    W[3837] = W[3834] + W[3836];
+    W[3860] = W[3856] + W[3859];
+    W[3863] = W[33] * W[3778];
+    W[3864] = W[33] * W[3806];
+    W[3865] = W[33] * W[3834];
+    W[3866] = W[33] * W[3859];
+    W[3877] = W[3872] + W[3874];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_195(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3795] = W[6] * W[3794] + W[224] * W[3576] + W[442] * W[3358] + W[660] * W[3140] + W[878] * W[2922]
+            + W[1096] * W[2704] + W[1314] * W[2486] + W[1532] * W[2268] + W[1750] * W[2050] + W[1968] * W[1832]
+            + W[2186] * W[1614] + W[2404] * W[1396] + W[2622] * W[1178] + W[2840] * W[960] + W[3058] * W[742]
+            + W[3276] * W[524] + W[3494] * W[306] + W[3712] * W[88];
+    W[3820] = W[5] * W[3819] + W[223] * W[3601] + W[441] * W[3383] + W[659] * W[3165] + W[877] * W[2947]
+            + W[1095] * W[2729] + W[1313] * W[2511] + W[1531] * W[2293] + W[1749] * W[2075] + W[1967] * W[1857]
+            + W[2185] * W[1639] + W[2403] * W[1421] + W[2621] * W[1203] + W[2839] * W[985] + W[3057] * W[767]
+            + W[3275] * W[549] + W[3493] * W[331] + W[3711] * W[113];
+    W[3823] = W[6] * W[3822] + W[224] * W[3604] + W[442] * W[3386] + W[660] * W[3168] + W[878] * W[2950]
+            + W[1096] * W[2732] + W[1314] * W[2514] + W[1532] * W[2296] + W[1750] * W[2078] + W[1968] * W[1860]
+            + W[2186] * W[1642] + W[2404] * W[1424] + W[2622] * W[1206] + W[2840] * W[988] + W[3058] * W[770]
+            + W[3276] * W[552] + W[3494] * W[334] + W[3712] * W[116];
+    W[3878] = W[17] * W[3877] + W[235] * W[3659] + W[453] * W[3441] + W[671] * W[3223] + W[889] * W[3005]
+            + W[1107] * W[2787] + W[1325] * W[2569] + W[1543] * W[2351] + W[1761] * W[2133] + W[1979] * W[1915]
+            + W[2197] * W[1697] + W[2415] * W[1479] + W[2633] * W[1261] + W[2851] * W[1043] + W[3069] * W[825]
+            + W[3287] * W[607] + W[3505] * W[389] + W[3723] * W[171];
+    W[3880] = W[18] * W[3879] + W[236] * W[3661] + W[454] * W[3443] + W[672] * W[3225] + W[890] * W[3007]
+            + W[1108] * W[2789] + W[1326] * W[2571] + W[1544] * W[2353] + W[1762] * W[2135] + W[1980] * W[1917]
+            + W[2198] * W[1699] + W[2416] * W[1481] + W[2634] * W[1263] + W[2852] * W[1045] + W[3070] * W[827]
+            + W[3288] * W[609] + W[3506] * W[391] + W[3724] * W[173];
+    W[3787] = W[3784] + W[3786];
+    W[3815] = W[3812] + W[3814];
+    W[3843] = W[3840] + W[3842];
+    W[3848] = W[33] * W[3784];
+    W[3849] = W[33] * W[3812];
+    W[3850] = W[33] * W[3840];
+    W[3862] = W[33] * W[3861];
+    W[3885] = W[3868] + W[3881];
+    W[3887] = W[3867] + W[3883];
+    W[3890] = W[3878] + W[3889];
+    W[3894] = W[33] * W[3889];
+    W[3882] = W[11] * W[3881] + W[229] * W[3663] + W[447] * W[3445] + W[665] * W[3227] + W[883] * W[3009]
+            + W[1101] * W[2791] + W[1319] * W[2573] + W[1537] * W[2355] + W[1755] * W[2137] + W[1973] * W[1919]
+            + W[2191] * W[1701] + W[2409] * W[1483] + W[2627] * W[1265] + W[2845] * W[1047] + W[3063] * W[829]
+            + W[3281] * W[611] + W[3499] * W[393] + W[3717] * W[175];
+    W[3884] = W[12] * W[3883] + W[230] * W[3665] + W[448] * W[3447] + W[666] * W[3229] + W[884] * W[3011]
+            + W[1102] * W[2793] + W[1320] * W[2575] + W[1538] * W[2357] + W[1756] * W[2139] + W[1974] * W[1921]
+            + W[2192] * W[1703] + W[2410] * W[1485] + W[2628] * W[1267] + W[2846] * W[1049] + W[3064] * W[831]
+            + W[3282] * W[613] + W[3500] * W[395] + W[3718] * W[177];
+    W[3897] = W[1] * W[3896] + W[219] * W[3678] + W[437] * W[3460] + W[655] * W[3242] + W[873] * W[3024]
+            + W[1091] * W[2806] + W[1309] * W[2588] + W[1527] * W[2370] + W[1745] * W[2152] + W[1963] * W[1934]
+            + W[2181] * W[1716] + W[2399] * W[1498] + W[2617] * W[1280] + W[2835] * W[1062] + W[3053] * W[844]
+            + W[3271] * W[626] + W[3489] * W[408] + W[3707] * W[190];
+    W[3900] = W[2] * W[3899] + W[220] * W[3681] + W[438] * W[3463] + W[656] * W[3245] + W[874] * W[3027]
+            + W[1092] * W[2809] + W[1310] * W[2591] + W[1528] * W[2373] + W[1746] * W[2155] + W[1964] * W[1937]
+            + W[2182] * W[1719] + W[2400] * W[1501] + W[2618] * W[1283] + W[2836] * W[1065] + W[3054] * W[847]
+            + W[3272] * W[629] + W[3490] * W[411] + W[3708] * W[193];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_197(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3893] = W[3767] + W[3892];
+    W[3904] = W[3903] - W[3884];
+    W[3797] = W[33] * W[3796];
+    W[3825] = W[33] * W[3824];
+    W[3898] = W[3796] + W[3897];
+    W[3905] = W[33] * W[3904];
+    W[3906] = W[3886] + W[3904];
+    W[3901] = W[3898] + W[3900];
+    W[3907] = W[3906] - W[3888];
+    W[3918] = W[3770] + W[3905];
+    W[3902] = W[33] * W[3901];
+    W[3908] = W[33] * W[3907];
+    W[3912] = W[3907] + W[3911];
+    W[3914] = W[3912] - W[3913];
+    W[3917] = W[3773] + W[3908];
+    W[3915] = W[33] * W[3914];
+    W[3916] = W[3775] + W[3915];
+    X[180] = X[175] / 18.0;
+    X[181] = X[176] / 18.0;
+    X[182] = X[177] / 18.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_199(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3925] = (X[10] * W[3708] + 2.0 * X[20] * W[3490] + 3.0 * X[30] * W[3272] + 4.0 * X[40] * W[3054]
+            + 5.0 * X[50] * W[2836] + 6.0 * X[60] * W[2618] + 7.0 * X[70] * W[2400] + 8.0 * X[80] * W[2182]
+            + 9.0 * X[90] * W[1964] + 10.0 * X[100] * W[1746] + 11.0 * X[110] * W[1528] + 12.0 * X[120] * W[1310]
+            + 13.0 * X[130] * W[1092] + 14.0 * X[140] * W[874] + 15.0 * X[150] * W[656] + 16.0 * X[160] * W[438]
+            + 17.0 * X[170] * W[220] + 18.0 * X[180] * W[2]) / 18.0;
+    W[3926] = -((X[10] * W[3707] + 2.0 * X[20] * W[3489] + 3.0 * X[30] * W[3271] + 4.0 * X[40] * W[3053]
+            + 5.0 * X[50] * W[2835] + 6.0 * X[60] * W[2617] + 7.0 * X[70] * W[2399] + 8.0 * X[80] * W[2181]
+            + 9.0 * X[90] * W[1963] + 10.0 * X[100] * W[1745] + 11.0 * X[110] * W[1527] + 12.0 * X[120] * W[1309]
+            + 13.0 * X[130] * W[1091] + 14.0 * X[140] * W[873] + 15.0 * X[150] * W[655] + 16.0 * X[160] * W[437]
+            + 17.0 * X[170] * W[219] + 18.0 * X[180] * W[1])) / 18.0;
+    W[3928] = X[180] + X[181];
+    W[3956] = (X[5] * X[185] + X[15] * X[175] + X[25] * X[165] + X[35] * X[155] + X[45] * X[145]
+            + X[55] * X[135] + X[65] * X[125] + X[75] * X[115] + X[85] * X[105]) * 2.0 + X[95] * X[95];
+    W[3960] = X[185] + X[186];
+    W[3929] = (W[222] * W[3712] + 2.0 * W[440] * W[3494] + 3.0 * W[658] * W[3276] + 4.0 * W[876] * W[3058]
+            + 5.0 * W[1094] * W[2840] + 6.0 * W[1312] * W[2622] + 7.0 * W[1530] * W[2404] + 8.0 * W[1748] * W[2186]
+            + 9.0 * W[1966] * W[1968] + 10.0 * W[2184] * W[1750] + 11.0 * W[2402] * W[1532] + 12.0 * W[2620] * W[1314]
+            + 13.0 * W[2838] * W[1096] + 14.0 * W[3056] * W[878] + 15.0 * W[3274] * W[660] + 16.0 * W[3492] * W[442]
+            + 17.0 * W[3710] * W[224] + 18.0 * W[3928] * W[6]) / 18.0;
+    W[3930] = -((W[222] * W[3711] + 2.0 * W[440] * W[3493] + 3.0 * W[658] * W[3275] + 4.0 * W[876] * W[3057]
+            + 5.0 * W[1094] * W[2839] + 6.0 * W[1312] * W[2621] + 7.0 * W[1530] * W[2403] + 8.0 * W[1748] * W[2185]
+            + 9.0 * W[1966] * W[1967] + 10.0 * W[2184] * W[1749] + 11.0 * W[2402] * W[1531] + 12.0 * W[2620] * W[1313]
+            + 13.0 * W[2838] * W[1095] + 14.0 * W[3056] * W[877] + 15.0 * W[3274] * W[659] + 16.0 * W[3492] * W[441]
+            + 17.0 * W[3710] * W[223] + 18.0 * W[3928] * W[5])) / 18.0;
+    W[3934] = W[3928] + X[182];
+    W[3965] = X[187] + W[3960];
+    W[3992] = W[65] * W[3925];
+    W[3958] = W[1] * W[3956] + W[219] * W[3738] + W[437] * W[3520] + W[655] * W[3302] + W[873] * W[3084]
+            + W[1091] * W[2866] + W[1309] * W[2648] + W[1527] * W[2430] + W[1745] * W[2212] + W[1963] * W[1994]
+            + W[2181] * W[1776] + W[2399] * W[1558] + W[2617] * W[1340] + W[2835] * W[1122] + W[3053] * W[904]
+            + W[3271] * W[686] + W[3489] * W[468] + W[3707] * W[250] + W[3925] * W[32];
+    W[3959] = W[2] * W[3956] + W[220] * W[3738] + W[438] * W[3520] + W[656] * W[3302] + W[874] * W[3084]
+            + W[1092] * W[2866] + W[1310] * W[2648] + W[1528] * W[2430] + W[1746] * W[2212] + W[1964] * W[1994]
+            + W[2182] * W[1776] + W[2400] * W[1558] + W[2618] * W[1340] + W[2836] * W[1122] + W[3054] * W[904]
+            + W[3272] * W[686] + W[3490] * W[468] + W[3708] * W[250] + W[3926] * W[32];
+    W[3931] = W[3925] + W[3929];
+    W[3932] = W[3926] + W[3930];
+    W[3935] = (W[228] * W[3718] + 2.0 * W[446] * W[3500] + 3.0 * W[664] * W[3282] + 4.0 * W[882] * W[3064]
+            + 5.0 * W[1100] * W[2846] + 6.0 * W[1318] * W[2628] + 7.0 * W[1536] * W[2410] + 8.0 * W[1754] * W[2192]
+            + 9.0 * W[1972] * W[1974] + 10.0 * W[2190] * W[1756] + 11.0 * W[2408] * W[1538] + 12.0 * W[2626] * W[1320]
+            + 13.0 * W[2844] * W[1102] + 14.0 * W[3062] * W[884] + 15.0 * W[3280] * W[666] + 16.0 * W[3498] * W[448]
+            + 17.0 * W[3716] * W[230] + 18.0 * W[3934] * W[12]) / 18.0;
+    W[3936] = -((W[228] * W[3717] + 2.0 * W[446] * W[3499] + 3.0 * W[664] * W[3281] + 4.0 * W[882] * W[3063]
+            + 5.0 * W[1100] * W[2845] + 6.0 * W[1318] * W[2627] + 7.0 * W[1536] * W[2409] + 8.0 * W[1754] * W[2191]
+            + 9.0 * W[1972] * W[1973] + 10.0 * W[2190] * W[1755] + 11.0 * W[2408] * W[1537] + 12.0 * W[2626] * W[1319]
+            + 13.0 * W[2844] * W[1101] + 14.0 * W[3062] * W[883] + 15.0 * W[3280] * W[665] + 16.0 * W[3498] * W[447]
+            + 17.0 * W[3716] * W[229] + 18.0 * W[3934] * W[11])) / 18.0;
+    W[3940] = W[3934] + X[183];
+    W[3970] = X[188] + W[3965];
+    W[3990] = W[62] * W[3929];
+    W[3961] = W[6] * W[3960] + W[224] * W[3742] + W[442] * W[3524] + W[660] * W[3306] + W[878] * W[3088]
+            + W[1096] * W[2870] + W[1314] * W[2652] + W[1532] * W[2434] + W[1750] * W[2216] + W[1968] * W[1998]
+            + W[2186] * W[1780] + W[2404] * W[1562] + W[2622] * W[1344] + W[2840] * W[1126] + W[3058] * W[908]
+            + W[3276] * W[690] + W[3494] * W[472] + W[3712] * W[254] + W[3930] * W[36];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_200(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3962] = W[5] * W[3960] + W[223] * W[3742] + W[441] * W[3524] + W[659] * W[3306] + W[877] * W[3088]
+            + W[1095] * W[2870] + W[1313] * W[2652] + W[1531] * W[2434] + W[1749] * W[2216] + W[1967] * W[1998]
+            + W[2185] * W[1780] + W[2403] * W[1562] + W[2621] * W[1344] + W[2839] * W[1126] + W[3057] * W[908]
+            + W[3275] * W[690] + W[3493] * W[472] + W[3711] * W[254] + W[3929] * W[36];
+    W[3937] = W[3931] + W[3935];
+    W[3938] = W[3932] + W[3936];
+    W[3941] = (W[234] * W[3724] + 2.0 * W[452] * W[3506] + 3.0 * W[670] * W[3288] + 4.0 * W[888] * W[3070]
+            + 5.0 * W[1106] * W[2852] + 6.0 * W[1324] * W[2634] + 7.0 * W[1542] * W[2416] + 8.0 * W[1760] * W[2198]
+            + 9.0 * W[1978] * W[1980] + 10.0 * W[2196] * W[1762] + 11.0 * W[2414] * W[1544] + 12.0 * W[2632] * W[1326]
+            + 13.0 * W[2850] * W[1108] + 14.0 * W[3068] * W[890] + 15.0 * W[3286] * W[672] + 16.0 * W[3504] * W[454]
+            + 17.0 * W[3722] * W[236] + 18.0 * W[3940] * W[18]) / 18.0;
+    W[3942] = -((W[234] * W[3723] + 2.0 * W[452] * W[3505] + 3.0 * W[670] * W[3287] + 4.0 * W[888] * W[3069]
+            + 5.0 * W[1106] * W[2851] + 6.0 * W[1324] * W[2633] + 7.0 * W[1542] * W[2415] + 8.0 * W[1760] * W[2197]
+            + 9.0 * W[1978] * W[1979] + 10.0 * W[2196] * W[1761] + 11.0 * W[2414] * W[1543] + 12.0 * W[2632] * W[1325]
+            + 13.0 * W[2850] * W[1107] + 14.0 * W[3068] * W[889] + 15.0 * W[3286] * W[671] + 16.0 * W[3504] * W[453]
+            + 17.0 * W[3722] * W[235] + 18.0 * W[3940] * W[17])) / 18.0;
+    W[3946] = W[3940] + X[184];
+    W[3975] = X[189] + W[3970];
+    W[3987] = W[59] * W[3935];
+    W[4016] = W[3929] + W[3935];
+    W[4020] = W[3930] + W[3936];
+    W[3963] = W[36] * W[3962] + W[254] * W[3744] + W[472] * W[3526] + W[690] * W[3308] + W[908] * W[3090]
+            + W[1126] * W[2872] + W[1344] * W[2654] + W[1562] * W[2436] + W[1780] * W[2218] + W[1998] * W[2000]
+            + W[2216] * W[1782] + W[2434] * W[1564] + W[2652] * W[1346] + W[2870] * W[1128] + W[3088] * W[910]
+            + W[3306] * W[692] + W[3524] * W[474] + W[3742] * W[256] + W[3960] * W[38];
+    W[3964] = W[36] * W[3961] + W[254] * W[3743] + W[472] * W[3525] + W[690] * W[3307] + W[908] * W[3089]
+            + W[1126] * W[2871] + W[1344] * W[2653] + W[1562] * W[2435] + W[1780] * W[2217] + W[1998] * W[1999]
+            + W[2216] * W[1781] + W[2434] * W[1563] + W[2652] * W[1345] + W[2870] * W[1127] + W[3088] * W[909]
+            + W[3306] * W[691] + W[3524] * W[473] + W[3742] * W[255] + W[3960] * W[37];
+    W[3966] = W[12] * W[3965] + W[230] * W[3747] + W[448] * W[3529] + W[666] * W[3311] + W[884] * W[3093]
+            + W[1102] * W[2875] + W[1320] * W[2657] + W[1538] * W[2439] + W[1756] * W[2221] + W[1974] * W[2003]
+            + W[2192] * W[1785] + W[2410] * W[1567] + W[2628] * W[1349] + W[2846] * W[1131] + W[3064] * W[913]
+            + W[3282] * W[695] + W[3500] * W[477] + W[3718] * W[259] + W[3936] * W[41];
+    W[3967] = W[11] * W[3965] + W[229] * W[3747] + W[447] * W[3529] + W[665] * W[3311] + W[883] * W[3093]
+            + W[1101] * W[2875] + W[1319] * W[2657] + W[1537] * W[2439] + W[1755] * W[2221] + W[1973] * W[2003]
+            + W[2191] * W[1785] + W[2409] * W[1567] + W[2627] * W[1349] + W[2845] * W[1131] + W[3063] * W[913]
+            + W[3281] * W[695] + W[3499] * W[477] + W[3717] * W[259] + W[3935] * W[41];
+    W[3943] = W[3937] + W[3941];
+    W[3944] = W[3938] + W[3942];
+    W[3947] = (W[240] * W[3730] + 2.0 * W[458] * W[3512] + 3.0 * W[676] * W[3294] + 4.0 * W[894] * W[3076]
+            + 5.0 * W[1112] * W[2858] + 6.0 * W[1330] * W[2640] + 7.0 * W[1548] * W[2422] + 8.0 * W[1766] * W[2204]
+            + 9.0 * W[1984] * W[1986] + 10.0 * W[2202] * W[1768] + 11.0 * W[2420] * W[1550] + 12.0 * W[2638] * W[1332]
+            + 13.0 * W[2856] * W[1114] + 14.0 * W[3074] * W[896] + 15.0 * W[3292] * W[678] + 16.0 * W[3510] * W[460]
+            + 17.0 * W[3728] * W[242] + 18.0 * W[3946] * W[24]) / 18.0;
+    W[3948] = -((W[240] * W[3729] + 2.0 * W[458] * W[3511] + 3.0 * W[676] * W[3293] + 4.0 * W[894] * W[3075]
+            + 5.0 * W[1112] * W[2857] + 6.0 * W[1330] * W[2639] + 7.0 * W[1548] * W[2421] + 8.0 * W[1766] * W[2203]
+            + 9.0 * W[1984] * W[1985] + 10.0 * W[2202] * W[1767] + 11.0 * W[2420] * W[1549] + 12.0 * W[2638] * W[1331]
+            + 13.0 * W[2856] * W[1113] + 14.0 * W[3074] * W[895] + 15.0 * W[3292] * W[677] + 16.0 * W[3510] * W[459]
+            + 17.0 * W[3728] * W[241] + 18.0 * W[3946] * W[23])) / 18.0;
+    W[3984] = W[57] * W[3941];
+    W[4017] = W[3941] + W[4016];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_202(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3973] = W[46] * W[3972] + W[264] * W[3754] + W[482] * W[3536] + W[700] * W[3318] + W[918] * W[3100]
+            + W[1136] * W[2882] + W[1354] * W[2664] + W[1572] * W[2446] + W[1790] * W[2228] + W[2008] * W[2010]
+            + W[2226] * W[1792] + W[2444] * W[1574] + W[2662] * W[1356] + W[2880] * W[1138] + W[3098] * W[920]
+            + W[3316] * W[702] + W[3534] * W[484] + W[3752] * W[266] + W[3970] * W[48];
+    W[3974] = W[46] * W[3971] + W[264] * W[3753] + W[482] * W[3535] + W[700] * W[3317] + W[918] * W[3099]
+            + W[1136] * W[2881] + W[1354] * W[2663] + W[1572] * W[2445] + W[1790] * W[2227] + W[2008] * W[2009]
+            + W[2226] * W[1791] + W[2444] * W[1573] + W[2662] * W[1355] + W[2880] * W[1137] + W[3098] * W[919]
+            + W[3316] * W[701] + W[3534] * W[483] + W[3752] * W[265] + W[3970] * W[47];
+    W[3976] = W[24] * W[3975] + W[242] * W[3757] + W[460] * W[3539] + W[678] * W[3321] + W[896] * W[3103]
+            + W[1114] * W[2885] + W[1332] * W[2667] + W[1550] * W[2449] + W[1768] * W[2231] + W[1986] * W[2013]
+            + W[2204] * W[1795] + W[2422] * W[1577] + W[2640] * W[1359] + W[2858] * W[1141] + W[3076] * W[923]
+            + W[3294] * W[705] + W[3512] * W[487] + W[3730] * W[269] + W[3948] * W[51];
+    W[3977] = W[23] * W[3975] + W[241] * W[3757] + W[459] * W[3539] + W[677] * W[3321] + W[895] * W[3103]
+            + W[1113] * W[2885] + W[1331] * W[2667] + W[1549] * W[2449] + W[1767] * W[2231] + W[1985] * W[2013]
+            + W[2203] * W[1795] + W[2421] * W[1577] + W[2639] * W[1359] + W[2857] * W[1141] + W[3075] * W[923]
+            + W[3293] * W[705] + W[3511] * W[487] + W[3729] * W[269] + W[3947] * W[51];
+    W[3985] = W[3982] - W[3984];
+    W[3997] = W[3943] + W[3949];
+    W[4000] = W[3944] + W[3950];
+    W[4025] = W[4017] + W[4018];
+    W[4028] = W[4021] + W[4022];
+    W[4053] = W[4046] + W[4047];
+    W[4056] = W[4049] + W[4050];
+    W[4070] = W[3942] + W[4069];
+    W[4073] = W[3941] + W[4072];
+    W[4089] = W[3973] + W[4087];
+    W[4090] = W[3974] + W[4088];
+    W[3978] = W[51] * W[3977] + W[269] * W[3759] + W[487] * W[3541] + W[705] * W[3323] + W[923] * W[3105]
+            + W[1141] * W[2887] + W[1359] * W[2669] + W[1577] * W[2451] + W[1795] * W[2233] + W[2013] * W[2015]
+            + W[2231] * W[1797] + W[2449] * W[1579] + W[2667] * W[1361] + W[2885] * W[1143] + W[3103] * W[925]
+            + W[3321] * W[707] + W[3539] * W[489] + W[3757] * W[271] + W[3975] * W[53];
+    W[3979] = W[51] * W[3976] + W[269] * W[3758] + W[487] * W[3540] + W[705] * W[3322] + W[923] * W[3104]
+            + W[1141] * W[2886] + W[1359] * W[2668] + W[1577] * W[2450] + W[1795] * W[2232] + W[2013] * W[2014]
+            + W[2231] * W[1796] + W[2449] * W[1578] + W[2667] * W[1360] + W[2885] * W[1142] + W[3103] * W[924]
+            + W[3321] * W[706] + W[3539] * W[488] + W[3757] * W[270] + W[3975] * W[52];
+    W[3994] = W[23] * W[3949] + W[241] * W[3731] + W[459] * W[3513] + W[677] * W[3295] + W[895] * W[3077]
+            + W[1113] * W[2859] + W[1331] * W[2641] + W[1549] * W[2423] + W[1767] * W[2205] + W[1985] * W[1987]
+            + W[2203] * W[1769] + W[2421] * W[1551] + W[2639] * W[1333] + W[2857] * W[1115] + W[3075] * W[897]
+            + W[3293] * W[679] + W[3511] * W[461] + W[3729] * W[243] + W[3947] * W[25];
+    W[3995] = W[24] * W[3950] + W[242] * W[3732] + W[460] * W[3514] + W[678] * W[3296] + W[896] * W[3078]
+            + W[1114] * W[2860] + W[1332] * W[2642] + W[1550] * W[2424] + W[1768] * W[2206] + W[1986] * W[1988]
+            + W[2204] * W[1770] + W[2422] * W[1552] + W[2640] * W[1334] + W[2858] * W[1116] + W[3076] * W[898]
+            + W[3294] * W[680] + W[3512] * W[462] + W[3730] * W[244] + W[3948] * W[26];
+    W[4019] = W[23] * W[4018] + W[241] * W[3800] + W[459] * W[3582] + W[677] * W[3364] + W[895] * W[3146]
+            + W[1113] * W[2928] + W[1331] * W[2710] + W[1549] * W[2492] + W[1767] * W[2274] + W[1985] * W[2056]
+            + W[2203] * W[1838] + W[2421] * W[1620] + W[2639] * W[1402] + W[2857] * W[1184] + W[3075] * W[966]
+            + W[3293] * W[748] + W[3511] * W[530] + W[3729] * W[312] + W[3947] * W[94];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_204(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4026] = W[17] * W[4025] + W[235] * W[3807] + W[453] * W[3589] + W[671] * W[3371] + W[889] * W[3153]
+            + W[1107] * W[2935] + W[1325] * W[2717] + W[1543] * W[2499] + W[1761] * W[2281] + W[1979] * W[2063]
+            + W[2197] * W[1845] + W[2415] * W[1627] + W[2633] * W[1409] + W[2851] * W[1191] + W[3069] * W[973]
+            + W[3287] * W[755] + W[3505] * W[537] + W[3723] * W[319] + W[3941] * W[101];
+    W[4029] = W[18] * W[4028] + W[236] * W[3810] + W[454] * W[3592] + W[672] * W[3374] + W[890] * W[3156]
+            + W[1108] * W[2938] + W[1326] * W[2720] + W[1544] * W[2502] + W[1762] * W[2284] + W[1980] * W[2066]
+            + W[2198] * W[1848] + W[2416] * W[1630] + W[2634] * W[1412] + W[2852] * W[1194] + W[3070] * W[976]
+            + W[3288] * W[758] + W[3506] * W[540] + W[3724] * W[322] + W[3942] * W[104];
+    W[4054] = W[17] * W[4053] + W[235] * W[3835] + W[453] * W[3617] + W[671] * W[3399] + W[889] * W[3181]
+            + W[1107] * W[2963] + W[1325] * W[2745] + W[1543] * W[2527] + W[1761] * W[2309] + W[1979] * W[2091]
+            + W[2197] * W[1873] + W[2415] * W[1655] + W[2633] * W[1437] + W[2851] * W[1219] + W[3069] * W[1001]
+            + W[3287] * W[783] + W[3505] * W[565] + W[3723] * W[347] + W[3941] * W[129];
+    W[4057] = W[18] * W[4056] + W[236] * W[3838] + W[454] * W[3620] + W[672] * W[3402] + W[890] * W[3184]
+            + W[1108] * W[2966] + W[1326] * W[2748] + W[1544] * W[2530] + W[1762] * W[2312] + W[1980] * W[2094]
+            + W[2198] * W[1876] + W[2416] * W[1658] + W[2634] * W[1440] + W[2852] * W[1222] + W[3070] * W[1004]
+            + W[3288] * W[786] + W[3506] * W[568] + W[3724] * W[350] + W[3942] * W[132];
+    W[4071] = W[18] * W[4070] + W[236] * W[3852] + W[454] * W[3634] + W[672] * W[3416] + W[890] * W[3198]
+            + W[1108] * W[2980] + W[1326] * W[2762] + W[1544] * W[2544] + W[1762] * W[2326] + W[1980] * W[2108]
+            + W[2198] * W[1890] + W[2416] * W[1672] + W[2634] * W[1454] + W[2852] * W[1236] + W[3070] * W[1018]
+            + W[3288] * W[800] + W[3506] * W[582] + W[3724] * W[364] + W[3942] * W[146];
+    W[4074] = W[17] * W[4073] + W[235] * W[3855] + W[453] * W[3637] + W[671] * W[3419] + W[889] * W[3201]
+            + W[1107] * W[2983] + W[1325] * W[2765] + W[1543] * W[2547] + W[1761] * W[2329] + W[1979] * W[2111]
+            + W[2197] * W[1893] + W[2415] * W[1675] + W[2633] * W[1457] + W[2851] * W[1239] + W[3069] * W[1021]
+            + W[3287] * W[803] + W[3505] * W[585] + W[3723] * W[367] + W[3941] * W[149];
+    W[3991] = W[3988] - W[3990];
+    W[3999] = W[3996] + W[3998];
+    W[4009] = W[3931] + W[4003];
+    W[4012] = W[3932] + W[4006];
+    W[4027] = W[4024] + W[4026];
+    W[4037] = W[3929] + W[4031];
+    W[4040] = W[3930] + W[4034];
+    W[4055] = W[4052] + W[4054];
+    W[4078] = W[4074] + W[4077];
+    W[4081] = W[33] * W[3996];
+    W[4082] = W[33] * W[4024];
+    W[4083] = W[33] * W[4052];
+    W[4084] = W[33] * W[4077];
+    W[4095] = W[4090] + W[4092];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_206(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4013] = W[6] * W[4012] + W[224] * W[3794] + W[442] * W[3576] + W[660] * W[3358] + W[878] * W[3140]
+            + W[1096] * W[2922] + W[1314] * W[2704] + W[1532] * W[2486] + W[1750] * W[2268] + W[1968] * W[2050]
+            + W[2186] * W[1832] + W[2404] * W[1614] + W[2622] * W[1396] + W[2840] * W[1178] + W[3058] * W[960]
+            + W[3276] * W[742] + W[3494] * W[524] + W[3712] * W[306] + W[3930] * W[88];
+    W[4038] = W[5] * W[4037] + W[223] * W[3819] + W[441] * W[3601] + W[659] * W[3383] + W[877] * W[3165]
+            + W[1095] * W[2947] + W[1313] * W[2729] + W[1531] * W[2511] + W[1749] * W[2293] + W[1967] * W[2075]
+            + W[2185] * W[1857] + W[2403] * W[1639] + W[2621] * W[1421] + W[2839] * W[1203] + W[3057] * W[985]
+            + W[3275] * W[767] + W[3493] * W[549] + W[3711] * W[331] + W[3929] * W[113];
+    W[4041] = W[6] * W[4040] + W[224] * W[3822] + W[442] * W[3604] + W[660] * W[3386] + W[878] * W[3168]
+            + W[1096] * W[2950] + W[1314] * W[2732] + W[1532] * W[2514] + W[1750] * W[2296] + W[1968] * W[2078]
+            + W[2186] * W[1860] + W[2404] * W[1642] + W[2622] * W[1424] + W[2840] * W[1206] + W[3058] * W[988]
+            + W[3276] * W[770] + W[3494] * W[552] + W[3712] * W[334] + W[3930] * W[116];
+    W[4096] = W[17] * W[4095] + W[235] * W[3877] + W[453] * W[3659] + W[671] * W[3441] + W[889] * W[3223]
+            + W[1107] * W[3005] + W[1325] * W[2787] + W[1543] * W[2569] + W[1761] * W[2351] + W[1979] * W[2133]
+            + W[2197] * W[1915] + W[2415] * W[1697] + W[2633] * W[1479] + W[2851] * W[1261] + W[3069] * W[1043]
+            + W[3287] * W[825] + W[3505] * W[607] + W[3723] * W[389] + W[3941] * W[171];
+    W[4098] = W[18] * W[4097] + W[236] * W[3879] + W[454] * W[3661] + W[672] * W[3443] + W[890] * W[3225]
+            + W[1108] * W[3007] + W[1326] * W[2789] + W[1544] * W[2571] + W[1762] * W[2353] + W[1980] * W[2135]
+            + W[2198] * W[1917] + W[2416] * W[1699] + W[2634] * W[1481] + W[2852] * W[1263] + W[3070] * W[1045]
+            + W[3288] * W[827] + W[3506] * W[609] + W[3724] * W[391] + W[3942] * W[173];
+    W[4005] = W[4002] + W[4004];
+    W[4033] = W[4030] + W[4032];
+    W[4061] = W[4058] + W[4060];
+    W[4066] = W[33] * W[4002];
+    W[4067] = W[33] * W[4030];
+    W[4068] = W[33] * W[4058];
+    W[4080] = W[33] * W[4079];
+    W[4103] = W[4086] + W[4099];
+    W[4105] = W[4085] + W[4101];
+    W[4108] = W[4096] + W[4107];
+    W[4112] = W[33] * W[4107];
+    W[4100] = W[11] * W[4099] + W[229] * W[3881] + W[447] * W[3663] + W[665] * W[3445] + W[883] * W[3227]
+            + W[1101] * W[3009] + W[1319] * W[2791] + W[1537] * W[2573] + W[1755] * W[2355] + W[1973] * W[2137]
+            + W[2191] * W[1919] + W[2409] * W[1701] + W[2627] * W[1483] + W[2845] * W[1265] + W[3063] * W[1047]
+            + W[3281] * W[829] + W[3499] * W[611] + W[3717] * W[393] + W[3935] * W[175];
+    W[4102] = W[12] * W[4101] + W[230] * W[3883] + W[448] * W[3665] + W[666] * W[3447] + W[884] * W[3229]
+            + W[1102] * W[3011] + W[1320] * W[2793] + W[1538] * W[2575] + W[1756] * W[2357] + W[1974] * W[2139]
+            + W[2192] * W[1921] + W[2410] * W[1703] + W[2628] * W[1485] + W[2846] * W[1267] + W[3064] * W[1049]
+            + W[3282] * W[831] + W[3500] * W[613] + W[3718] * W[395] + W[3936] * W[177];
+    W[4115] = W[1] * W[4114] + W[219] * W[3896] + W[437] * W[3678] + W[655] * W[3460] + W[873] * W[3242]
+            + W[1091] * W[3024] + W[1309] * W[2806] + W[1527] * W[2588] + W[1745] * W[2370] + W[1963] * W[2152]
+            + W[2181] * W[1934] + W[2399] * W[1716] + W[2617] * W[1498] + W[2835] * W[1280] + W[3053] * W[1062]
+            + W[3271] * W[844] + W[3489] * W[626] + W[3707] * W[408] + W[3925] * W[190];
+    W[4118] = W[2] * W[4117] + W[220] * W[3899] + W[438] * W[3681] + W[656] * W[3463] + W[874] * W[3245]
+            + W[1092] * W[3027] + W[1310] * W[2809] + W[1528] * W[2591] + W[1746] * W[2373] + W[1964] * W[2155]
+            + W[2182] * W[1937] + W[2400] * W[1719] + W[2618] * W[1501] + W[2836] * W[1283] + W[3054] * W[1065]
+            + W[3272] * W[847] + W[3490] * W[629] + W[3708] * W[411] + W[3926] * W[193];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_208(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4111] = W[3985] + W[4110];
+    W[4122] = W[4121] - W[4102];
+    W[4015] = W[33] * W[4014];
+    W[4043] = W[33] * W[4042];
+    W[4116] = W[4014] + W[4115];
+    W[4123] = W[33] * W[4122];
+    W[4124] = W[4104] + W[4122];
+    W[4119] = W[4116] + W[4118];
+    W[4125] = W[4124] - W[4106];
+    W[4136] = W[3988] + W[4123];
+    W[4120] = W[33] * W[4119];
+    W[4126] = W[33] * W[4125];
+    W[4130] = W[4125] + W[4129];
+    W[4132] = W[4130] - W[4131];
+    W[4135] = W[3991] + W[4126];
+    W[4133] = W[33] * W[4132];
+    W[4134] = W[3993] + W[4133];
+    X[190] = X[185] / 19.0;
+    X[191] = X[186] / 19.0;
+    X[192] = X[187] / 19.0;
+    return 0;
+}
+
+/* Lines 200 .. 212 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_209(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[193] = X[188] / 19.0;
+    X[194] = X[189] / 19.0;
+    W[4137] = W[414] * W[3919] + W[632] * W[3701] + W[850] * W[3483] + W[1068] * W[3265] + W[1286] * W[3047]
+            + W[1504] * W[2829] + W[1722] * W[2611] + W[1940] * W[2393] + W[2158] * W[2175] + W[2376] * W[1957]
+            + W[2594] * W[1739] + W[2812] * W[1521] + W[3030] * W[1303] + W[3248] * W[1085] + W[3466] * W[867]
+            + W[3684] * W[649] + W[3902] * W[431] + W[4120] * W[213] + W[309] * W[3920] + W[527] * W[3702]
+            + W[745] * W[3484] + W[963] * W[3266] + W[1181] * W[3048] + W[1399] * W[2830] + W[1617] * W[2612]
+            + W[1835] * W[2394] + W[2053] * W[2176] + W[2271] * W[1958] + W[2489] * W[1740] + W[2707] * W[1522]
+            + W[2925] * W[1304] + W[3143] * W[1086] + W[3361] * W[868] + W[3579] * W[650] + W[3797] * W[432]
+            + W[4015] * W[214] + W[338] * W[3921] + W[556] * W[3703] + W[774] * W[3485] + W[992] * W[3267]
+            + W[1210] * W[3049] + W[1428] * W[2831] + W[1646] * W[2613] + W[1864] * W[2395] + W[2082] * W[2177]
+            + W[2300] * W[1959] + W[2518] * W[1741] + W[2736] * W[1523] + W[2954] * W[1305] + W[3172] * W[1087]
+            + W[3390] * W[869] + W[3608] * W[651] + W[3826] * W[433] + W[4044] * W[215] + W[360] * W[3922]
+            + W[578] * W[3704] + W[796] * W[3486] + W[1014] * W[3268] + W[1232] * W[3050] + W[1450] * W[2832]
+            + W[1668] * W[2614] + W[1886] * W[2396] + W[2104] * W[2178] + W[2322] * W[1960] + W[2540] * W[1742]
+            + W[2758] * W[1524] + W[2976] * W[1306] + W[3194] * W[1088] + W[3412] * W[870] + W[3630] * W[652]
+            + W[3848] * W[434] + W[4066] * W[216] + W[375] * W[3923] + W[593] * W[3705] + W[811] * W[3487]
+            + W[1029] * W[3269] + W[1247] * W[3051] + W[1465] * W[2833] + W[1683] * W[2615] + W[1901] * W[2397]
+            + W[2119] * W[2179] + W[2337] * W[1961] + W[2555] * W[1743] + W[2773] * W[1525] + W[2991] * W[1307]
+            + W[3209] * W[1089] + W[3427] * W[871] + W[3645] * W[653] + W[3863] * W[435] + W[4081] * W[217]
+            + W[4134];
+    W[4138] = W[309] * W[3919] + W[527] * W[3701] + W[745] * W[3483] + W[963] * W[3265] + W[1181] * W[3047]
+            + W[1399] * W[2829] + W[1617] * W[2611] + W[1835] * W[2393] + W[2053] * W[2175] + W[2271] * W[1957]
+            + W[2489] * W[1739] + W[2707] * W[1521] + W[2925] * W[1303] + W[3143] * W[1085] + W[3361] * W[867]
+            + W[3579] * W[649] + W[3797] * W[431] + W[4015] * W[213] + W[337] * W[3920] + W[555] * W[3702]
+            + W[773] * W[3484] + W[991] * W[3266] + W[1209] * W[3048] + W[1427] * W[2830] + W[1645] * W[2612]
+            + W[1863] * W[2394] + W[2081] * W[2176] + W[2299] * W[1958] + W[2517] * W[1740] + W[2735] * W[1522]
+            + W[2953] * W[1304] + W[3171] * W[1086] + W[3389] * W[868] + W[3607] * W[650] + W[3825] * W[432]
+            + W[4043] * W[214] + W[339] * W[3921] + W[557] * W[3703] + W[775] * W[3485] + W[993] * W[3267]
+            + W[1211] * W[3049] + W[1429] * W[2831] + W[1647] * W[2613] + W[1865] * W[2395] + W[2083] * W[2177]
+            + W[2301] * W[1959] + W[2519] * W[1741] + W[2737] * W[1523] + W[2955] * W[1305] + W[3173] * W[1087]
+            + W[3391] * W[869] + W[3609] * W[651] + W[3827] * W[433] + W[4045] * W[215] + W[361] * W[3922]
+            + W[579] * W[3704] + W[797] * W[3486] + W[1015] * W[3268] + W[1233] * W[3050] + W[1451] * W[2832]
+            + W[1669] * W[2614] + W[1887] * W[2396] + W[2105] * W[2178] + W[2323] * W[1960] + W[2541] * W[1742]
+            + W[2759] * W[1524] + W[2977] * W[1306] + W[3195] * W[1088] + W[3413] * W[870] + W[3631] * W[652]
+            + W[3849] * W[434] + W[4067] * W[216] + W[376] * W[3923] + W[594] * W[3705] + W[812] * W[3487]
+            + W[1030] * W[3269] + W[1248] * W[3051] + W[1466] * W[2833] + W[1684] * W[2615] + W[1902] * W[2397]
+            + W[2120] * W[2179] + W[2338] * W[1961] + W[2556] * W[1743] + W[2774] * W[1525] + W[2992] * W[1307]
+            + W[3210] * W[1089] + W[3428] * W[871] + W[3646] * W[653] + W[3864] * W[435] + W[4082] * W[217]
+            + W[4135];
+    W[4139] = W[338] * W[3919] + W[556] * W[3701] + W[774] * W[3483] + W[992] * W[3265] + W[1210] * W[3047]
+            + W[1428] * W[2829] + W[1646] * W[2611] + W[1864] * W[2393] + W[2082] * W[2175] + W[2300] * W[1957]
+            + W[2518] * W[1739] + W[2736] * W[1521] + W[2954] * W[1303] + W[3172] * W[1085] + W[3390] * W[867]
+            + W[3608] * W[649] + W[3826] * W[431] + W[4044] * W[213] + W[339] * W[3920] + W[557] * W[3702]
+            + W[775] * W[3484] + W[993] * W[3266] + W[1211] * W[3048] + W[1429] * W[2830] + W[1647] * W[2612]
+            + W[1865] * W[2394] + W[2083] * W[2176] + W[2301] * W[1958] + W[2519] * W[1740] + W[2737] * W[1522]
+            + W[2955] * W[1304] + W[3173] * W[1086] + W[3391] * W[868] + W[3609] * W[650] + W[3827] * W[432]
+            + W[4045] * W[214] + W[359] * W[3921] + W[577] * W[3703] + W[795] * W[3485] + W[1013] * W[3267]
+            + W[1231] * W[3049] + W[1449] * W[2831] + W[1667] * W[2613] + W[1885] * W[2395] + W[2103] * W[2177]
+            + W[2321] * W[1959] + W[2539] * W[1741] + W[2757] * W[1523] + W[2975] * W[1305] + W[3193] * W[1087]
+            + W[3411] * W[869] + W[3629] * W[651] + W[3847] * W[433] + W[4065] * W[215] + W[362] * W[3922]
+            + W[580] * W[3704] + W[798] * W[3486] + W[1016] * W[3268] + W[1234] * W[3050] + W[1452] * W[2832]
+            + W[1670] * W[2614] + W[1888] * W[2396] + W[2106] * W[2178] + W[2324] * W[1960] + W[2542] * W[1742]
+            + W[2760] * W[1524] + W[2978] * W[1306] + W[3196] * W[1088] + W[3414] * W[870] + W[3632] * W[652]
+            + W[3850] * W[434] + W[4068] * W[216] + W[377] * W[3923] + W[595] * W[3705] + W[813] * W[3487]
+            + W[1031] * W[3269] + W[1249] * W[3051] + W[1467] * W[2833] + W[1685] * W[2615] + W[1903] * W[2397]
+            + W[2121] * W[2179] + W[2339] * W[1961] + W[2557] * W[1743] + W[2775] * W[1525] + W[2993] * W[1307]
+            + W[3211] * W[1089] + W[3429] * W[871] + W[3647] * W[653] + W[3865] * W[435] + W[4083] * W[217]
+            + W[4136];
+    W[4140] = W[360] * W[3919] + W[578] * W[3701] + W[796] * W[3483] + W[1014] * W[3265] + W[1232] * W[3047]
+            + W[1450] * W[2829] + W[1668] * W[2611] + W[1886] * W[2393] + W[2104] * W[2175] + W[2322] * W[1957]
+            + W[2540] * W[1739] + W[2758] * W[1521] + W[2976] * W[1303] + W[3194] * W[1085] + W[3412] * W[867]
+            + W[3630] * W[649] + W[3848] * W[431] + W[4066] * W[213] + W[361] * W[3920] + W[579] * W[3702]
+            + W[797] * W[3484] + W[1015] * W[3266] + W[1233] * W[3048] + W[1451] * W[2830] + W[1669] * W[2612]
+            + W[1887] * W[2394] + W[2105] * W[2176] + W[2323] * W[1958] + W[2541] * W[1740] + W[2759] * W[1522]
+            + W[2977] * W[1304] + W[3195] * W[1086] + W[3413] * W[868] + W[3631] * W[650] + W[3849] * W[432]
+            + W[4067] * W[214] + W[362] * W[3921] + W[580] * W[3703] + W[798] * W[3485] + W[1016] * W[3267]
+            + W[1234] * W[3049] + W[1452] * W[2831] + W[1670] * W[2613] + W[1888] * W[2395] + W[2106] * W[2177]
+            + W[2324] * W[1959] + W[2542] * W[1741] + W[2760] * W[1523] + W[2978] * W[1305] + W[3196] * W[1087]
+            + W[3414] * W[869] + W[3632] * W[651] + W[3850] * W[433] + W[4068] * W[215] + W[374] * W[3922]
+            + W[592] * W[3704] + W[810] * W[3486] + W[1028] * W[3268] + W[1246] * W[3050] + W[1464] * W[2832]
+            + W[1682] * W[2614] + W[1900] * W[2396] + W[2118] * W[2178] + W[2336] * W[1960] + W[2554] * W[1742]
+            + W[2772] * W[1524] + W[2990] * W[1306] + W[3208] * W[1088] + W[3426] * W[870] + W[3644] * W[652]
+            + W[3862] * W[434] + W[4080] * W[216] + W[378] * W[3923] + W[596] * W[3705] + W[814] * W[3487]
+            + W[1032] * W[3269] + W[1250] * W[3051] + W[1468] * W[2833] + W[1686] * W[2615] + W[1904] * W[2397]
+            + W[2122] * W[2179] + W[2340] * W[1961] + W[2558] * W[1743] + W[2776] * W[1525] + W[2994] * W[1307]
+            + W[3212] * W[1089] + W[3430] * W[871] + W[3648] * W[653] + W[3866] * W[435] + W[4084] * W[217]
+            + W[4111];
+    W[4141] = W[375] * W[3919] + W[593] * W[3701] + W[811] * W[3483] + W[1029] * W[3265] + W[1247] * W[3047]
+            + W[1465] * W[2829] + W[1683] * W[2611] + W[1901] * W[2393] + W[2119] * W[2175] + W[2337] * W[1957]
+            + W[2555] * W[1739] + W[2773] * W[1521] + W[2991] * W[1303] + W[3209] * W[1085] + W[3427] * W[867]
+            + W[3645] * W[649] + W[3863] * W[431] + W[4081] * W[213] + W[376] * W[3920] + W[594] * W[3702]
+            + W[812] * W[3484] + W[1030] * W[3266] + W[1248] * W[3048] + W[1466] * W[2830] + W[1684] * W[2612]
+            + W[1902] * W[2394] + W[2120] * W[2176] + W[2338] * W[1958] + W[2556] * W[1740] + W[2774] * W[1522]
+            + W[2992] * W[1304] + W[3210] * W[1086] + W[3428] * W[868] + W[3646] * W[650] + W[3864] * W[432]
+            + W[4082] * W[214] + W[377] * W[3921] + W[595] * W[3703] + W[813] * W[3485] + W[1031] * W[3267]
+            + W[1249] * W[3049] + W[1467] * W[2831] + W[1685] * W[2613] + W[1903] * W[2395] + W[2121] * W[2177]
+            + W[2339] * W[1959] + W[2557] * W[1741] + W[2775] * W[1523] + W[2993] * W[1305] + W[3211] * W[1087]
+            + W[3429] * W[869] + W[3647] * W[651] + W[3865] * W[433] + W[4083] * W[215] + W[378] * W[3922]
+            + W[596] * W[3704] + W[814] * W[3486] + W[1032] * W[3268] + W[1250] * W[3050] + W[1468] * W[2832]
+            + W[1686] * W[2614] + W[1904] * W[2396] + W[2122] * W[2178] + W[2340] * W[1960] + W[2558] * W[1742]
+            + W[2776] * W[1524] + W[2994] * W[1306] + W[3212] * W[1088] + W[3430] * W[870] + W[3648] * W[652]
+            + W[3866] * W[434] + W[4084] * W[216] + W[4113];
+    if (solve(ctx, 18, NULL, W + 4137))
+        return -1;
+    X[195] = W[4137] / 19.0;
+    X[196] = W[4138] / 19.0;
+    X[197] = W[4139] / 19.0;
+    X[198] = W[4140] / 19.0;
+    X[199] = W[4141] / 19.0;
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 19, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_213(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4191] = W[46] * W[4190] + W[264] * W[3972] + W[482] * W[3754] + W[700] * W[3536] + W[918] * W[3318]
+            + W[1136] * W[3100] + W[1354] * W[2882] + W[1572] * W[2664] + W[1790] * W[2446] + W[2008] * W[2228]
+            + W[2226] * W[2010] + W[2444] * W[1792] + W[2662] * W[1574] + W[2880] * W[1356] + W[3098] * W[1138]
+            + W[3316] * W[920] + W[3534] * W[702] + W[3752] * W[484] + W[3970] * W[266] + W[4188] * W[48];
+    W[4192] = W[46] * W[4189] + W[264] * W[3971] + W[482] * W[3753] + W[700] * W[3535] + W[918] * W[3317]
+            + W[1136] * W[3099] + W[1354] * W[2881] + W[1572] * W[2663] + W[1790] * W[2445] + W[2008] * W[2227]
+            + W[2226] * W[2009] + W[2444] * W[1791] + W[2662] * W[1573] + W[2880] * W[1355] + W[3098] * W[1137]
+            + W[3316] * W[919] + W[3534] * W[701] + W[3752] * W[483] + W[3970] * W[265] + W[4188] * W[47];
+    W[4194] = W[24] * W[4193] + W[242] * W[3975] + W[460] * W[3757] + W[678] * W[3539] + W[896] * W[3321]
+            + W[1114] * W[3103] + W[1332] * W[2885] + W[1550] * W[2667] + W[1768] * W[2449] + W[1986] * W[2231]
+            + W[2204] * W[2013] + W[2422] * W[1795] + W[2640] * W[1577] + W[2858] * W[1359] + W[3076] * W[1141]
+            + W[3294] * W[923] + W[3512] * W[705] + W[3730] * W[487] + W[3948] * W[269] + W[4166] * W[51];
+    W[4195] = W[23] * W[4193] + W[241] * W[3975] + W[459] * W[3757] + W[677] * W[3539] + W[895] * W[3321]
+            + W[1113] * W[3103] + W[1331] * W[2885] + W[1549] * W[2667] + W[1767] * W[2449] + W[1985] * W[2231]
+            + W[2203] * W[2013] + W[2421] * W[1795] + W[2639] * W[1577] + W[2857] * W[1359] + W[3075] * W[1141]
+            + W[3293] * W[923] + W[3511] * W[705] + W[3729] * W[487] + W[3947] * W[269] + W[4165] * W[51];
+    W[4203] = W[4200] - W[4202];
+    W[4215] = W[4161] + W[4167];
+    W[4218] = W[4162] + W[4168];
+    W[4243] = W[4235] + W[4236];
+    W[4246] = W[4239] + W[4240];
+    W[4271] = W[4264] + W[4265];
+    W[4274] = W[4267] + W[4268];
+    W[4288] = W[4160] + W[4287];
+    W[4291] = W[4159] + W[4290];
+    W[4307] = W[4191] + W[4305];
+    W[4308] = W[4192] + W[4306];
+    W[4196] = W[51] * W[4195] + W[269] * W[3977] + W[487] * W[3759] + W[705] * W[3541] + W[923] * W[3323]
+            + W[1141] * W[3105] + W[1359] * W[2887] + W[1577] * W[2669] + W[1795] * W[2451] + W[2013] * W[2233]
+            + W[2231] * W[2015] + W[2449] * W[1797] + W[2667] * W[1579] + W[2885] * W[1361] + W[3103] * W[1143]
+            + W[3321] * W[925] + W[3539] * W[707] + W[3757] * W[489] + W[3975] * W[271] + W[4193] * W[53];
+    W[4197] = W[51] * W[4194] + W[269] * W[3976] + W[487] * W[3758] + W[705] * W[3540] + W[923] * W[3322]
+            + W[1141] * W[3104] + W[1359] * W[2886] + W[1577] * W[2668] + W[1795] * W[2450] + W[2013] * W[2232]
+            + W[2231] * W[2014] + W[2449] * W[1796] + W[2667] * W[1578] + W[2885] * W[1360] + W[3103] * W[1142]
+            + W[3321] * W[924] + W[3539] * W[706] + W[3757] * W[488] + W[3975] * W[270] + W[4193] * W[52];
+    W[4212] = W[23] * W[4167] + W[241] * W[3949] + W[459] * W[3731] + W[677] * W[3513] + W[895] * W[3295]
+            + W[1113] * W[3077] + W[1331] * W[2859] + W[1549] * W[2641] + W[1767] * W[2423] + W[1985] * W[2205]
+            + W[2203] * W[1987] + W[2421] * W[1769] + W[2639] * W[1551] + W[2857] * W[1333] + W[3075] * W[1115]
+            + W[3293] * W[897] + W[3511] * W[679] + W[3729] * W[461] + W[3947] * W[243] + W[4165] * W[25];
+    W[4213] = W[24] * W[4168] + W[242] * W[3950] + W[460] * W[3732] + W[678] * W[3514] + W[896] * W[3296]
+            + W[1114] * W[3078] + W[1332] * W[2860] + W[1550] * W[2642] + W[1768] * W[2424] + W[1986] * W[2206]
+            + W[2204] * W[1988] + W[2422] * W[1770] + W[2640] * W[1552] + W[2858] * W[1334] + W[3076] * W[1116]
+            + W[3294] * W[898] + W[3512] * W[680] + W[3730] * W[462] + W[3948] * W[244] + W[4166] * W[26];
+    W[4237] = W[23] * W[4236] + W[241] * W[4018] + W[459] * W[3800] + W[677] * W[3582] + W[895] * W[3364]
+            + W[1113] * W[3146] + W[1331] * W[2928] + W[1549] * W[2710] + W[1767] * W[2492] + W[1985] * W[2274]
+            + W[2203] * W[2056] + W[2421] * W[1838] + W[2639] * W[1620] + W[2857] * W[1402] + W[3075] * W[1184]
+            + W[3293] * W[966] + W[3511] * W[748] + W[3729] * W[530] + W[3947] * W[312] + W[4165] * W[94];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 19, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_215(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4244] = W[17] * W[4243] + W[235] * W[4025] + W[453] * W[3807] + W[671] * W[3589] + W[889] * W[3371]
+            + W[1107] * W[3153] + W[1325] * W[2935] + W[1543] * W[2717] + W[1761] * W[2499] + W[1979] * W[2281]
+            + W[2197] * W[2063] + W[2415] * W[1845] + W[2633] * W[1627] + W[2851] * W[1409] + W[3069] * W[1191]
+            + W[3287] * W[973] + W[3505] * W[755] + W[3723] * W[537] + W[3941] * W[319] + W[4159] * W[101];
+    W[4247] = W[18] * W[4246] + W[236] * W[4028] + W[454] * W[3810] + W[672] * W[3592] + W[890] * W[3374]
+            + W[1108] * W[3156] + W[1326] * W[2938] + W[1544] * W[2720] + W[1762] * W[2502] + W[1980] * W[2284]
+            + W[2198] * W[2066] + W[2416] * W[1848] + W[2634] * W[1630] + W[2852] * W[1412] + W[3070] * W[1194]
+            + W[3288] * W[976] + W[3506] * W[758] + W[3724] * W[540] + W[3942] * W[322] + W[4160] * W[104];
+    W[4272] = W[17] * W[4271] + W[235] * W[4053] + W[453] * W[3835] + W[671] * W[3617] + W[889] * W[3399]
+            + W[1107] * W[3181] + W[1325] * W[2963] + W[1543] * W[2745] + W[1761] * W[2527] + W[1979] * W[2309]
+            + W[2197] * W[2091] + W[2415] * W[1873] + W[2633] * W[1655] + W[2851] * W[1437] + W[3069] * W[1219]
+            + W[3287] * W[1001] + W[3505] * W[783] + W[3723] * W[565] + W[3941] * W[347] + W[4159] * W[129];
+    W[4275] = W[18] * W[4274] + W[236] * W[4056] + W[454] * W[3838] + W[672] * W[3620] + W[890] * W[3402]
+            + W[1108] * W[3184] + W[1326] * W[2966] + W[1544] * W[2748] + W[1762] * W[2530] + W[1980] * W[2312]
+            + W[2198] * W[2094] + W[2416] * W[1876] + W[2634] * W[1658] + W[2852] * W[1440] + W[3070] * W[1222]
+            + W[3288] * W[1004] + W[3506] * W[786] + W[3724] * W[568] + W[3942] * W[350] + W[4160] * W[132];
+    W[4289] = W[18] * W[4288] + W[236] * W[4070] + W[454] * W[3852] + W[672] * W[3634] + W[890] * W[3416]
+            + W[1108] * W[3198] + W[1326] * W[2980] + W[1544] * W[2762] + W[1762] * W[2544] + W[1980] * W[2326]
+            + W[2198] * W[2108] + W[2416] * W[1890] + W[2634] * W[1672] + W[2852] * W[1454] + W[3070] * W[1236]
+            + W[3288] * W[1018] + W[3506] * W[800] + W[3724] * W[582] + W[3942] * W[364] + W[4160] * W[146];
+    W[4292] = W[17] * W[4291] + W[235] * W[4073] + W[453] * W[3855] + W[671] * W[3637] + W[889] * W[3419]
+            + W[1107] * W[3201] + W[1325] * W[2983] + W[1543] * W[2765] + W[1761] * W[2547] + W[1979] * W[2329]
+            + W[2197] * W[2111] + W[2415] * W[1893] + W[2633] * W[1675] + W[2851] * W[1457] + W[3069] * W[1239]
+            + W[3287] * W[1021] + W[3505] * W[803] + W[3723] * W[585] + W[3941] * W[367] + W[4159] * W[149];
+    W[4209] = W[4206] - W[4208];
+    W[4217] = W[4214] + W[4216];
+    W[4227] = W[4149] + W[4221];
+    W[4230] = W[4150] + W[4224];
+    W[4245] = W[4242] + W[4244];
+    W[4255] = W[4147] + W[4249];
+    W[4258] = W[4148] + W[4252];
+    W[4273] = W[4270] + W[4272];
+    W[4296] = W[4292] + W[4295];
+    W[4299] = W[33] * W[4214];
+    W[4300] = W[33] * W[4242];
+    W[4301] = W[33] * W[4270];
+    W[4302] = W[33] * W[4295];
+    W[4313] = W[4308] + W[4310];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 19, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_217(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4231] = W[6] * W[4230] + W[224] * W[4012] + W[442] * W[3794] + W[660] * W[3576] + W[878] * W[3358]
+            + W[1096] * W[3140] + W[1314] * W[2922] + W[1532] * W[2704] + W[1750] * W[2486] + W[1968] * W[2268]
+            + W[2186] * W[2050] + W[2404] * W[1832] + W[2622] * W[1614] + W[2840] * W[1396] + W[3058] * W[1178]
+            + W[3276] * W[960] + W[3494] * W[742] + W[3712] * W[524] + W[3930] * W[306] + W[4148] * W[88];
+    W[4256] = W[5] * W[4255] + W[223] * W[4037] + W[441] * W[3819] + W[659] * W[3601] + W[877] * W[3383]
+            + W[1095] * W[3165] + W[1313] * W[2947] + W[1531] * W[2729] + W[1749] * W[2511] + W[1967] * W[2293]
+            + W[2185] * W[2075] + W[2403] * W[1857] + W[2621] * W[1639] + W[2839] * W[1421] + W[3057] * W[1203]
+            + W[3275] * W[985] + W[3493] * W[767] + W[3711] * W[549] + W[3929] * W[331] + W[4147] * W[113];
+    W[4259] = W[6] * W[4258] + W[224] * W[4040] + W[442] * W[3822] + W[660] * W[3604] + W[878] * W[3386]
+            + W[1096] * W[3168] + W[1314] * W[2950] + W[1532] * W[2732] + W[1750] * W[2514] + W[1968] * W[2296]
+            + W[2186] * W[2078] + W[2404] * W[1860] + W[2622] * W[1642] + W[2840] * W[1424] + W[3058] * W[1206]
+            + W[3276] * W[988] + W[3494] * W[770] + W[3712] * W[552] + W[3930] * W[334] + W[4148] * W[116];
+    W[4314] = W[17] * W[4313] + W[235] * W[4095] + W[453] * W[3877] + W[671] * W[3659] + W[889] * W[3441]
+            + W[1107] * W[3223] + W[1325] * W[3005] + W[1543] * W[2787] + W[1761] * W[2569] + W[1979] * W[2351]
+            + W[2197] * W[2133] + W[2415] * W[1915] + W[2633] * W[1697] + W[2851] * W[1479] + W[3069] * W[1261]
+            + W[3287] * W[1043] + W[3505] * W[825] + W[3723] * W[607] + W[3941] * W[389] + W[4159] * W[171];
+    W[4316] = W[18] * W[4315] + W[236] * W[4097] + W[454] * W[3879] + W[672] * W[3661] + W[890] * W[3443]
+            + W[1108] * W[3225] + W[1326] * W[3007] + W[1544] * W[2789] + W[1762] * W[2571] + W[1980] * W[2353]
+            + W[2198] * W[2135] + W[2416] * W[1917] + W[2634] * W[1699] + W[2852] * W[1481] + W[3070] * W[1263]
+            + W[3288] * W[1045] + W[3506] * W[827] + W[3724] * W[609] + W[3942] * W[391] + W[4160] * W[173];
+    W[4223] = W[4220] + W[4222];
+    W[4251] = W[4248] + W[4250];
+    W[4279] = W[4276] + W[4278];
+    W[4284] = W[33] * W[4220];
+    W[4285] = W[33] * W[4248];
+    W[4286] = W[33] * W[4276];
+    W[4298] = W[33] * W[4297];
+    W[4321] = W[4304] + W[4317];
+    W[4323] = W[4303] + W[4319];
+    W[4326] = W[4314] + W[4325];
+    W[4330] = W[33] * W[4325];
+    W[4318] = W[11] * W[4317] + W[229] * W[4099] + W[447] * W[3881] + W[665] * W[3663] + W[883] * W[3445]
+            + W[1101] * W[3227] + W[1319] * W[3009] + W[1537] * W[2791] + W[1755] * W[2573] + W[1973] * W[2355]
+            + W[2191] * W[2137] + W[2409] * W[1919] + W[2627] * W[1701] + W[2845] * W[1483] + W[3063] * W[1265]
+            + W[3281] * W[1047] + W[3499] * W[829] + W[3717] * W[611] + W[3935] * W[393] + W[4153] * W[175];
+    W[4320] = W[12] * W[4319] + W[230] * W[4101] + W[448] * W[3883] + W[666] * W[3665] + W[884] * W[3447]
+            + W[1102] * W[3229] + W[1320] * W[3011] + W[1538] * W[2793] + W[1756] * W[2575] + W[1974] * W[2357]
+            + W[2192] * W[2139] + W[2410] * W[1921] + W[2628] * W[1703] + W[2846] * W[1485] + W[3064] * W[1267]
+            + W[3282] * W[1049] + W[3500] * W[831] + W[3718] * W[613] + W[3936] * W[395] + W[4154] * W[177];
+    W[4333] = W[1] * W[4332] + W[219] * W[4114] + W[437] * W[3896] + W[655] * W[3678] + W[873] * W[3460]
+            + W[1091] * W[3242] + W[1309] * W[3024] + W[1527] * W[2806] + W[1745] * W[2588] + W[1963] * W[2370]
+            + W[2181] * W[2152] + W[2399] * W[1934] + W[2617] * W[1716] + W[2835] * W[1498] + W[3053] * W[1280]
+            + W[3271] * W[1062] + W[3489] * W[844] + W[3707] * W[626] + W[3925] * W[408] + W[4143] * W[190];
+    W[4336] = W[2] * W[4335] + W[220] * W[4117] + W[438] * W[3899] + W[656] * W[3681] + W[874] * W[3463]
+            + W[1092] * W[3245] + W[1310] * W[3027] + W[1528] * W[2809] + W[1746] * W[2591] + W[1964] * W[2373]
+            + W[2182] * W[2155] + W[2400] * W[1937] + W[2618] * W[1719] + W[2836] * W[1501] + W[3054] * W[1283]
+            + W[3272] * W[1065] + W[3490] * W[847] + W[3708] * W[629] + W[3926] * W[411] + W[4144] * W[193];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 19, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_219(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4329] = W[4203] + W[4328];
+    W[4340] = W[4339] - W[4320];
+    W[4233] = W[33] * W[4232];
+    W[4261] = W[33] * W[4260];
+    W[4334] = W[4232] + W[4333];
+    W[4341] = W[33] * W[4340];
+    W[4342] = W[4322] + W[4340];
+    W[4337] = W[4334] + W[4336];
+    W[4343] = W[4342] - W[4324];
+    W[4354] = W[4206] + W[4341];
+    W[4338] = W[33] * W[4337];
+    W[4344] = W[33] * W[4343];
+    W[4348] = W[4343] + W[4347];
+    W[4350] = W[4348] - W[4349];
+    W[4353] = W[4209] + W[4344];
+    W[4351] = W[33] * W[4350];
+    W[4352] = W[4211] + W[4351];
+    X[200] = X[195] / 20.0;
+    X[201] = X[196] / 20.0;
+    X[202] = X[197] / 20.0;
+    return 0;
+}
+
+/* Lines 200 .. 212 of taylor_run's order 19, in the fourth unit. */
+EOMC_PART int
+chain5_taylor_run_220(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[203] = X[198] / 20.0;
+    X[204] = X[199] / 20.0;
+    W[4355] = W[414] * W[4137] + W[632] * W[3919] + W[850] * W[3701] + W[1068] * W[3483] + W[1286] * W[3265]
+            + W[1504] * W[3047] + W[1722] * W[2829] + W[1940] * W[2611] + W[2158] * W[2393] + W[2376] * W[2175]
+            + W[2594] * W[1957] + W[2812] * W[1739] + W[3030] * W[1521] + W[3248] * W[1303] + W[3466] * W[1085]
+            + W[3684] * W[867] + W[3902] * W[649] + W[4120] * W[431] + W[4338] * W[213] + W[309] * W[4138]
+            + W[527] * W[3920] + W[745] * W[3702] + W[963] * W[3484] + W[1181] * W[3266] + W[1399] * W[3048]
+            + W[1617] * W[2830] + W[1835] * W[2612] + W[2053] * W[2394] + W[2271] * W[2176] + W[2489] * W[1958]
+            + W[2707] * W[1740] + W[2925] * W[1522] + W[3143] * W[1304] + W[3361] * W[1086] + W[3579] * W[868]
+            + W[3797] * W[650] + W[4015] * W[432] + W[4233] * W[214] + W[338] * W[4139] + W[556] * W[3921]
+            + W[774] * W[3703] + W[992] * W[3485] + W[1210] * W[3267] + W[1428] * W[3049] + W[1646] * W[2831]
+            + W[1864] * W[2613] + W[2082] * W[2395] + W[2300] * W[2177] + W[2518] * W[1959] + W[2736] * W[1741]
+            + W[2954] * W[1523] + W[3172] * W[1305] + W[3390] * W[1087] + W[3608] * W[869] + W[3826] * W[651]
+            + W[4044] * W[433] + W[4262] * W[215] + W[360] * W[4140] + W[578] * W[3922] + W[796] * W[3704]
+            + W[1014] * W[3486] + W[1232] * W[3268] + W[1450] * W[3050] + W[1668] * W[2832] + W[1886] * W[2614]
+            + W[2104] * W[2396] + W[2322] * W[2178] + W[2540] * W[1960] + W[2758] * W[1742] + W[2976] * W[1524]
+            + W[3194] * W[1306] + W[3412] * W[1088] + W[3630] * W[870] + W[3848] * W[652] + W[4066] * W[434]
+            + W[4284] * W[216] + W[375] * W[4141] + W[593] * W[3923] + W[811] * W[3705] + W[1029] * W[3487]
+            + W[1247] * W[3269] + W[1465] * W[3051] + W[1683] * W[2833] + W[1901] * W[2615] + W[2119] * W[2397]
+            + W[2337] * W[2179] + W[2555] * W[1961] + W[2773] * W[1743] + W[2991] * W[1525] + W[3209] * W[1307]
+            + W[3427] * W[1089] + W[3645] * W[871] + W[3863] * W[653] + W[4081] * W[435] + W[4299] * W[217]
+            + W[4352];
+    W[4356] = W[309] * W[4137] + W[527] * W[3919] + W[745] * W[3701] + W[963] * W[3483] + W[1181] * W[3265]
+            + W[1399] * W[3047] + W[1617] * W[2829] + W[1835] * W[2611] + W[2053] * W[2393] + W[2271] * W[2175]
+            + W[2489] * W[1957] + W[2707] * W[1739] + W[2925] * W[1521] + W[3143] * W[1303] + W[3361] * W[1085]
+            + W[3579] * W[867] + W[3797] * W[649] + W[4015] * W[431] + W[4233] * W[213] + W[337] * W[4138]
+            + W[555] * W[3920] + W[773] * W[3702] + W[991] * W[3484] + W[1209] * W[3266] + W[1427] * W[3048]
+            + W[1645] * W[2830] + W[1863] * W[2612] + W[2081] * W[2394] + W[2299] * W[2176] + W[2517] * W[1958]
+            + W[2735] * W[1740] + W[2953] * W[1522] + W[3171] * W[1304] + W[3389] * W[1086] + W[3607] * W[868]
+            + W[3825] * W[650] + W[4043] * W[432] + W[4261] * W[214] + W[339] * W[4139] + W[557] * W[3921]
+            + W[775] * W[3703] + W[993] * W[3485] + W[1211] * W[3267] + W[1429] * W[3049] + W[1647] * W[2831]
+            + W[1865] * W[2613] + W[2083] * W[2395] + W[2301] * W[2177] + W[2519] * W[1959] + W[2737] * W[1741]
+            + W[2955] * W[1523] + W[3173] * W[1305] + W[3391] * W[1087] + W[3609] * W[869] + W[3827] * W[651]
+            + W[4045] * W[433] + W[4263] * W[215] + W[361] * W[4140] + W[579] * W[3922] + W[797] * W[3704]
+            + W[1015] * W[3486] + W[1233] * W[3268] + W[1451] * W[3050] + W[1669] * W[2832] + W[1887] * W[2614]
+            + W[2105] * W[2396] + W[2323] * W[2178] + W[2541] * W[1960] + W[2759] * W[1742] + W[2977] * W[1524]
+            + W[3195] * W[1306] + W[3413] * W[1088] + W[3631] * W[870] + W[3849] * W[652] + W[4067] * W[434]
+            + W[4285] * W[216] + W[376] * W[4141] + W[594] * W[3923] + W[812] * W[3705] + W[1030] * W[3487]
+            + W[1248] * W[3269] + W[1466] * W[3051] + W[1684] * W[2833] + W[1902] * W[2615] + W[2120] * W[2397]
+            + W[2338] * W[2179] + W[2556] * W[1961] + W[2774] * W[1743] + W[2992] * W[1525] + W[3210] * W[1307]
+            + W[3428] * W[1089] + W[3646] * W[871] + W[3864] * W[653] + W[4082] * W[435] + W[4300] * W[217]
+            + W[4353];
+    W[4357] = W[338] * W[4137] + W[556] * W[3919] + W[774] * W[3701] + W[992] * W[3483] + W[1210] * W[3265]
+            + W[1428] * W[3047] + W[1646] * W[2829] + W[1864] * W[2611] + W[2082] * W[2393] + W[2300] * W[2175]
+            + W[2518] * W[1957] + W[2736] * W[1739] + W[2954] * W[1521] + W[3172] * W[1303] + W[3390] * W[1085]
+            + W[3608] * W[867] + W[3826] * W[649] + W[4044] * W[431] + W[4262] * W[213] + W[339] * W[4138]
+            + W[557] * W[3920] + W[775] * W[3702] + W[993] * W[3484] + W[1211] * W[3266] + W[1429] * W[3048]
+            + W[1647] * W[2830] + W[1865] * W[2612] + W[2083] * W[2394] + W[2301] * W[2176] + W[2519] * W[1958]
+            + W[2737] * W[1740] + W[2955] * W[1522] + W[3173] * W[1304] + W[3391] * W[1086] + W[3609] * W[868]
+            + W[3827] * W[650] + W[4045] * W[432] + W[4263] * W[214] + W[359] * W[4139] + W[577] * W[3921]
+            + W[795] * W[3703] + W[1013] * W[3485] + W[1231] * W[3267] + W[1449] * W[3049] + W[1667] * W[2831]
+            + W[1885] * W[2613] + W[2103] * W[2395] + W[2321] * W[2177] + W[2539] * W[1959] + W[2757] * W[1741]
+            + W[2975] * W[1523] + W[3193] * W[1305] + W[3411] * W[1087] + W[3629] * W[869] + W[3847] * W[651]
+            + W[4065] * W[433] + W[4283] * W[215] + W[362] * W[4140] + W[580] * W[3922] + W[798] * W[3704]
+            + W[1016] * W[3486] + W[1234] * W[3268] + W[1452] * W[3050] + W[1670] * W[2832] + W[1888] * W[2614]
+            + W[2106] * W[2396] + W[2324] * W[2178] + W[2542] * W[1960] + W[2760] * W[1742] + W[2978] * W[1524]
+            + W[3196] * W[1306] + W[3414] * W[1088] + W[3632] * W[870] + W[3850] * W[652] + W[4068] * W[434]
+            + W[4286] * W[216] + W[377] * W[4141] + W[595] * W[3923] + W[813] * W[3705] + W[1031] * W[3487]
+            + W[1249] * W[3269] + W[1467] * W[3051] + W[1685] * W[2833] + W[1903] * W[2615] + W[2121] * W[2397]
+            + W[2339] * W[2179] + W[2557] * W[1961] + W[2775] * W[1743] + W[2993] * W[1525] + W[3211] * W[1307]
+            + W[3429] * W[1089] + W[3647] * W[871] + W[3865] * W[653] + W[4083] * W[435] + W[4301] * W[217]
+            + W[4354];
+    W[4358] = W[360] * W[4137] + W[578] * W[3919] + W[796] * W[3701] + W[1014] * W[3483] + W[1232] * W[3265]
+            + W[1450] * W[3047] + W[1668] * W[2829] + W[1886] * W[2611] + W[2104] * W[2393] + W[2322] * W[2175]
+            + W[2540] * W[1957] + W[2758] * W[1739] + W[2976] * W[1521] + W[3194] * W[1303] + W[3412] * W[1085]
+            + W[3630] * W[867] + W[3848] * W[649] + W[4066] * W[431] + W[4284] * W[213] + W[361] * W[4138]
+            + W[579] * W[3920] + W[797] * W[3702] + W[1015] * W[3484] + W[1233] * W[3266] + W[1451] * W[3048]
+            + W[1669] * W[2830] + W[1887] * W[2612] + W[2105] * W[2394] + W[2323] * W[2176] + W[2541] * W[1958]
+            + W[2759] * W[1740] + W[2977] * W[1522] + W[3195] * W[1304] + W[3413] * W[1086] + W[3631] * W[868]
+            + W[3849] * W[650] + W[4067] * W[432] + W[4285] * W[214] + W[362] * W[4139] + W[580] * W[3921]
+            + W[798] * W[3703] + W[1016] * W[3485] + W[1234] * W[3267] + W[1452] * W[3049] + W[1670] * W[2831]
+            + W[1888] * W[2613] + W[2106] * W[2395] + W[2324] * W[2177] + W[2542] * W[1959] + W[2760] * W[1741]
+            + W[2978] * W[1523] + W[3196] * W[1305] + W[3414] * W[1087] + W[3632] * W[869] + W[3850] * W[651]
+            + W[4068] * W[433] + W[4286] * W[215] + W[374] * W[4140] + W[592] * W[3922] + W[810] * W[3704]
+            + W[1028] * W[3486] + W[1246] * W[3268] + W[1464] * W[3050] + W[1682] * W[2832] + W[1900] * W[2614]
+            + W[2118] * W[2396] + W[2336] * W[2178] + W[2554] * W[1960] + W[2772] * W[1742] + W[2990] * W[1524]
+            + W[3208] * W[1306] + W[3426] * W[1088] + W[3644] * W[870] + W[3862] * W[652] + W[4080] * W[434]
+            + W[4298] * W[216] + W[378] * W[4141] + W[596] * W[3923] + W[814] * W[3705] + W[1032] * W[3487]
+            + W[1250] * W[3269] + W[1468] * W[3051] + W[1686] * W[2833] + W[1904] * W[2615] + W[2122] * W[2397]
+            + W[2340] * W[2179] + W[2558] * W[1961] + W[2776] * W[1743] + W[2994] * W[1525] + W[3212] * W[1307]
+            + W[3430] * W[1089] + W[3648] * W[871] + W[3866] * W[653] + W[4084] * W[435] + W[4302] * W[217]
+            + W[4329];
+    W[4359] = W[375] * W[4137] + W[593] * W[3919] + W[811] * W[3701] + W[1029] * W[3483] + W[1247] * W[3265]
+            + W[1465] * W[3047] + W[1683] * W[2829] + W[1901] * W[2611] + W[2119] * W[2393] + W[2337] * W[2175]
+            + W[2555] * W[1957] + W[2773] * W[1739] + W[2991] * W[1521] + W[3209] * W[1303] + W[3427] * W[1085]
+            + W[3645] * W[867] + W[3863] * W[649] + W[4081] * W[431] + W[4299] * W[213] + W[376] * W[4138]
+            + W[594] * W[3920] + W[812] * W[3702] + W[1030] * W[3484] + W[1248] * W[3266] + W[1466] * W[3048]
+            + W[1684] * W[2830] + W[1902] * W[2612] + W[2120] * W[2394] + W[2338] * W[2176] + W[2556] * W[1958]
+            + W[2774] * W[1740] + W[2992] * W[1522] + W[3210] * W[1304] + W[3428] * W[1086] + W[3646] * W[868]
+            + W[3864] * W[650] + W[4082] * W[432] + W[4300] * W[214] + W[377] * W[4139] + W[595] * W[3921]
+            + W[813] * W[3703] + W[1031] * W[3485] + W[1249] * W[3267] + W[1467] * W[3049] + W[1685] * W[2831]
+            + W[1903] * W[2613] + W[2121] * W[2395] + W[2339] * W[2177] + W[2557] * W[1959] + W[2775] * W[1741]
+            + W[2993] * W[1523] + W[3211] * W[1305] + W[3429] * W[1087] + W[3647] * W[869] + W[3865] * W[651]
+            + W[4083] * W[433] + W[4301] * W[215] + W[378] * W[4140] + W[596] * W[3922] + W[814] * W[3704]
+            + W[1032] * W[3486] + W[1250] * W[3268] + W[1468] * W[3050] + W[1686] * W[2832] + W[1904] * W[2614]
+            + W[2122] * W[2396] + W[2340] * W[2178] + W[2558] * W[1960] + W[2776] * W[1742] + W[2994] * W[1524]
+            + W[3212] * W[1306] + W[3430] * W[1088] + W[3648] * W[870] + W[3866] * W[652] + W[4084] * W[434]
+            + W[4302] * W[216] + W[4331];
+    if (solve(ctx, 19, NULL, W + 4355))
+        return -1;
+    X[205] = W[4355] / 20.0;
+    X[206] = W[4356] / 20.0;
+    X[207] = W[4357] / 20.0;
+    X[208] = W[4358] / 20.0;
+    X[209] = W[4359] / 20.0;
+    return 0;
+}
+
+#endif /* EOMC_EXTENDED */
+
+#endif /* EOMC_UNIT 4 */

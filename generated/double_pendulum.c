@@ -533,6 +533,31 @@ double_pendulum_place_velocity(eomc_real t, const eomc_real *q,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define double_pendulum_taylor_run_1 double_pendulum_taylor_run_1_ext
+#define double_pendulum_taylor_run_2 double_pendulum_taylor_run_2_ext
+#define double_pendulum_taylor_run_3 double_pendulum_taylor_run_3_ext
+#define double_pendulum_taylor_run_4 double_pendulum_taylor_run_4_ext
+#define double_pendulum_taylor_run_6 double_pendulum_taylor_run_6_ext
+#define double_pendulum_taylor_run_8 double_pendulum_taylor_run_8_ext
+#define double_pendulum_taylor_run_10 double_pendulum_taylor_run_10_ext
+#define double_pendulum_taylor_run_12 double_pendulum_taylor_run_12_ext
+#define double_pendulum_taylor_run_15 double_pendulum_taylor_run_15_ext
+#define double_pendulum_taylor_run_16 double_pendulum_taylor_run_16_ext
+#define double_pendulum_taylor_run_19 double_pendulum_taylor_run_19_ext
+#define double_pendulum_taylor_run_20 double_pendulum_taylor_run_20_ext
+#define double_pendulum_taylor_run_23 double_pendulum_taylor_run_23_ext
+#define double_pendulum_taylor_run_24 double_pendulum_taylor_run_24_ext
+#define double_pendulum_taylor_run_27 double_pendulum_taylor_run_27_ext
+#define double_pendulum_taylor_run_28 double_pendulum_taylor_run_28_ext
+#define double_pendulum_taylor_run_31 double_pendulum_taylor_run_31_ext
+#define double_pendulum_taylor_run_32 double_pendulum_taylor_run_32_ext
+#define double_pendulum_taylor_run_35 double_pendulum_taylor_run_35_ext
+#define double_pendulum_taylor_run_36 double_pendulum_taylor_run_36_ext
+#define double_pendulum_taylor_run_39 double_pendulum_taylor_run_39_ext
+#define double_pendulum_taylor_run_40 double_pendulum_taylor_run_40_ext
+#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED
@@ -755,103 +780,13 @@ double_pendulum_taylor(int k, int K, eomc_real t0, const eomc_real *p,
  * caller's hook (M_0 factored at k = 0), then / (k + 1).  Written out to
  * order 20, each recurrence's sum with its indices fixed (the same
  * arithmetic in the same order); above that 1, for the caller's loop. */
-/* Its terms are too many for the C compiler's optimizer, whose time grows
- * faster than they do; each is one statement on values in memory either
- * way (lowered.h, LOW_SERIES_OPTIMIZED_TERMS). */
-#if defined(__clang__)
-#define EOMC_UNOPTIMIZED __attribute__((optnone, noinline))
-#elif defined(__GNUC__)
-#define EOMC_UNOPTIMIZED __attribute__((optimize("O0"), noinline))
-#else
-#define EOMC_UNOPTIMIZED
-#endif
-static EOMC_UNOPTIMIZED int
-double_pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *T, eomc_real *X, eomc_tay_solve solve,
-    void *ctx)
+/* Lines 20 .. 38 of taylor_run's order 1. */
+static EOMC_NOINLINE int
+double_pendulum_taylor_run_5(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    const int S = K + 1;
-    if (K > 20)
-        return 1;
-    (void)S, (void)T, (void)t0, (void)p, (void)u;
-    eomc_real W[987]; /* slot s's coefficient j at W[j * 47 + s], but the
-                   * state's: X[j * 4 + i], q's then v's */
-    /* order 0 */
-    W[0] = p[2];
-    W[2] = sin(X[0]);
-    W[3] = cos(X[0]);
-    W[4] = p[3];
-    W[6] = sin(X[1]);
-    W[7] = cos(X[1]);
-    W[10] = X[2] * X[2];
-    W[13] = X[3] * X[3];
-    W[16] = p[9];
-    W[17] = p[10];
-    W[18] = p[11];
-    W[20] = p[12];
-    W[22] = p[13];
-    W[26] = p[14];
-    W[28] = p[15];
-    W[19] = W[18] * W[6];
-    W[21] = W[20] * W[2];
-    W[11] = W[2] * W[10];
-    W[12] = W[3] * W[10];
-    W[14] = W[6] * W[13];
-    W[15] = W[7] * W[13];
-    W[23] = W[2] * W[6];
-    W[24] = W[3] * W[7];
-    W[25] = W[23] + W[24];
-    W[29] = W[0] * W[11];
-    W[30] = W[0] * W[12];
-    W[31] = W[4] * W[14];
-    W[33] = W[4] * W[15];
-    W[27] = W[26] * W[25];
-    W[32] = W[29] + W[31];
-    W[34] = W[30] + W[33];
-    W[35] = W[2] * W[34];
-    W[36] = W[3] * W[32];
-    W[40] = W[6] * W[34];
-    W[41] = W[7] * W[32];
-    W[37] = W[35] - W[36];
-    W[42] = W[40] - W[41];
-    W[38] = W[17] * W[37];
-    W[43] = W[16] * W[42];
-    W[39] = W[21] + W[38];
-    W[44] = W[19] + W[43];
-    X[4] = X[2];
-    X[5] = X[3];
-    W[45] = W[39];
-    W[46] = W[44];
-    {
-        const eomc_real M0[4] = {W[22], W[27], W[27], W[28]};
-        if (solve(ctx, 0, M0, W + 45))
-            return -1;
-    }
-    X[6] = W[45];
-    X[7] = W[46];
-    if (K == 1)
-        goto out;
-    /* order 1 */
-    W[49] = X[4] * W[3];
-    W[50] = -X[4] * W[2];
-    W[53] = X[5] * W[7];
-    W[54] = -X[5] * W[6];
-    W[57] = X[2] * X[6] * 2.0;
-    W[60] = X[3] * X[7] * 2.0;
-    W[66] = W[18] * W[53];
-    W[68] = W[20] * W[49];
-    W[58] = W[2] * W[57] + W[49] * W[10];
-    W[59] = W[3] * W[57] + W[50] * W[10];
-    W[61] = W[6] * W[60] + W[53] * W[13];
-    W[62] = W[7] * W[60] + W[54] * W[13];
-    W[70] = W[2] * W[53] + W[49] * W[6];
-    W[71] = W[3] * W[54] + W[50] * W[7];
-    W[72] = W[70] + W[71];
-    W[76] = W[0] * W[58];
-    W[77] = W[0] * W[59];
-    W[78] = W[4] * W[61];
-    W[80] = W[4] * W[62];
-    W[74] = W[26] * W[72];
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[79] = W[76] + W[78];
     W[81] = W[77] + W[80];
     W[82] = W[2] * W[81] + W[49] * W[34];
@@ -872,29 +807,16 @@ double_pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p,
         return -1;
     X[10] = W[92] / 2.0;
     X[11] = W[93] / 2.0;
-    if (K == 2)
-        goto out;
-    /* order 2 */
-    W[96] = (X[4] * W[50] + 2.0 * X[8] * W[3]) / 2.0;
-    W[97] = -((X[4] * W[49] + 2.0 * X[8] * W[2])) / 2.0;
-    W[100] = (X[5] * W[54] + 2.0 * X[9] * W[7]) / 2.0;
-    W[101] = -((X[5] * W[53] + 2.0 * X[9] * W[6])) / 2.0;
-    W[104] = X[2] * X[10] * 2.0 + X[6] * X[6];
-    W[107] = X[3] * X[11] * 2.0 + X[7] * X[7];
-    W[113] = W[18] * W[100];
-    W[115] = W[20] * W[96];
-    W[105] = W[2] * W[104] + W[49] * W[57] + W[96] * W[10];
-    W[106] = W[3] * W[104] + W[50] * W[57] + W[97] * W[10];
-    W[108] = W[6] * W[107] + W[53] * W[60] + W[100] * W[13];
-    W[109] = W[7] * W[107] + W[54] * W[60] + W[101] * W[13];
-    W[117] = W[2] * W[100] + W[49] * W[53] + W[96] * W[6];
-    W[118] = W[3] * W[101] + W[50] * W[54] + W[97] * W[7];
-    W[119] = W[117] + W[118];
-    W[123] = W[0] * W[105];
-    W[124] = W[0] * W[106];
-    W[125] = W[4] * W[108];
-    W[127] = W[4] * W[109];
-    W[121] = W[26] * W[119];
+    return 0;
+}
+
+/* Lines 20 .. 38 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+double_pendulum_taylor_run_7(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[126] = W[123] + W[125];
     W[128] = W[124] + W[127];
     W[129] = W[2] * W[128] + W[49] * W[81] + W[96] * W[34];
@@ -915,29 +837,16 @@ double_pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p,
         return -1;
     X[14] = W[139] / 3.0;
     X[15] = W[140] / 3.0;
-    if (K == 3)
-        goto out;
-    /* order 3 */
-    W[143] = (X[4] * W[97] + 2.0 * X[8] * W[50] + 3.0 * X[12] * W[3]) / 3.0;
-    W[144] = -((X[4] * W[96] + 2.0 * X[8] * W[49] + 3.0 * X[12] * W[2])) / 3.0;
-    W[147] = (X[5] * W[101] + 2.0 * X[9] * W[54] + 3.0 * X[13] * W[7]) / 3.0;
-    W[148] = -((X[5] * W[100] + 2.0 * X[9] * W[53] + 3.0 * X[13] * W[6])) / 3.0;
-    W[151] = (X[2] * X[14] + X[6] * X[10]) * 2.0;
-    W[154] = (X[3] * X[15] + X[7] * X[11]) * 2.0;
-    W[160] = W[18] * W[147];
-    W[162] = W[20] * W[143];
-    W[152] = W[2] * W[151] + W[49] * W[104] + W[96] * W[57] + W[143] * W[10];
-    W[153] = W[3] * W[151] + W[50] * W[104] + W[97] * W[57] + W[144] * W[10];
-    W[155] = W[6] * W[154] + W[53] * W[107] + W[100] * W[60] + W[147] * W[13];
-    W[156] = W[7] * W[154] + W[54] * W[107] + W[101] * W[60] + W[148] * W[13];
-    W[164] = W[2] * W[147] + W[49] * W[100] + W[96] * W[53] + W[143] * W[6];
-    W[165] = W[3] * W[148] + W[50] * W[101] + W[97] * W[54] + W[144] * W[7];
-    W[166] = W[164] + W[165];
-    W[170] = W[0] * W[152];
-    W[171] = W[0] * W[153];
-    W[172] = W[4] * W[155];
-    W[174] = W[4] * W[156];
-    W[168] = W[26] * W[166];
+    return 0;
+}
+
+/* Lines 20 .. 38 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+double_pendulum_taylor_run_9(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[173] = W[170] + W[172];
     W[175] = W[171] + W[174];
     W[176] = W[2] * W[175] + W[49] * W[128] + W[96] * W[81] + W[143] * W[34];
@@ -958,29 +867,16 @@ double_pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p,
         return -1;
     X[18] = W[186] / 4.0;
     X[19] = W[187] / 4.0;
-    if (K == 4)
-        goto out;
-    /* order 4 */
-    W[190] = (X[4] * W[144] + 2.0 * X[8] * W[97] + 3.0 * X[12] * W[50] + 4.0 * X[16] * W[3]) / 4.0;
-    W[191] = -((X[4] * W[143] + 2.0 * X[8] * W[96] + 3.0 * X[12] * W[49] + 4.0 * X[16] * W[2])) / 4.0;
-    W[194] = (X[5] * W[148] + 2.0 * X[9] * W[101] + 3.0 * X[13] * W[54] + 4.0 * X[17] * W[7]) / 4.0;
-    W[195] = -((X[5] * W[147] + 2.0 * X[9] * W[100] + 3.0 * X[13] * W[53] + 4.0 * X[17] * W[6])) / 4.0;
-    W[198] = (X[2] * X[18] + X[6] * X[14]) * 2.0 + X[10] * X[10];
-    W[201] = (X[3] * X[19] + X[7] * X[15]) * 2.0 + X[11] * X[11];
-    W[207] = W[18] * W[194];
-    W[209] = W[20] * W[190];
-    W[199] = W[2] * W[198] + W[49] * W[151] + W[96] * W[104] + W[143] * W[57] + W[190] * W[10];
-    W[200] = W[3] * W[198] + W[50] * W[151] + W[97] * W[104] + W[144] * W[57] + W[191] * W[10];
-    W[202] = W[6] * W[201] + W[53] * W[154] + W[100] * W[107] + W[147] * W[60] + W[194] * W[13];
-    W[203] = W[7] * W[201] + W[54] * W[154] + W[101] * W[107] + W[148] * W[60] + W[195] * W[13];
-    W[211] = W[2] * W[194] + W[49] * W[147] + W[96] * W[100] + W[143] * W[53] + W[190] * W[6];
-    W[212] = W[3] * W[195] + W[50] * W[148] + W[97] * W[101] + W[144] * W[54] + W[191] * W[7];
-    W[213] = W[211] + W[212];
-    W[217] = W[0] * W[199];
-    W[218] = W[0] * W[200];
-    W[219] = W[4] * W[202];
-    W[221] = W[4] * W[203];
-    W[215] = W[26] * W[213];
+    return 0;
+}
+
+/* Lines 20 .. 38 of taylor_run's order 4. */
+static EOMC_NOINLINE int
+double_pendulum_taylor_run_11(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[220] = W[217] + W[219];
     W[222] = W[218] + W[221];
     W[223] = W[2] * W[222] + W[49] * W[175] + W[96] * W[128] + W[143] * W[81] + W[190] * W[34];
@@ -1001,39 +897,16 @@ double_pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p,
         return -1;
     X[22] = W[233] / 5.0;
     X[23] = W[234] / 5.0;
-    if (K == 5)
-        goto out;
-    /* order 5 */
-    W[237] = (X[4] * W[191] + 2.0 * X[8] * W[144] + 3.0 * X[12] * W[97] + 4.0 * X[16] * W[50]
-            + 5.0 * X[20] * W[3]) / 5.0;
-    W[238] = -((X[4] * W[190] + 2.0 * X[8] * W[143] + 3.0 * X[12] * W[96] + 4.0 * X[16] * W[49]
-            + 5.0 * X[20] * W[2])) / 5.0;
-    W[241] = (X[5] * W[195] + 2.0 * X[9] * W[148] + 3.0 * X[13] * W[101] + 4.0 * X[17] * W[54]
-            + 5.0 * X[21] * W[7]) / 5.0;
-    W[242] = -((X[5] * W[194] + 2.0 * X[9] * W[147] + 3.0 * X[13] * W[100] + 4.0 * X[17] * W[53]
-            + 5.0 * X[21] * W[6])) / 5.0;
-    W[245] = (X[2] * X[22] + X[6] * X[18] + X[10] * X[14]) * 2.0;
-    W[248] = (X[3] * X[23] + X[7] * X[19] + X[11] * X[15]) * 2.0;
-    W[254] = W[18] * W[241];
-    W[256] = W[20] * W[237];
-    W[246] = W[2] * W[245] + W[49] * W[198] + W[96] * W[151] + W[143] * W[104] + W[190] * W[57]
-            + W[237] * W[10];
-    W[247] = W[3] * W[245] + W[50] * W[198] + W[97] * W[151] + W[144] * W[104] + W[191] * W[57]
-            + W[238] * W[10];
-    W[249] = W[6] * W[248] + W[53] * W[201] + W[100] * W[154] + W[147] * W[107] + W[194] * W[60]
-            + W[241] * W[13];
-    W[250] = W[7] * W[248] + W[54] * W[201] + W[101] * W[154] + W[148] * W[107] + W[195] * W[60]
-            + W[242] * W[13];
-    W[258] = W[2] * W[241] + W[49] * W[194] + W[96] * W[147] + W[143] * W[100] + W[190] * W[53]
-            + W[237] * W[6];
-    W[259] = W[3] * W[242] + W[50] * W[195] + W[97] * W[148] + W[144] * W[101] + W[191] * W[54]
-            + W[238] * W[7];
-    W[260] = W[258] + W[259];
-    W[264] = W[0] * W[246];
-    W[265] = W[0] * W[247];
-    W[266] = W[4] * W[249];
-    W[268] = W[4] * W[250];
-    W[262] = W[26] * W[260];
+    return 0;
+}
+
+/* Lines 20 .. 38 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+double_pendulum_taylor_run_13(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[267] = W[264] + W[266];
     W[269] = W[265] + W[268];
     W[270] = W[2] * W[269] + W[49] * W[222] + W[96] * W[175] + W[143] * W[128] + W[190] * W[81]
@@ -1060,9 +933,16 @@ double_pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p,
         return -1;
     X[26] = W[280] / 6.0;
     X[27] = W[281] / 6.0;
-    if (K == 6)
-        goto out;
-    /* order 6 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+double_pendulum_taylor_run_14(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[284] = (X[4] * W[238] + 2.0 * X[8] * W[191] + 3.0 * X[12] * W[144] + 4.0 * X[16] * W[97]
             + 5.0 * X[20] * W[50] + 6.0 * X[24] * W[3]) / 6.0;
     W[285] = -((X[4] * W[237] + 2.0 * X[8] * W[190] + 3.0 * X[12] * W[143] + 4.0 * X[16] * W[96]
@@ -1093,65 +973,16 @@ double_pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[313] = W[4] * W[296];
     W[315] = W[4] * W[297];
     W[309] = W[26] * W[307];
-    W[314] = W[311] + W[313];
-    W[316] = W[312] + W[315];
-    W[317] = W[2] * W[316] + W[49] * W[269] + W[96] * W[222] + W[143] * W[175] + W[190] * W[128]
-            + W[237] * W[81] + W[284] * W[34];
-    W[318] = W[3] * W[314] + W[50] * W[267] + W[97] * W[220] + W[144] * W[173] + W[191] * W[126]
-            + W[238] * W[79] + W[285] * W[32];
-    W[322] = W[6] * W[316] + W[53] * W[269] + W[100] * W[222] + W[147] * W[175] + W[194] * W[128]
-            + W[241] * W[81] + W[288] * W[34];
-    W[323] = W[7] * W[314] + W[54] * W[267] + W[101] * W[220] + W[148] * W[173] + W[195] * W[126]
-            + W[242] * W[79] + W[289] * W[32];
-    W[319] = W[317] - W[318];
-    W[324] = W[322] - W[323];
-    W[320] = W[17] * W[319];
-    W[325] = W[16] * W[324];
-    W[321] = W[303] + W[320];
-    W[326] = W[301] + W[325];
-    X[28] = X[26] / 7.0;
-    X[29] = X[27] / 7.0;
-    W[327] = W[74] * W[281] + W[121] * W[234] + W[168] * W[187] + W[215] * W[140] + W[262] * W[93]
-            + W[309] * W[46] + W[321];
-    W[328] = W[74] * W[280] + W[121] * W[233] + W[168] * W[186] + W[215] * W[139] + W[262] * W[92]
-            + W[309] * W[45] + W[326];
-    if (solve(ctx, 6, NULL, W + 327))
-        return -1;
-    X[30] = W[327] / 7.0;
-    X[31] = W[328] / 7.0;
-    if (K == 7)
-        goto out;
-    /* order 7 */
-    W[331] = (X[4] * W[285] + 2.0 * X[8] * W[238] + 3.0 * X[12] * W[191] + 4.0 * X[16] * W[144]
-            + 5.0 * X[20] * W[97] + 6.0 * X[24] * W[50] + 7.0 * X[28] * W[3]) / 7.0;
-    W[332] = -((X[4] * W[284] + 2.0 * X[8] * W[237] + 3.0 * X[12] * W[190] + 4.0 * X[16] * W[143]
-            + 5.0 * X[20] * W[96] + 6.0 * X[24] * W[49] + 7.0 * X[28] * W[2])) / 7.0;
-    W[335] = (X[5] * W[289] + 2.0 * X[9] * W[242] + 3.0 * X[13] * W[195] + 4.0 * X[17] * W[148]
-            + 5.0 * X[21] * W[101] + 6.0 * X[25] * W[54] + 7.0 * X[29] * W[7]) / 7.0;
-    W[336] = -((X[5] * W[288] + 2.0 * X[9] * W[241] + 3.0 * X[13] * W[194] + 4.0 * X[17] * W[147]
-            + 5.0 * X[21] * W[100] + 6.0 * X[25] * W[53] + 7.0 * X[29] * W[6])) / 7.0;
-    W[339] = (X[2] * X[30] + X[6] * X[26] + X[10] * X[22] + X[14] * X[18]) * 2.0;
-    W[342] = (X[3] * X[31] + X[7] * X[27] + X[11] * X[23] + X[15] * X[19]) * 2.0;
-    W[348] = W[18] * W[335];
-    W[350] = W[20] * W[331];
-    W[340] = W[2] * W[339] + W[49] * W[292] + W[96] * W[245] + W[143] * W[198] + W[190] * W[151]
-            + W[237] * W[104] + W[284] * W[57] + W[331] * W[10];
-    W[341] = W[3] * W[339] + W[50] * W[292] + W[97] * W[245] + W[144] * W[198] + W[191] * W[151]
-            + W[238] * W[104] + W[285] * W[57] + W[332] * W[10];
-    W[343] = W[6] * W[342] + W[53] * W[295] + W[100] * W[248] + W[147] * W[201] + W[194] * W[154]
-            + W[241] * W[107] + W[288] * W[60] + W[335] * W[13];
-    W[344] = W[7] * W[342] + W[54] * W[295] + W[101] * W[248] + W[148] * W[201] + W[195] * W[154]
-            + W[242] * W[107] + W[289] * W[60] + W[336] * W[13];
-    W[352] = W[2] * W[335] + W[49] * W[288] + W[96] * W[241] + W[143] * W[194] + W[190] * W[147]
-            + W[237] * W[100] + W[284] * W[53] + W[331] * W[6];
-    W[353] = W[3] * W[336] + W[50] * W[289] + W[97] * W[242] + W[144] * W[195] + W[191] * W[148]
-            + W[238] * W[101] + W[285] * W[54] + W[332] * W[7];
-    W[354] = W[352] + W[353];
-    W[358] = W[0] * W[340];
-    W[359] = W[0] * W[341];
-    W[360] = W[4] * W[343];
-    W[362] = W[4] * W[344];
-    W[356] = W[26] * W[354];
+    return 0;
+}
+
+/* Lines 20 .. 38 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+double_pendulum_taylor_run_17(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[361] = W[358] + W[360];
     W[363] = W[359] + W[362];
     W[364] = W[2] * W[363] + W[49] * W[316] + W[96] * W[269] + W[143] * W[222] + W[190] * W[175]
@@ -1178,9 +1009,16 @@ double_pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p,
         return -1;
     X[34] = W[374] / 8.0;
     X[35] = W[375] / 8.0;
-    if (K == 8)
-        goto out;
-    /* order 8 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+double_pendulum_taylor_run_18(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[378] = (X[4] * W[332] + 2.0 * X[8] * W[285] + 3.0 * X[12] * W[238] + 4.0 * X[16] * W[191]
             + 5.0 * X[20] * W[144] + 6.0 * X[24] * W[97] + 7.0 * X[28] * W[50] + 8.0 * X[32] * W[3]) / 8.0;
     W[379] = -((X[4] * W[331] + 2.0 * X[8] * W[284] + 3.0 * X[12] * W[237] + 4.0 * X[16] * W[190]
@@ -1211,69 +1049,16 @@ double_pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[407] = W[4] * W[390];
     W[409] = W[4] * W[391];
     W[403] = W[26] * W[401];
-    W[408] = W[405] + W[407];
-    W[410] = W[406] + W[409];
-    W[411] = W[2] * W[410] + W[49] * W[363] + W[96] * W[316] + W[143] * W[269] + W[190] * W[222]
-            + W[237] * W[175] + W[284] * W[128] + W[331] * W[81] + W[378] * W[34];
-    W[412] = W[3] * W[408] + W[50] * W[361] + W[97] * W[314] + W[144] * W[267] + W[191] * W[220]
-            + W[238] * W[173] + W[285] * W[126] + W[332] * W[79] + W[379] * W[32];
-    W[416] = W[6] * W[410] + W[53] * W[363] + W[100] * W[316] + W[147] * W[269] + W[194] * W[222]
-            + W[241] * W[175] + W[288] * W[128] + W[335] * W[81] + W[382] * W[34];
-    W[417] = W[7] * W[408] + W[54] * W[361] + W[101] * W[314] + W[148] * W[267] + W[195] * W[220]
-            + W[242] * W[173] + W[289] * W[126] + W[336] * W[79] + W[383] * W[32];
-    W[413] = W[411] - W[412];
-    W[418] = W[416] - W[417];
-    W[414] = W[17] * W[413];
-    W[419] = W[16] * W[418];
-    W[415] = W[397] + W[414];
-    W[420] = W[395] + W[419];
-    X[36] = X[34] / 9.0;
-    X[37] = X[35] / 9.0;
-    W[421] = W[74] * W[375] + W[121] * W[328] + W[168] * W[281] + W[215] * W[234] + W[262] * W[187]
-            + W[309] * W[140] + W[356] * W[93] + W[403] * W[46] + W[415];
-    W[422] = W[74] * W[374] + W[121] * W[327] + W[168] * W[280] + W[215] * W[233] + W[262] * W[186]
-            + W[309] * W[139] + W[356] * W[92] + W[403] * W[45] + W[420];
-    if (solve(ctx, 8, NULL, W + 421))
-        return -1;
-    X[38] = W[421] / 9.0;
-    X[39] = W[422] / 9.0;
-    if (K == 9)
-        goto out;
-    /* order 9 */
-    W[425] = (X[4] * W[379] + 2.0 * X[8] * W[332] + 3.0 * X[12] * W[285] + 4.0 * X[16] * W[238]
-            + 5.0 * X[20] * W[191] + 6.0 * X[24] * W[144] + 7.0 * X[28] * W[97] + 8.0 * X[32] * W[50]
-            + 9.0 * X[36] * W[3]) / 9.0;
-    W[426] = -((X[4] * W[378] + 2.0 * X[8] * W[331] + 3.0 * X[12] * W[284] + 4.0 * X[16] * W[237]
-            + 5.0 * X[20] * W[190] + 6.0 * X[24] * W[143] + 7.0 * X[28] * W[96] + 8.0 * X[32] * W[49]
-            + 9.0 * X[36] * W[2])) / 9.0;
-    W[429] = (X[5] * W[383] + 2.0 * X[9] * W[336] + 3.0 * X[13] * W[289] + 4.0 * X[17] * W[242]
-            + 5.0 * X[21] * W[195] + 6.0 * X[25] * W[148] + 7.0 * X[29] * W[101] + 8.0 * X[33] * W[54]
-            + 9.0 * X[37] * W[7]) / 9.0;
-    W[430] = -((X[5] * W[382] + 2.0 * X[9] * W[335] + 3.0 * X[13] * W[288] + 4.0 * X[17] * W[241]
-            + 5.0 * X[21] * W[194] + 6.0 * X[25] * W[147] + 7.0 * X[29] * W[100] + 8.0 * X[33] * W[53]
-            + 9.0 * X[37] * W[6])) / 9.0;
-    W[433] = (X[2] * X[38] + X[6] * X[34] + X[10] * X[30] + X[14] * X[26] + X[18] * X[22]) * 2.0;
-    W[436] = (X[3] * X[39] + X[7] * X[35] + X[11] * X[31] + X[15] * X[27] + X[19] * X[23]) * 2.0;
-    W[442] = W[18] * W[429];
-    W[444] = W[20] * W[425];
-    W[434] = W[2] * W[433] + W[49] * W[386] + W[96] * W[339] + W[143] * W[292] + W[190] * W[245]
-            + W[237] * W[198] + W[284] * W[151] + W[331] * W[104] + W[378] * W[57] + W[425] * W[10];
-    W[435] = W[3] * W[433] + W[50] * W[386] + W[97] * W[339] + W[144] * W[292] + W[191] * W[245]
-            + W[238] * W[198] + W[285] * W[151] + W[332] * W[104] + W[379] * W[57] + W[426] * W[10];
-    W[437] = W[6] * W[436] + W[53] * W[389] + W[100] * W[342] + W[147] * W[295] + W[194] * W[248]
-            + W[241] * W[201] + W[288] * W[154] + W[335] * W[107] + W[382] * W[60] + W[429] * W[13];
-    W[438] = W[7] * W[436] + W[54] * W[389] + W[101] * W[342] + W[148] * W[295] + W[195] * W[248]
-            + W[242] * W[201] + W[289] * W[154] + W[336] * W[107] + W[383] * W[60] + W[430] * W[13];
-    W[446] = W[2] * W[429] + W[49] * W[382] + W[96] * W[335] + W[143] * W[288] + W[190] * W[241]
-            + W[237] * W[194] + W[284] * W[147] + W[331] * W[100] + W[378] * W[53] + W[425] * W[6];
-    W[447] = W[3] * W[430] + W[50] * W[383] + W[97] * W[336] + W[144] * W[289] + W[191] * W[242]
-            + W[238] * W[195] + W[285] * W[148] + W[332] * W[101] + W[379] * W[54] + W[426] * W[7];
-    W[448] = W[446] + W[447];
-    W[452] = W[0] * W[434];
-    W[453] = W[0] * W[435];
-    W[454] = W[4] * W[437];
-    W[456] = W[4] * W[438];
-    W[450] = W[26] * W[448];
+    return 0;
+}
+
+/* Lines 20 .. 38 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+double_pendulum_taylor_run_21(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[455] = W[452] + W[454];
     W[457] = W[453] + W[456];
     W[458] = W[2] * W[457] + W[49] * W[410] + W[96] * W[363] + W[143] * W[316] + W[190] * W[269]
@@ -1300,9 +1085,16 @@ double_pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p,
         return -1;
     X[42] = W[468] / 10.0;
     X[43] = W[469] / 10.0;
-    if (K == 10)
-        goto out;
-    /* order 10 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+double_pendulum_taylor_run_22(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[472] = (X[4] * W[426] + 2.0 * X[8] * W[379] + 3.0 * X[12] * W[332] + 4.0 * X[16] * W[285]
             + 5.0 * X[20] * W[238] + 6.0 * X[24] * W[191] + 7.0 * X[28] * W[144] + 8.0 * X[32] * W[97]
             + 9.0 * X[36] * W[50] + 10.0 * X[40] * W[3]) / 10.0;
@@ -1345,81 +1137,16 @@ double_pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[501] = W[4] * W[484];
     W[503] = W[4] * W[485];
     W[497] = W[26] * W[495];
-    W[502] = W[499] + W[501];
-    W[504] = W[500] + W[503];
-    W[505] = W[2] * W[504] + W[49] * W[457] + W[96] * W[410] + W[143] * W[363] + W[190] * W[316]
-            + W[237] * W[269] + W[284] * W[222] + W[331] * W[175] + W[378] * W[128] + W[425] * W[81]
-            + W[472] * W[34];
-    W[506] = W[3] * W[502] + W[50] * W[455] + W[97] * W[408] + W[144] * W[361] + W[191] * W[314]
-            + W[238] * W[267] + W[285] * W[220] + W[332] * W[173] + W[379] * W[126] + W[426] * W[79]
-            + W[473] * W[32];
-    W[510] = W[6] * W[504] + W[53] * W[457] + W[100] * W[410] + W[147] * W[363] + W[194] * W[316]
-            + W[241] * W[269] + W[288] * W[222] + W[335] * W[175] + W[382] * W[128] + W[429] * W[81]
-            + W[476] * W[34];
-    W[511] = W[7] * W[502] + W[54] * W[455] + W[101] * W[408] + W[148] * W[361] + W[195] * W[314]
-            + W[242] * W[267] + W[289] * W[220] + W[336] * W[173] + W[383] * W[126] + W[430] * W[79]
-            + W[477] * W[32];
-    W[507] = W[505] - W[506];
-    W[512] = W[510] - W[511];
-    W[508] = W[17] * W[507];
-    W[513] = W[16] * W[512];
-    W[509] = W[491] + W[508];
-    W[514] = W[489] + W[513];
-    X[44] = X[42] / 11.0;
-    X[45] = X[43] / 11.0;
-    W[515] = W[74] * W[469] + W[121] * W[422] + W[168] * W[375] + W[215] * W[328] + W[262] * W[281]
-            + W[309] * W[234] + W[356] * W[187] + W[403] * W[140] + W[450] * W[93] + W[497] * W[46]
-            + W[509];
-    W[516] = W[74] * W[468] + W[121] * W[421] + W[168] * W[374] + W[215] * W[327] + W[262] * W[280]
-            + W[309] * W[233] + W[356] * W[186] + W[403] * W[139] + W[450] * W[92] + W[497] * W[45]
-            + W[514];
-    if (solve(ctx, 10, NULL, W + 515))
-        return -1;
-    X[46] = W[515] / 11.0;
-    X[47] = W[516] / 11.0;
-    if (K == 11)
-        goto out;
-    /* order 11 */
-    W[519] = (X[4] * W[473] + 2.0 * X[8] * W[426] + 3.0 * X[12] * W[379] + 4.0 * X[16] * W[332]
-            + 5.0 * X[20] * W[285] + 6.0 * X[24] * W[238] + 7.0 * X[28] * W[191] + 8.0 * X[32] * W[144]
-            + 9.0 * X[36] * W[97] + 10.0 * X[40] * W[50] + 11.0 * X[44] * W[3]) / 11.0;
-    W[520] = -((X[4] * W[472] + 2.0 * X[8] * W[425] + 3.0 * X[12] * W[378] + 4.0 * X[16] * W[331]
-            + 5.0 * X[20] * W[284] + 6.0 * X[24] * W[237] + 7.0 * X[28] * W[190] + 8.0 * X[32] * W[143]
-            + 9.0 * X[36] * W[96] + 10.0 * X[40] * W[49] + 11.0 * X[44] * W[2])) / 11.0;
-    W[523] = (X[5] * W[477] + 2.0 * X[9] * W[430] + 3.0 * X[13] * W[383] + 4.0 * X[17] * W[336]
-            + 5.0 * X[21] * W[289] + 6.0 * X[25] * W[242] + 7.0 * X[29] * W[195] + 8.0 * X[33] * W[148]
-            + 9.0 * X[37] * W[101] + 10.0 * X[41] * W[54] + 11.0 * X[45] * W[7]) / 11.0;
-    W[524] = -((X[5] * W[476] + 2.0 * X[9] * W[429] + 3.0 * X[13] * W[382] + 4.0 * X[17] * W[335]
-            + 5.0 * X[21] * W[288] + 6.0 * X[25] * W[241] + 7.0 * X[29] * W[194] + 8.0 * X[33] * W[147]
-            + 9.0 * X[37] * W[100] + 10.0 * X[41] * W[53] + 11.0 * X[45] * W[6])) / 11.0;
-    W[527] = (X[2] * X[46] + X[6] * X[42] + X[10] * X[38] + X[14] * X[34] + X[18] * X[30] + X[22] * X[26]) * 2.0;
-    W[530] = (X[3] * X[47] + X[7] * X[43] + X[11] * X[39] + X[15] * X[35] + X[19] * X[31] + X[23] * X[27]) * 2.0;
-    W[536] = W[18] * W[523];
-    W[538] = W[20] * W[519];
-    W[528] = W[2] * W[527] + W[49] * W[480] + W[96] * W[433] + W[143] * W[386] + W[190] * W[339]
-            + W[237] * W[292] + W[284] * W[245] + W[331] * W[198] + W[378] * W[151] + W[425] * W[104]
-            + W[472] * W[57] + W[519] * W[10];
-    W[529] = W[3] * W[527] + W[50] * W[480] + W[97] * W[433] + W[144] * W[386] + W[191] * W[339]
-            + W[238] * W[292] + W[285] * W[245] + W[332] * W[198] + W[379] * W[151] + W[426] * W[104]
-            + W[473] * W[57] + W[520] * W[10];
-    W[531] = W[6] * W[530] + W[53] * W[483] + W[100] * W[436] + W[147] * W[389] + W[194] * W[342]
-            + W[241] * W[295] + W[288] * W[248] + W[335] * W[201] + W[382] * W[154] + W[429] * W[107]
-            + W[476] * W[60] + W[523] * W[13];
-    W[532] = W[7] * W[530] + W[54] * W[483] + W[101] * W[436] + W[148] * W[389] + W[195] * W[342]
-            + W[242] * W[295] + W[289] * W[248] + W[336] * W[201] + W[383] * W[154] + W[430] * W[107]
-            + W[477] * W[60] + W[524] * W[13];
-    W[540] = W[2] * W[523] + W[49] * W[476] + W[96] * W[429] + W[143] * W[382] + W[190] * W[335]
-            + W[237] * W[288] + W[284] * W[241] + W[331] * W[194] + W[378] * W[147] + W[425] * W[100]
-            + W[472] * W[53] + W[519] * W[6];
-    W[541] = W[3] * W[524] + W[50] * W[477] + W[97] * W[430] + W[144] * W[383] + W[191] * W[336]
-            + W[238] * W[289] + W[285] * W[242] + W[332] * W[195] + W[379] * W[148] + W[426] * W[101]
-            + W[473] * W[54] + W[520] * W[7];
-    W[542] = W[540] + W[541];
-    W[546] = W[0] * W[528];
-    W[547] = W[0] * W[529];
-    W[548] = W[4] * W[531];
-    W[550] = W[4] * W[532];
-    W[544] = W[26] * W[542];
+    return 0;
+}
+
+/* Lines 20 .. 38 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+double_pendulum_taylor_run_25(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[549] = W[546] + W[548];
     W[551] = W[547] + W[550];
     W[552] = W[2] * W[551] + W[49] * W[504] + W[96] * W[457] + W[143] * W[410] + W[190] * W[363]
@@ -1452,9 +1179,16 @@ double_pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p,
         return -1;
     X[50] = W[562] / 12.0;
     X[51] = W[563] / 12.0;
-    if (K == 12)
-        goto out;
-    /* order 12 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+double_pendulum_taylor_run_26(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[566] = (X[4] * W[520] + 2.0 * X[8] * W[473] + 3.0 * X[12] * W[426] + 4.0 * X[16] * W[379]
             + 5.0 * X[20] * W[332] + 6.0 * X[24] * W[285] + 7.0 * X[28] * W[238] + 8.0 * X[32] * W[191]
             + 9.0 * X[36] * W[144] + 10.0 * X[40] * W[97] + 11.0 * X[44] * W[50] + 12.0 * X[48] * W[3]) / 12.0;
@@ -1497,87 +1231,16 @@ double_pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[595] = W[4] * W[578];
     W[597] = W[4] * W[579];
     W[591] = W[26] * W[589];
-    W[596] = W[593] + W[595];
-    W[598] = W[594] + W[597];
-    W[599] = W[2] * W[598] + W[49] * W[551] + W[96] * W[504] + W[143] * W[457] + W[190] * W[410]
-            + W[237] * W[363] + W[284] * W[316] + W[331] * W[269] + W[378] * W[222] + W[425] * W[175]
-            + W[472] * W[128] + W[519] * W[81] + W[566] * W[34];
-    W[600] = W[3] * W[596] + W[50] * W[549] + W[97] * W[502] + W[144] * W[455] + W[191] * W[408]
-            + W[238] * W[361] + W[285] * W[314] + W[332] * W[267] + W[379] * W[220] + W[426] * W[173]
-            + W[473] * W[126] + W[520] * W[79] + W[567] * W[32];
-    W[604] = W[6] * W[598] + W[53] * W[551] + W[100] * W[504] + W[147] * W[457] + W[194] * W[410]
-            + W[241] * W[363] + W[288] * W[316] + W[335] * W[269] + W[382] * W[222] + W[429] * W[175]
-            + W[476] * W[128] + W[523] * W[81] + W[570] * W[34];
-    W[605] = W[7] * W[596] + W[54] * W[549] + W[101] * W[502] + W[148] * W[455] + W[195] * W[408]
-            + W[242] * W[361] + W[289] * W[314] + W[336] * W[267] + W[383] * W[220] + W[430] * W[173]
-            + W[477] * W[126] + W[524] * W[79] + W[571] * W[32];
-    W[601] = W[599] - W[600];
-    W[606] = W[604] - W[605];
-    W[602] = W[17] * W[601];
-    W[607] = W[16] * W[606];
-    W[603] = W[585] + W[602];
-    W[608] = W[583] + W[607];
-    X[52] = X[50] / 13.0;
-    X[53] = X[51] / 13.0;
-    W[609] = W[74] * W[563] + W[121] * W[516] + W[168] * W[469] + W[215] * W[422] + W[262] * W[375]
-            + W[309] * W[328] + W[356] * W[281] + W[403] * W[234] + W[450] * W[187] + W[497] * W[140]
-            + W[544] * W[93] + W[591] * W[46] + W[603];
-    W[610] = W[74] * W[562] + W[121] * W[515] + W[168] * W[468] + W[215] * W[421] + W[262] * W[374]
-            + W[309] * W[327] + W[356] * W[280] + W[403] * W[233] + W[450] * W[186] + W[497] * W[139]
-            + W[544] * W[92] + W[591] * W[45] + W[608];
-    if (solve(ctx, 12, NULL, W + 609))
-        return -1;
-    X[54] = W[609] / 13.0;
-    X[55] = W[610] / 13.0;
-    if (K == 13)
-        goto out;
-    /* order 13 */
-    W[613] = (X[4] * W[567] + 2.0 * X[8] * W[520] + 3.0 * X[12] * W[473] + 4.0 * X[16] * W[426]
-            + 5.0 * X[20] * W[379] + 6.0 * X[24] * W[332] + 7.0 * X[28] * W[285] + 8.0 * X[32] * W[238]
-            + 9.0 * X[36] * W[191] + 10.0 * X[40] * W[144] + 11.0 * X[44] * W[97] + 12.0 * X[48] * W[50]
-            + 13.0 * X[52] * W[3]) / 13.0;
-    W[614] = -((X[4] * W[566] + 2.0 * X[8] * W[519] + 3.0 * X[12] * W[472] + 4.0 * X[16] * W[425]
-            + 5.0 * X[20] * W[378] + 6.0 * X[24] * W[331] + 7.0 * X[28] * W[284] + 8.0 * X[32] * W[237]
-            + 9.0 * X[36] * W[190] + 10.0 * X[40] * W[143] + 11.0 * X[44] * W[96] + 12.0 * X[48] * W[49]
-            + 13.0 * X[52] * W[2])) / 13.0;
-    W[617] = (X[5] * W[571] + 2.0 * X[9] * W[524] + 3.0 * X[13] * W[477] + 4.0 * X[17] * W[430]
-            + 5.0 * X[21] * W[383] + 6.0 * X[25] * W[336] + 7.0 * X[29] * W[289] + 8.0 * X[33] * W[242]
-            + 9.0 * X[37] * W[195] + 10.0 * X[41] * W[148] + 11.0 * X[45] * W[101] + 12.0 * X[49] * W[54]
-            + 13.0 * X[53] * W[7]) / 13.0;
-    W[618] = -((X[5] * W[570] + 2.0 * X[9] * W[523] + 3.0 * X[13] * W[476] + 4.0 * X[17] * W[429]
-            + 5.0 * X[21] * W[382] + 6.0 * X[25] * W[335] + 7.0 * X[29] * W[288] + 8.0 * X[33] * W[241]
-            + 9.0 * X[37] * W[194] + 10.0 * X[41] * W[147] + 11.0 * X[45] * W[100] + 12.0 * X[49] * W[53]
-            + 13.0 * X[53] * W[6])) / 13.0;
-    W[621] = (X[2] * X[54] + X[6] * X[50] + X[10] * X[46] + X[14] * X[42] + X[18] * X[38] + X[22] * X[34]
-            + X[26] * X[30]) * 2.0;
-    W[624] = (X[3] * X[55] + X[7] * X[51] + X[11] * X[47] + X[15] * X[43] + X[19] * X[39] + X[23] * X[35]
-            + X[27] * X[31]) * 2.0;
-    W[630] = W[18] * W[617];
-    W[632] = W[20] * W[613];
-    W[622] = W[2] * W[621] + W[49] * W[574] + W[96] * W[527] + W[143] * W[480] + W[190] * W[433]
-            + W[237] * W[386] + W[284] * W[339] + W[331] * W[292] + W[378] * W[245] + W[425] * W[198]
-            + W[472] * W[151] + W[519] * W[104] + W[566] * W[57] + W[613] * W[10];
-    W[623] = W[3] * W[621] + W[50] * W[574] + W[97] * W[527] + W[144] * W[480] + W[191] * W[433]
-            + W[238] * W[386] + W[285] * W[339] + W[332] * W[292] + W[379] * W[245] + W[426] * W[198]
-            + W[473] * W[151] + W[520] * W[104] + W[567] * W[57] + W[614] * W[10];
-    W[625] = W[6] * W[624] + W[53] * W[577] + W[100] * W[530] + W[147] * W[483] + W[194] * W[436]
-            + W[241] * W[389] + W[288] * W[342] + W[335] * W[295] + W[382] * W[248] + W[429] * W[201]
-            + W[476] * W[154] + W[523] * W[107] + W[570] * W[60] + W[617] * W[13];
-    W[626] = W[7] * W[624] + W[54] * W[577] + W[101] * W[530] + W[148] * W[483] + W[195] * W[436]
-            + W[242] * W[389] + W[289] * W[342] + W[336] * W[295] + W[383] * W[248] + W[430] * W[201]
-            + W[477] * W[154] + W[524] * W[107] + W[571] * W[60] + W[618] * W[13];
-    W[634] = W[2] * W[617] + W[49] * W[570] + W[96] * W[523] + W[143] * W[476] + W[190] * W[429]
-            + W[237] * W[382] + W[284] * W[335] + W[331] * W[288] + W[378] * W[241] + W[425] * W[194]
-            + W[472] * W[147] + W[519] * W[100] + W[566] * W[53] + W[613] * W[6];
-    W[635] = W[3] * W[618] + W[50] * W[571] + W[97] * W[524] + W[144] * W[477] + W[191] * W[430]
-            + W[238] * W[383] + W[285] * W[336] + W[332] * W[289] + W[379] * W[242] + W[426] * W[195]
-            + W[473] * W[148] + W[520] * W[101] + W[567] * W[54] + W[614] * W[7];
-    W[636] = W[634] + W[635];
-    W[640] = W[0] * W[622];
-    W[641] = W[0] * W[623];
-    W[642] = W[4] * W[625];
-    W[644] = W[4] * W[626];
-    W[638] = W[26] * W[636];
+    return 0;
+}
+
+/* Lines 20 .. 38 of taylor_run's order 13. */
+static EOMC_NOINLINE int
+double_pendulum_taylor_run_29(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[643] = W[640] + W[642];
     W[645] = W[641] + W[644];
     W[646] = W[2] * W[645] + W[49] * W[598] + W[96] * W[551] + W[143] * W[504] + W[190] * W[457]
@@ -1610,9 +1273,16 @@ double_pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p,
         return -1;
     X[58] = W[656] / 14.0;
     X[59] = W[657] / 14.0;
-    if (K == 14)
-        goto out;
-    /* order 14 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 14. */
+static EOMC_NOINLINE int
+double_pendulum_taylor_run_30(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[660] = (X[4] * W[614] + 2.0 * X[8] * W[567] + 3.0 * X[12] * W[520] + 4.0 * X[16] * W[473]
             + 5.0 * X[20] * W[426] + 6.0 * X[24] * W[379] + 7.0 * X[28] * W[332] + 8.0 * X[32] * W[285]
             + 9.0 * X[36] * W[238] + 10.0 * X[40] * W[191] + 11.0 * X[44] * W[144] + 12.0 * X[48] * W[97]
@@ -1659,93 +1329,16 @@ double_pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[689] = W[4] * W[672];
     W[691] = W[4] * W[673];
     W[685] = W[26] * W[683];
-    W[690] = W[687] + W[689];
-    W[692] = W[688] + W[691];
-    W[693] = W[2] * W[692] + W[49] * W[645] + W[96] * W[598] + W[143] * W[551] + W[190] * W[504]
-            + W[237] * W[457] + W[284] * W[410] + W[331] * W[363] + W[378] * W[316] + W[425] * W[269]
-            + W[472] * W[222] + W[519] * W[175] + W[566] * W[128] + W[613] * W[81] + W[660] * W[34];
-    W[694] = W[3] * W[690] + W[50] * W[643] + W[97] * W[596] + W[144] * W[549] + W[191] * W[502]
-            + W[238] * W[455] + W[285] * W[408] + W[332] * W[361] + W[379] * W[314] + W[426] * W[267]
-            + W[473] * W[220] + W[520] * W[173] + W[567] * W[126] + W[614] * W[79] + W[661] * W[32];
-    W[698] = W[6] * W[692] + W[53] * W[645] + W[100] * W[598] + W[147] * W[551] + W[194] * W[504]
-            + W[241] * W[457] + W[288] * W[410] + W[335] * W[363] + W[382] * W[316] + W[429] * W[269]
-            + W[476] * W[222] + W[523] * W[175] + W[570] * W[128] + W[617] * W[81] + W[664] * W[34];
-    W[699] = W[7] * W[690] + W[54] * W[643] + W[101] * W[596] + W[148] * W[549] + W[195] * W[502]
-            + W[242] * W[455] + W[289] * W[408] + W[336] * W[361] + W[383] * W[314] + W[430] * W[267]
-            + W[477] * W[220] + W[524] * W[173] + W[571] * W[126] + W[618] * W[79] + W[665] * W[32];
-    W[695] = W[693] - W[694];
-    W[700] = W[698] - W[699];
-    W[696] = W[17] * W[695];
-    W[701] = W[16] * W[700];
-    W[697] = W[679] + W[696];
-    W[702] = W[677] + W[701];
-    X[60] = X[58] / 15.0;
-    X[61] = X[59] / 15.0;
-    W[703] = W[74] * W[657] + W[121] * W[610] + W[168] * W[563] + W[215] * W[516] + W[262] * W[469]
-            + W[309] * W[422] + W[356] * W[375] + W[403] * W[328] + W[450] * W[281] + W[497] * W[234]
-            + W[544] * W[187] + W[591] * W[140] + W[638] * W[93] + W[685] * W[46] + W[697];
-    W[704] = W[74] * W[656] + W[121] * W[609] + W[168] * W[562] + W[215] * W[515] + W[262] * W[468]
-            + W[309] * W[421] + W[356] * W[374] + W[403] * W[327] + W[450] * W[280] + W[497] * W[233]
-            + W[544] * W[186] + W[591] * W[139] + W[638] * W[92] + W[685] * W[45] + W[702];
-    if (solve(ctx, 14, NULL, W + 703))
-        return -1;
-    X[62] = W[703] / 15.0;
-    X[63] = W[704] / 15.0;
-    if (K == 15)
-        goto out;
-    /* order 15 */
-    W[707] = (X[4] * W[661] + 2.0 * X[8] * W[614] + 3.0 * X[12] * W[567] + 4.0 * X[16] * W[520]
-            + 5.0 * X[20] * W[473] + 6.0 * X[24] * W[426] + 7.0 * X[28] * W[379] + 8.0 * X[32] * W[332]
-            + 9.0 * X[36] * W[285] + 10.0 * X[40] * W[238] + 11.0 * X[44] * W[191] + 12.0 * X[48] * W[144]
-            + 13.0 * X[52] * W[97] + 14.0 * X[56] * W[50] + 15.0 * X[60] * W[3]) / 15.0;
-    W[708] = -((X[4] * W[660] + 2.0 * X[8] * W[613] + 3.0 * X[12] * W[566] + 4.0 * X[16] * W[519]
-            + 5.0 * X[20] * W[472] + 6.0 * X[24] * W[425] + 7.0 * X[28] * W[378] + 8.0 * X[32] * W[331]
-            + 9.0 * X[36] * W[284] + 10.0 * X[40] * W[237] + 11.0 * X[44] * W[190] + 12.0 * X[48] * W[143]
-            + 13.0 * X[52] * W[96] + 14.0 * X[56] * W[49] + 15.0 * X[60] * W[2])) / 15.0;
-    W[711] = (X[5] * W[665] + 2.0 * X[9] * W[618] + 3.0 * X[13] * W[571] + 4.0 * X[17] * W[524]
-            + 5.0 * X[21] * W[477] + 6.0 * X[25] * W[430] + 7.0 * X[29] * W[383] + 8.0 * X[33] * W[336]
-            + 9.0 * X[37] * W[289] + 10.0 * X[41] * W[242] + 11.0 * X[45] * W[195] + 12.0 * X[49] * W[148]
-            + 13.0 * X[53] * W[101] + 14.0 * X[57] * W[54] + 15.0 * X[61] * W[7]) / 15.0;
-    W[712] = -((X[5] * W[664] + 2.0 * X[9] * W[617] + 3.0 * X[13] * W[570] + 4.0 * X[17] * W[523]
-            + 5.0 * X[21] * W[476] + 6.0 * X[25] * W[429] + 7.0 * X[29] * W[382] + 8.0 * X[33] * W[335]
-            + 9.0 * X[37] * W[288] + 10.0 * X[41] * W[241] + 11.0 * X[45] * W[194] + 12.0 * X[49] * W[147]
-            + 13.0 * X[53] * W[100] + 14.0 * X[57] * W[53] + 15.0 * X[61] * W[6])) / 15.0;
-    W[715] = (X[2] * X[62] + X[6] * X[58] + X[10] * X[54] + X[14] * X[50] + X[18] * X[46] + X[22] * X[42]
-            + X[26] * X[38] + X[30] * X[34]) * 2.0;
-    W[718] = (X[3] * X[63] + X[7] * X[59] + X[11] * X[55] + X[15] * X[51] + X[19] * X[47] + X[23] * X[43]
-            + X[27] * X[39] + X[31] * X[35]) * 2.0;
-    W[724] = W[18] * W[711];
-    W[726] = W[20] * W[707];
-    W[716] = W[2] * W[715] + W[49] * W[668] + W[96] * W[621] + W[143] * W[574] + W[190] * W[527]
-            + W[237] * W[480] + W[284] * W[433] + W[331] * W[386] + W[378] * W[339] + W[425] * W[292]
-            + W[472] * W[245] + W[519] * W[198] + W[566] * W[151] + W[613] * W[104] + W[660] * W[57]
-            + W[707] * W[10];
-    W[717] = W[3] * W[715] + W[50] * W[668] + W[97] * W[621] + W[144] * W[574] + W[191] * W[527]
-            + W[238] * W[480] + W[285] * W[433] + W[332] * W[386] + W[379] * W[339] + W[426] * W[292]
-            + W[473] * W[245] + W[520] * W[198] + W[567] * W[151] + W[614] * W[104] + W[661] * W[57]
-            + W[708] * W[10];
-    W[719] = W[6] * W[718] + W[53] * W[671] + W[100] * W[624] + W[147] * W[577] + W[194] * W[530]
-            + W[241] * W[483] + W[288] * W[436] + W[335] * W[389] + W[382] * W[342] + W[429] * W[295]
-            + W[476] * W[248] + W[523] * W[201] + W[570] * W[154] + W[617] * W[107] + W[664] * W[60]
-            + W[711] * W[13];
-    W[720] = W[7] * W[718] + W[54] * W[671] + W[101] * W[624] + W[148] * W[577] + W[195] * W[530]
-            + W[242] * W[483] + W[289] * W[436] + W[336] * W[389] + W[383] * W[342] + W[430] * W[295]
-            + W[477] * W[248] + W[524] * W[201] + W[571] * W[154] + W[618] * W[107] + W[665] * W[60]
-            + W[712] * W[13];
-    W[728] = W[2] * W[711] + W[49] * W[664] + W[96] * W[617] + W[143] * W[570] + W[190] * W[523]
-            + W[237] * W[476] + W[284] * W[429] + W[331] * W[382] + W[378] * W[335] + W[425] * W[288]
-            + W[472] * W[241] + W[519] * W[194] + W[566] * W[147] + W[613] * W[100] + W[660] * W[53]
-            + W[707] * W[6];
-    W[729] = W[3] * W[712] + W[50] * W[665] + W[97] * W[618] + W[144] * W[571] + W[191] * W[524]
-            + W[238] * W[477] + W[285] * W[430] + W[332] * W[383] + W[379] * W[336] + W[426] * W[289]
-            + W[473] * W[242] + W[520] * W[195] + W[567] * W[148] + W[614] * W[101] + W[661] * W[54]
-            + W[708] * W[7];
-    W[730] = W[728] + W[729];
-    W[734] = W[0] * W[716];
-    W[735] = W[0] * W[717];
-    W[736] = W[4] * W[719];
-    W[738] = W[4] * W[720];
-    W[732] = W[26] * W[730];
+    return 0;
+}
+
+/* Lines 20 .. 38 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+double_pendulum_taylor_run_33(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[737] = W[734] + W[736];
     W[739] = W[735] + W[738];
     W[740] = W[2] * W[739] + W[49] * W[692] + W[96] * W[645] + W[143] * W[598] + W[190] * W[551]
@@ -1784,9 +1377,16 @@ double_pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p,
         return -1;
     X[66] = W[750] / 16.0;
     X[67] = W[751] / 16.0;
-    if (K == 16)
-        goto out;
-    /* order 16 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+double_pendulum_taylor_run_34(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[754] = (X[4] * W[708] + 2.0 * X[8] * W[661] + 3.0 * X[12] * W[614] + 4.0 * X[16] * W[567]
             + 5.0 * X[20] * W[520] + 6.0 * X[24] * W[473] + 7.0 * X[28] * W[426] + 8.0 * X[32] * W[379]
             + 9.0 * X[36] * W[332] + 10.0 * X[40] * W[285] + 11.0 * X[44] * W[238] + 12.0 * X[48] * W[191]
@@ -1839,103 +1439,16 @@ double_pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[783] = W[4] * W[766];
     W[785] = W[4] * W[767];
     W[779] = W[26] * W[777];
-    W[784] = W[781] + W[783];
-    W[786] = W[782] + W[785];
-    W[787] = W[2] * W[786] + W[49] * W[739] + W[96] * W[692] + W[143] * W[645] + W[190] * W[598]
-            + W[237] * W[551] + W[284] * W[504] + W[331] * W[457] + W[378] * W[410] + W[425] * W[363]
-            + W[472] * W[316] + W[519] * W[269] + W[566] * W[222] + W[613] * W[175] + W[660] * W[128]
-            + W[707] * W[81] + W[754] * W[34];
-    W[788] = W[3] * W[784] + W[50] * W[737] + W[97] * W[690] + W[144] * W[643] + W[191] * W[596]
-            + W[238] * W[549] + W[285] * W[502] + W[332] * W[455] + W[379] * W[408] + W[426] * W[361]
-            + W[473] * W[314] + W[520] * W[267] + W[567] * W[220] + W[614] * W[173] + W[661] * W[126]
-            + W[708] * W[79] + W[755] * W[32];
-    W[792] = W[6] * W[786] + W[53] * W[739] + W[100] * W[692] + W[147] * W[645] + W[194] * W[598]
-            + W[241] * W[551] + W[288] * W[504] + W[335] * W[457] + W[382] * W[410] + W[429] * W[363]
-            + W[476] * W[316] + W[523] * W[269] + W[570] * W[222] + W[617] * W[175] + W[664] * W[128]
-            + W[711] * W[81] + W[758] * W[34];
-    W[793] = W[7] * W[784] + W[54] * W[737] + W[101] * W[690] + W[148] * W[643] + W[195] * W[596]
-            + W[242] * W[549] + W[289] * W[502] + W[336] * W[455] + W[383] * W[408] + W[430] * W[361]
-            + W[477] * W[314] + W[524] * W[267] + W[571] * W[220] + W[618] * W[173] + W[665] * W[126]
-            + W[712] * W[79] + W[759] * W[32];
-    W[789] = W[787] - W[788];
-    W[794] = W[792] - W[793];
-    W[790] = W[17] * W[789];
-    W[795] = W[16] * W[794];
-    W[791] = W[773] + W[790];
-    W[796] = W[771] + W[795];
-    X[68] = X[66] / 17.0;
-    X[69] = X[67] / 17.0;
-    W[797] = W[74] * W[751] + W[121] * W[704] + W[168] * W[657] + W[215] * W[610] + W[262] * W[563]
-            + W[309] * W[516] + W[356] * W[469] + W[403] * W[422] + W[450] * W[375] + W[497] * W[328]
-            + W[544] * W[281] + W[591] * W[234] + W[638] * W[187] + W[685] * W[140] + W[732] * W[93]
-            + W[779] * W[46] + W[791];
-    W[798] = W[74] * W[750] + W[121] * W[703] + W[168] * W[656] + W[215] * W[609] + W[262] * W[562]
-            + W[309] * W[515] + W[356] * W[468] + W[403] * W[421] + W[450] * W[374] + W[497] * W[327]
-            + W[544] * W[280] + W[591] * W[233] + W[638] * W[186] + W[685] * W[139] + W[732] * W[92]
-            + W[779] * W[45] + W[796];
-    if (solve(ctx, 16, NULL, W + 797))
-        return -1;
-    X[70] = W[797] / 17.0;
-    X[71] = W[798] / 17.0;
-    if (K == 17)
-        goto out;
-    /* order 17 */
-    W[801] = (X[4] * W[755] + 2.0 * X[8] * W[708] + 3.0 * X[12] * W[661] + 4.0 * X[16] * W[614]
-            + 5.0 * X[20] * W[567] + 6.0 * X[24] * W[520] + 7.0 * X[28] * W[473] + 8.0 * X[32] * W[426]
-            + 9.0 * X[36] * W[379] + 10.0 * X[40] * W[332] + 11.0 * X[44] * W[285] + 12.0 * X[48] * W[238]
-            + 13.0 * X[52] * W[191] + 14.0 * X[56] * W[144] + 15.0 * X[60] * W[97] + 16.0 * X[64] * W[50]
-            + 17.0 * X[68] * W[3]) / 17.0;
-    W[802] = -((X[4] * W[754] + 2.0 * X[8] * W[707] + 3.0 * X[12] * W[660] + 4.0 * X[16] * W[613]
-            + 5.0 * X[20] * W[566] + 6.0 * X[24] * W[519] + 7.0 * X[28] * W[472] + 8.0 * X[32] * W[425]
-            + 9.0 * X[36] * W[378] + 10.0 * X[40] * W[331] + 11.0 * X[44] * W[284] + 12.0 * X[48] * W[237]
-            + 13.0 * X[52] * W[190] + 14.0 * X[56] * W[143] + 15.0 * X[60] * W[96] + 16.0 * X[64] * W[49]
-            + 17.0 * X[68] * W[2])) / 17.0;
-    W[805] = (X[5] * W[759] + 2.0 * X[9] * W[712] + 3.0 * X[13] * W[665] + 4.0 * X[17] * W[618]
-            + 5.0 * X[21] * W[571] + 6.0 * X[25] * W[524] + 7.0 * X[29] * W[477] + 8.0 * X[33] * W[430]
-            + 9.0 * X[37] * W[383] + 10.0 * X[41] * W[336] + 11.0 * X[45] * W[289] + 12.0 * X[49] * W[242]
-            + 13.0 * X[53] * W[195] + 14.0 * X[57] * W[148] + 15.0 * X[61] * W[101] + 16.0 * X[65] * W[54]
-            + 17.0 * X[69] * W[7]) / 17.0;
-    W[806] = -((X[5] * W[758] + 2.0 * X[9] * W[711] + 3.0 * X[13] * W[664] + 4.0 * X[17] * W[617]
-            + 5.0 * X[21] * W[570] + 6.0 * X[25] * W[523] + 7.0 * X[29] * W[476] + 8.0 * X[33] * W[429]
-            + 9.0 * X[37] * W[382] + 10.0 * X[41] * W[335] + 11.0 * X[45] * W[288] + 12.0 * X[49] * W[241]
-            + 13.0 * X[53] * W[194] + 14.0 * X[57] * W[147] + 15.0 * X[61] * W[100] + 16.0 * X[65] * W[53]
-            + 17.0 * X[69] * W[6])) / 17.0;
-    W[809] = (X[2] * X[70] + X[6] * X[66] + X[10] * X[62] + X[14] * X[58] + X[18] * X[54] + X[22] * X[50]
-            + X[26] * X[46] + X[30] * X[42] + X[34] * X[38]) * 2.0;
-    W[812] = (X[3] * X[71] + X[7] * X[67] + X[11] * X[63] + X[15] * X[59] + X[19] * X[55] + X[23] * X[51]
-            + X[27] * X[47] + X[31] * X[43] + X[35] * X[39]) * 2.0;
-    W[818] = W[18] * W[805];
-    W[820] = W[20] * W[801];
-    W[810] = W[2] * W[809] + W[49] * W[762] + W[96] * W[715] + W[143] * W[668] + W[190] * W[621]
-            + W[237] * W[574] + W[284] * W[527] + W[331] * W[480] + W[378] * W[433] + W[425] * W[386]
-            + W[472] * W[339] + W[519] * W[292] + W[566] * W[245] + W[613] * W[198] + W[660] * W[151]
-            + W[707] * W[104] + W[754] * W[57] + W[801] * W[10];
-    W[811] = W[3] * W[809] + W[50] * W[762] + W[97] * W[715] + W[144] * W[668] + W[191] * W[621]
-            + W[238] * W[574] + W[285] * W[527] + W[332] * W[480] + W[379] * W[433] + W[426] * W[386]
-            + W[473] * W[339] + W[520] * W[292] + W[567] * W[245] + W[614] * W[198] + W[661] * W[151]
-            + W[708] * W[104] + W[755] * W[57] + W[802] * W[10];
-    W[813] = W[6] * W[812] + W[53] * W[765] + W[100] * W[718] + W[147] * W[671] + W[194] * W[624]
-            + W[241] * W[577] + W[288] * W[530] + W[335] * W[483] + W[382] * W[436] + W[429] * W[389]
-            + W[476] * W[342] + W[523] * W[295] + W[570] * W[248] + W[617] * W[201] + W[664] * W[154]
-            + W[711] * W[107] + W[758] * W[60] + W[805] * W[13];
-    W[814] = W[7] * W[812] + W[54] * W[765] + W[101] * W[718] + W[148] * W[671] + W[195] * W[624]
-            + W[242] * W[577] + W[289] * W[530] + W[336] * W[483] + W[383] * W[436] + W[430] * W[389]
-            + W[477] * W[342] + W[524] * W[295] + W[571] * W[248] + W[618] * W[201] + W[665] * W[154]
-            + W[712] * W[107] + W[759] * W[60] + W[806] * W[13];
-    W[822] = W[2] * W[805] + W[49] * W[758] + W[96] * W[711] + W[143] * W[664] + W[190] * W[617]
-            + W[237] * W[570] + W[284] * W[523] + W[331] * W[476] + W[378] * W[429] + W[425] * W[382]
-            + W[472] * W[335] + W[519] * W[288] + W[566] * W[241] + W[613] * W[194] + W[660] * W[147]
-            + W[707] * W[100] + W[754] * W[53] + W[801] * W[6];
-    W[823] = W[3] * W[806] + W[50] * W[759] + W[97] * W[712] + W[144] * W[665] + W[191] * W[618]
-            + W[238] * W[571] + W[285] * W[524] + W[332] * W[477] + W[379] * W[430] + W[426] * W[383]
-            + W[473] * W[336] + W[520] * W[289] + W[567] * W[242] + W[614] * W[195] + W[661] * W[148]
-            + W[708] * W[101] + W[755] * W[54] + W[802] * W[7];
-    W[824] = W[822] + W[823];
-    W[828] = W[0] * W[810];
-    W[829] = W[0] * W[811];
-    W[830] = W[4] * W[813];
-    W[832] = W[4] * W[814];
-    W[826] = W[26] * W[824];
+    return 0;
+}
+
+/* Lines 20 .. 38 of taylor_run's order 17. */
+static EOMC_NOINLINE int
+double_pendulum_taylor_run_37(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[831] = W[828] + W[830];
     W[833] = W[829] + W[832];
     W[834] = W[2] * W[833] + W[49] * W[786] + W[96] * W[739] + W[143] * W[692] + W[190] * W[645]
@@ -1974,9 +1487,16 @@ double_pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p,
         return -1;
     X[74] = W[844] / 18.0;
     X[75] = W[845] / 18.0;
-    if (K == 18)
-        goto out;
-    /* order 18 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 18. */
+static EOMC_NOINLINE int
+double_pendulum_taylor_run_38(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[848] = (X[4] * W[802] + 2.0 * X[8] * W[755] + 3.0 * X[12] * W[708] + 4.0 * X[16] * W[661]
             + 5.0 * X[20] * W[614] + 6.0 * X[24] * W[567] + 7.0 * X[28] * W[520] + 8.0 * X[32] * W[473]
             + 9.0 * X[36] * W[426] + 10.0 * X[40] * W[379] + 11.0 * X[44] * W[332] + 12.0 * X[48] * W[285]
@@ -2033,103 +1553,16 @@ double_pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[877] = W[4] * W[860];
     W[879] = W[4] * W[861];
     W[873] = W[26] * W[871];
-    W[878] = W[875] + W[877];
-    W[880] = W[876] + W[879];
-    W[881] = W[2] * W[880] + W[49] * W[833] + W[96] * W[786] + W[143] * W[739] + W[190] * W[692]
-            + W[237] * W[645] + W[284] * W[598] + W[331] * W[551] + W[378] * W[504] + W[425] * W[457]
-            + W[472] * W[410] + W[519] * W[363] + W[566] * W[316] + W[613] * W[269] + W[660] * W[222]
-            + W[707] * W[175] + W[754] * W[128] + W[801] * W[81] + W[848] * W[34];
-    W[882] = W[3] * W[878] + W[50] * W[831] + W[97] * W[784] + W[144] * W[737] + W[191] * W[690]
-            + W[238] * W[643] + W[285] * W[596] + W[332] * W[549] + W[379] * W[502] + W[426] * W[455]
-            + W[473] * W[408] + W[520] * W[361] + W[567] * W[314] + W[614] * W[267] + W[661] * W[220]
-            + W[708] * W[173] + W[755] * W[126] + W[802] * W[79] + W[849] * W[32];
-    W[886] = W[6] * W[880] + W[53] * W[833] + W[100] * W[786] + W[147] * W[739] + W[194] * W[692]
-            + W[241] * W[645] + W[288] * W[598] + W[335] * W[551] + W[382] * W[504] + W[429] * W[457]
-            + W[476] * W[410] + W[523] * W[363] + W[570] * W[316] + W[617] * W[269] + W[664] * W[222]
-            + W[711] * W[175] + W[758] * W[128] + W[805] * W[81] + W[852] * W[34];
-    W[887] = W[7] * W[878] + W[54] * W[831] + W[101] * W[784] + W[148] * W[737] + W[195] * W[690]
-            + W[242] * W[643] + W[289] * W[596] + W[336] * W[549] + W[383] * W[502] + W[430] * W[455]
-            + W[477] * W[408] + W[524] * W[361] + W[571] * W[314] + W[618] * W[267] + W[665] * W[220]
-            + W[712] * W[173] + W[759] * W[126] + W[806] * W[79] + W[853] * W[32];
-    W[883] = W[881] - W[882];
-    W[888] = W[886] - W[887];
-    W[884] = W[17] * W[883];
-    W[889] = W[16] * W[888];
-    W[885] = W[867] + W[884];
-    W[890] = W[865] + W[889];
-    X[76] = X[74] / 19.0;
-    X[77] = X[75] / 19.0;
-    W[891] = W[74] * W[845] + W[121] * W[798] + W[168] * W[751] + W[215] * W[704] + W[262] * W[657]
-            + W[309] * W[610] + W[356] * W[563] + W[403] * W[516] + W[450] * W[469] + W[497] * W[422]
-            + W[544] * W[375] + W[591] * W[328] + W[638] * W[281] + W[685] * W[234] + W[732] * W[187]
-            + W[779] * W[140] + W[826] * W[93] + W[873] * W[46] + W[885];
-    W[892] = W[74] * W[844] + W[121] * W[797] + W[168] * W[750] + W[215] * W[703] + W[262] * W[656]
-            + W[309] * W[609] + W[356] * W[562] + W[403] * W[515] + W[450] * W[468] + W[497] * W[421]
-            + W[544] * W[374] + W[591] * W[327] + W[638] * W[280] + W[685] * W[233] + W[732] * W[186]
-            + W[779] * W[139] + W[826] * W[92] + W[873] * W[45] + W[890];
-    if (solve(ctx, 18, NULL, W + 891))
-        return -1;
-    X[78] = W[891] / 19.0;
-    X[79] = W[892] / 19.0;
-    if (K == 19)
-        goto out;
-    /* order 19 */
-    W[895] = (X[4] * W[849] + 2.0 * X[8] * W[802] + 3.0 * X[12] * W[755] + 4.0 * X[16] * W[708]
-            + 5.0 * X[20] * W[661] + 6.0 * X[24] * W[614] + 7.0 * X[28] * W[567] + 8.0 * X[32] * W[520]
-            + 9.0 * X[36] * W[473] + 10.0 * X[40] * W[426] + 11.0 * X[44] * W[379] + 12.0 * X[48] * W[332]
-            + 13.0 * X[52] * W[285] + 14.0 * X[56] * W[238] + 15.0 * X[60] * W[191] + 16.0 * X[64] * W[144]
-            + 17.0 * X[68] * W[97] + 18.0 * X[72] * W[50] + 19.0 * X[76] * W[3]) / 19.0;
-    W[896] = -((X[4] * W[848] + 2.0 * X[8] * W[801] + 3.0 * X[12] * W[754] + 4.0 * X[16] * W[707]
-            + 5.0 * X[20] * W[660] + 6.0 * X[24] * W[613] + 7.0 * X[28] * W[566] + 8.0 * X[32] * W[519]
-            + 9.0 * X[36] * W[472] + 10.0 * X[40] * W[425] + 11.0 * X[44] * W[378] + 12.0 * X[48] * W[331]
-            + 13.0 * X[52] * W[284] + 14.0 * X[56] * W[237] + 15.0 * X[60] * W[190] + 16.0 * X[64] * W[143]
-            + 17.0 * X[68] * W[96] + 18.0 * X[72] * W[49] + 19.0 * X[76] * W[2])) / 19.0;
-    W[899] = (X[5] * W[853] + 2.0 * X[9] * W[806] + 3.0 * X[13] * W[759] + 4.0 * X[17] * W[712]
-            + 5.0 * X[21] * W[665] + 6.0 * X[25] * W[618] + 7.0 * X[29] * W[571] + 8.0 * X[33] * W[524]
-            + 9.0 * X[37] * W[477] + 10.0 * X[41] * W[430] + 11.0 * X[45] * W[383] + 12.0 * X[49] * W[336]
-            + 13.0 * X[53] * W[289] + 14.0 * X[57] * W[242] + 15.0 * X[61] * W[195] + 16.0 * X[65] * W[148]
-            + 17.0 * X[69] * W[101] + 18.0 * X[73] * W[54] + 19.0 * X[77] * W[7]) / 19.0;
-    W[900] = -((X[5] * W[852] + 2.0 * X[9] * W[805] + 3.0 * X[13] * W[758] + 4.0 * X[17] * W[711]
-            + 5.0 * X[21] * W[664] + 6.0 * X[25] * W[617] + 7.0 * X[29] * W[570] + 8.0 * X[33] * W[523]
-            + 9.0 * X[37] * W[476] + 10.0 * X[41] * W[429] + 11.0 * X[45] * W[382] + 12.0 * X[49] * W[335]
-            + 13.0 * X[53] * W[288] + 14.0 * X[57] * W[241] + 15.0 * X[61] * W[194] + 16.0 * X[65] * W[147]
-            + 17.0 * X[69] * W[100] + 18.0 * X[73] * W[53] + 19.0 * X[77] * W[6])) / 19.0;
-    W[903] = (X[2] * X[78] + X[6] * X[74] + X[10] * X[70] + X[14] * X[66] + X[18] * X[62] + X[22] * X[58]
-            + X[26] * X[54] + X[30] * X[50] + X[34] * X[46] + X[38] * X[42]) * 2.0;
-    W[906] = (X[3] * X[79] + X[7] * X[75] + X[11] * X[71] + X[15] * X[67] + X[19] * X[63] + X[23] * X[59]
-            + X[27] * X[55] + X[31] * X[51] + X[35] * X[47] + X[39] * X[43]) * 2.0;
-    W[912] = W[18] * W[899];
-    W[914] = W[20] * W[895];
-    W[904] = W[2] * W[903] + W[49] * W[856] + W[96] * W[809] + W[143] * W[762] + W[190] * W[715]
-            + W[237] * W[668] + W[284] * W[621] + W[331] * W[574] + W[378] * W[527] + W[425] * W[480]
-            + W[472] * W[433] + W[519] * W[386] + W[566] * W[339] + W[613] * W[292] + W[660] * W[245]
-            + W[707] * W[198] + W[754] * W[151] + W[801] * W[104] + W[848] * W[57] + W[895] * W[10];
-    W[905] = W[3] * W[903] + W[50] * W[856] + W[97] * W[809] + W[144] * W[762] + W[191] * W[715]
-            + W[238] * W[668] + W[285] * W[621] + W[332] * W[574] + W[379] * W[527] + W[426] * W[480]
-            + W[473] * W[433] + W[520] * W[386] + W[567] * W[339] + W[614] * W[292] + W[661] * W[245]
-            + W[708] * W[198] + W[755] * W[151] + W[802] * W[104] + W[849] * W[57] + W[896] * W[10];
-    W[907] = W[6] * W[906] + W[53] * W[859] + W[100] * W[812] + W[147] * W[765] + W[194] * W[718]
-            + W[241] * W[671] + W[288] * W[624] + W[335] * W[577] + W[382] * W[530] + W[429] * W[483]
-            + W[476] * W[436] + W[523] * W[389] + W[570] * W[342] + W[617] * W[295] + W[664] * W[248]
-            + W[711] * W[201] + W[758] * W[154] + W[805] * W[107] + W[852] * W[60] + W[899] * W[13];
-    W[908] = W[7] * W[906] + W[54] * W[859] + W[101] * W[812] + W[148] * W[765] + W[195] * W[718]
-            + W[242] * W[671] + W[289] * W[624] + W[336] * W[577] + W[383] * W[530] + W[430] * W[483]
-            + W[477] * W[436] + W[524] * W[389] + W[571] * W[342] + W[618] * W[295] + W[665] * W[248]
-            + W[712] * W[201] + W[759] * W[154] + W[806] * W[107] + W[853] * W[60] + W[900] * W[13];
-    W[916] = W[2] * W[899] + W[49] * W[852] + W[96] * W[805] + W[143] * W[758] + W[190] * W[711]
-            + W[237] * W[664] + W[284] * W[617] + W[331] * W[570] + W[378] * W[523] + W[425] * W[476]
-            + W[472] * W[429] + W[519] * W[382] + W[566] * W[335] + W[613] * W[288] + W[660] * W[241]
-            + W[707] * W[194] + W[754] * W[147] + W[801] * W[100] + W[848] * W[53] + W[895] * W[6];
-    W[917] = W[3] * W[900] + W[50] * W[853] + W[97] * W[806] + W[144] * W[759] + W[191] * W[712]
-            + W[238] * W[665] + W[285] * W[618] + W[332] * W[571] + W[379] * W[524] + W[426] * W[477]
-            + W[473] * W[430] + W[520] * W[383] + W[567] * W[336] + W[614] * W[289] + W[661] * W[242]
-            + W[708] * W[195] + W[755] * W[148] + W[802] * W[101] + W[849] * W[54] + W[896] * W[7];
-    W[918] = W[916] + W[917];
-    W[922] = W[0] * W[904];
-    W[923] = W[0] * W[905];
-    W[924] = W[4] * W[907];
-    W[926] = W[4] * W[908];
-    W[920] = W[26] * W[918];
+    return 0;
+}
+
+/* Lines 20 .. 38 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+double_pendulum_taylor_run_41(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[925] = W[922] + W[924];
     W[927] = W[923] + W[926];
     W[928] = W[2] * W[927] + W[49] * W[880] + W[96] * W[833] + W[143] * W[786] + W[190] * W[739]
@@ -2168,6 +1601,248 @@ double_pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p,
         return -1;
     X[82] = W[938] / 20.0;
     X[83] = W[939] / 20.0;
+    return 0;
+}
+
+EOMC_PART int
+double_pendulum_taylor_run_1(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+double_pendulum_taylor_run_2(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+double_pendulum_taylor_run_3(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+double_pendulum_taylor_run_4(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+double_pendulum_taylor_run_6(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+double_pendulum_taylor_run_8(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+double_pendulum_taylor_run_10(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+double_pendulum_taylor_run_12(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+double_pendulum_taylor_run_15(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+double_pendulum_taylor_run_16(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+double_pendulum_taylor_run_19(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+double_pendulum_taylor_run_20(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+double_pendulum_taylor_run_23(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+double_pendulum_taylor_run_24(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+double_pendulum_taylor_run_27(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+double_pendulum_taylor_run_28(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+double_pendulum_taylor_run_31(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+double_pendulum_taylor_run_32(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+double_pendulum_taylor_run_35(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+double_pendulum_taylor_run_36(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+double_pendulum_taylor_run_39(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+double_pendulum_taylor_run_40(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+static int
+double_pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *T, eomc_real *X, eomc_tay_solve solve,
+    void *ctx)
+{
+    const int S = K + 1;
+    if (K > 20)
+        return 1;
+    (void)S, (void)T, (void)t0, (void)p, (void)u;
+    eomc_real W[987]; /* slot s's coefficient j at W[j * 47 + s], but the
+                   * state's: X[j * 4 + i], q's then v's */
+    /* order 0 */
+    if (double_pendulum_taylor_run_1(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (double_pendulum_taylor_run_2(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (double_pendulum_taylor_run_3(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 1)
+        goto out;
+    /* order 1 */
+    if (double_pendulum_taylor_run_4(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (double_pendulum_taylor_run_5(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 2)
+        goto out;
+    /* order 2 */
+    if (double_pendulum_taylor_run_6(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (double_pendulum_taylor_run_7(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 3)
+        goto out;
+    /* order 3 */
+    if (double_pendulum_taylor_run_8(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (double_pendulum_taylor_run_9(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 4)
+        goto out;
+    /* order 4 */
+    if (double_pendulum_taylor_run_10(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (double_pendulum_taylor_run_11(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 5)
+        goto out;
+    /* order 5 */
+    if (double_pendulum_taylor_run_12(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (double_pendulum_taylor_run_13(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 6)
+        goto out;
+    /* order 6 */
+    if (double_pendulum_taylor_run_14(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (double_pendulum_taylor_run_15(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 7)
+        goto out;
+    /* order 7 */
+    if (double_pendulum_taylor_run_16(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (double_pendulum_taylor_run_17(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 8)
+        goto out;
+    /* order 8 */
+    if (double_pendulum_taylor_run_18(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (double_pendulum_taylor_run_19(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 9)
+        goto out;
+    /* order 9 */
+    if (double_pendulum_taylor_run_20(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (double_pendulum_taylor_run_21(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 10)
+        goto out;
+    /* order 10 */
+    if (double_pendulum_taylor_run_22(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (double_pendulum_taylor_run_23(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 11)
+        goto out;
+    /* order 11 */
+    if (double_pendulum_taylor_run_24(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (double_pendulum_taylor_run_25(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 12)
+        goto out;
+    /* order 12 */
+    if (double_pendulum_taylor_run_26(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (double_pendulum_taylor_run_27(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 13)
+        goto out;
+    /* order 13 */
+    if (double_pendulum_taylor_run_28(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (double_pendulum_taylor_run_29(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 14)
+        goto out;
+    /* order 14 */
+    if (double_pendulum_taylor_run_30(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (double_pendulum_taylor_run_31(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 15)
+        goto out;
+    /* order 15 */
+    if (double_pendulum_taylor_run_32(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (double_pendulum_taylor_run_33(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 16)
+        goto out;
+    /* order 16 */
+    if (double_pendulum_taylor_run_34(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (double_pendulum_taylor_run_35(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 17)
+        goto out;
+    /* order 17 */
+    if (double_pendulum_taylor_run_36(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (double_pendulum_taylor_run_37(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 18)
+        goto out;
+    /* order 18 */
+    if (double_pendulum_taylor_run_38(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (double_pendulum_taylor_run_39(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 19)
+        goto out;
+    /* order 19 */
+    if (double_pendulum_taylor_run_40(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (double_pendulum_taylor_run_41(t0, p, u, W, X, solve, ctx))
+        return -1;
 out:
     return 0;
 }
@@ -2277,3 +1952,954 @@ const eomc_model_ext double_pendulum_model_ext = {
 };
 #endif /* EOMC_EXTENDED */
 #endif /* EOMC_UNIT 3 */
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 4
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define double_pendulum_taylor_run_1 double_pendulum_taylor_run_1_ext
+#define double_pendulum_taylor_run_2 double_pendulum_taylor_run_2_ext
+#define double_pendulum_taylor_run_3 double_pendulum_taylor_run_3_ext
+#define double_pendulum_taylor_run_4 double_pendulum_taylor_run_4_ext
+#define double_pendulum_taylor_run_6 double_pendulum_taylor_run_6_ext
+#define double_pendulum_taylor_run_8 double_pendulum_taylor_run_8_ext
+#define double_pendulum_taylor_run_10 double_pendulum_taylor_run_10_ext
+#define double_pendulum_taylor_run_12 double_pendulum_taylor_run_12_ext
+#define double_pendulum_taylor_run_15 double_pendulum_taylor_run_15_ext
+#define double_pendulum_taylor_run_16 double_pendulum_taylor_run_16_ext
+#define double_pendulum_taylor_run_19 double_pendulum_taylor_run_19_ext
+#define double_pendulum_taylor_run_20 double_pendulum_taylor_run_20_ext
+#define double_pendulum_taylor_run_23 double_pendulum_taylor_run_23_ext
+#define double_pendulum_taylor_run_24 double_pendulum_taylor_run_24_ext
+#define double_pendulum_taylor_run_27 double_pendulum_taylor_run_27_ext
+#define double_pendulum_taylor_run_28 double_pendulum_taylor_run_28_ext
+#define double_pendulum_taylor_run_31 double_pendulum_taylor_run_31_ext
+#define double_pendulum_taylor_run_32 double_pendulum_taylor_run_32_ext
+#define double_pendulum_taylor_run_35 double_pendulum_taylor_run_35_ext
+#define double_pendulum_taylor_run_36 double_pendulum_taylor_run_36_ext
+#define double_pendulum_taylor_run_39 double_pendulum_taylor_run_39_ext
+#define double_pendulum_taylor_run_40 double_pendulum_taylor_run_40_ext
+#endif
+#ifndef EOMC_EXTENDED
+/* Lines 0 .. 19 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+double_pendulum_taylor_run_1(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[0] = p[2];
+    W[2] = sin(X[0]);
+    W[3] = cos(X[0]);
+    W[4] = p[3];
+    W[6] = sin(X[1]);
+    W[7] = cos(X[1]);
+    W[10] = X[2] * X[2];
+    W[13] = X[3] * X[3];
+    W[16] = p[9];
+    W[17] = p[10];
+    W[18] = p[11];
+    W[20] = p[12];
+    W[22] = p[13];
+    W[26] = p[14];
+    W[28] = p[15];
+    W[19] = W[18] * W[6];
+    W[21] = W[20] * W[2];
+    W[11] = W[2] * W[10];
+    W[12] = W[3] * W[10];
+    W[14] = W[6] * W[13];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+double_pendulum_taylor_run_2(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[15] = W[7] * W[13];
+    W[23] = W[2] * W[6];
+    W[24] = W[3] * W[7];
+    W[25] = W[23] + W[24];
+    W[29] = W[0] * W[11];
+    W[30] = W[0] * W[12];
+    W[31] = W[4] * W[14];
+    W[33] = W[4] * W[15];
+    W[27] = W[26] * W[25];
+    W[32] = W[29] + W[31];
+    W[34] = W[30] + W[33];
+    W[35] = W[2] * W[34];
+    W[36] = W[3] * W[32];
+    W[40] = W[6] * W[34];
+    W[41] = W[7] * W[32];
+    W[37] = W[35] - W[36];
+    W[42] = W[40] - W[41];
+    W[38] = W[17] * W[37];
+    W[43] = W[16] * W[42];
+    W[39] = W[21] + W[38];
+    return 0;
+}
+
+/* Lines 40 .. 47 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+double_pendulum_taylor_run_3(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[44] = W[19] + W[43];
+    X[4] = X[2];
+    X[5] = X[3];
+    W[45] = W[39];
+    W[46] = W[44];
+    {
+        const eomc_real M0[4] = {W[22], W[27], W[27], W[28]};
+        if (solve(ctx, 0, M0, W + 45))
+            return -1;
+    }
+    X[6] = W[45];
+    X[7] = W[46];
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+double_pendulum_taylor_run_4(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[49] = X[4] * W[3];
+    W[50] = -X[4] * W[2];
+    W[53] = X[5] * W[7];
+    W[54] = -X[5] * W[6];
+    W[57] = X[2] * X[6] * 2.0;
+    W[60] = X[3] * X[7] * 2.0;
+    W[66] = W[18] * W[53];
+    W[68] = W[20] * W[49];
+    W[58] = W[2] * W[57] + W[49] * W[10];
+    W[59] = W[3] * W[57] + W[50] * W[10];
+    W[61] = W[6] * W[60] + W[53] * W[13];
+    W[62] = W[7] * W[60] + W[54] * W[13];
+    W[70] = W[2] * W[53] + W[49] * W[6];
+    W[71] = W[3] * W[54] + W[50] * W[7];
+    W[72] = W[70] + W[71];
+    W[76] = W[0] * W[58];
+    W[77] = W[0] * W[59];
+    W[78] = W[4] * W[61];
+    W[80] = W[4] * W[62];
+    W[74] = W[26] * W[72];
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+double_pendulum_taylor_run_6(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[96] = (X[4] * W[50] + 2.0 * X[8] * W[3]) / 2.0;
+    W[97] = -((X[4] * W[49] + 2.0 * X[8] * W[2])) / 2.0;
+    W[100] = (X[5] * W[54] + 2.0 * X[9] * W[7]) / 2.0;
+    W[101] = -((X[5] * W[53] + 2.0 * X[9] * W[6])) / 2.0;
+    W[104] = X[2] * X[10] * 2.0 + X[6] * X[6];
+    W[107] = X[3] * X[11] * 2.0 + X[7] * X[7];
+    W[113] = W[18] * W[100];
+    W[115] = W[20] * W[96];
+    W[105] = W[2] * W[104] + W[49] * W[57] + W[96] * W[10];
+    W[106] = W[3] * W[104] + W[50] * W[57] + W[97] * W[10];
+    W[108] = W[6] * W[107] + W[53] * W[60] + W[100] * W[13];
+    W[109] = W[7] * W[107] + W[54] * W[60] + W[101] * W[13];
+    W[117] = W[2] * W[100] + W[49] * W[53] + W[96] * W[6];
+    W[118] = W[3] * W[101] + W[50] * W[54] + W[97] * W[7];
+    W[119] = W[117] + W[118];
+    W[123] = W[0] * W[105];
+    W[124] = W[0] * W[106];
+    W[125] = W[4] * W[108];
+    W[127] = W[4] * W[109];
+    W[121] = W[26] * W[119];
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+double_pendulum_taylor_run_8(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[143] = (X[4] * W[97] + 2.0 * X[8] * W[50] + 3.0 * X[12] * W[3]) / 3.0;
+    W[144] = -((X[4] * W[96] + 2.0 * X[8] * W[49] + 3.0 * X[12] * W[2])) / 3.0;
+    W[147] = (X[5] * W[101] + 2.0 * X[9] * W[54] + 3.0 * X[13] * W[7]) / 3.0;
+    W[148] = -((X[5] * W[100] + 2.0 * X[9] * W[53] + 3.0 * X[13] * W[6])) / 3.0;
+    W[151] = (X[2] * X[14] + X[6] * X[10]) * 2.0;
+    W[154] = (X[3] * X[15] + X[7] * X[11]) * 2.0;
+    W[160] = W[18] * W[147];
+    W[162] = W[20] * W[143];
+    W[152] = W[2] * W[151] + W[49] * W[104] + W[96] * W[57] + W[143] * W[10];
+    W[153] = W[3] * W[151] + W[50] * W[104] + W[97] * W[57] + W[144] * W[10];
+    W[155] = W[6] * W[154] + W[53] * W[107] + W[100] * W[60] + W[147] * W[13];
+    W[156] = W[7] * W[154] + W[54] * W[107] + W[101] * W[60] + W[148] * W[13];
+    W[164] = W[2] * W[147] + W[49] * W[100] + W[96] * W[53] + W[143] * W[6];
+    W[165] = W[3] * W[148] + W[50] * W[101] + W[97] * W[54] + W[144] * W[7];
+    W[166] = W[164] + W[165];
+    W[170] = W[0] * W[152];
+    W[171] = W[0] * W[153];
+    W[172] = W[4] * W[155];
+    W[174] = W[4] * W[156];
+    W[168] = W[26] * W[166];
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+double_pendulum_taylor_run_10(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[190] = (X[4] * W[144] + 2.0 * X[8] * W[97] + 3.0 * X[12] * W[50] + 4.0 * X[16] * W[3]) / 4.0;
+    W[191] = -((X[4] * W[143] + 2.0 * X[8] * W[96] + 3.0 * X[12] * W[49] + 4.0 * X[16] * W[2])) / 4.0;
+    W[194] = (X[5] * W[148] + 2.0 * X[9] * W[101] + 3.0 * X[13] * W[54] + 4.0 * X[17] * W[7]) / 4.0;
+    W[195] = -((X[5] * W[147] + 2.0 * X[9] * W[100] + 3.0 * X[13] * W[53] + 4.0 * X[17] * W[6])) / 4.0;
+    W[198] = (X[2] * X[18] + X[6] * X[14]) * 2.0 + X[10] * X[10];
+    W[201] = (X[3] * X[19] + X[7] * X[15]) * 2.0 + X[11] * X[11];
+    W[207] = W[18] * W[194];
+    W[209] = W[20] * W[190];
+    W[199] = W[2] * W[198] + W[49] * W[151] + W[96] * W[104] + W[143] * W[57] + W[190] * W[10];
+    W[200] = W[3] * W[198] + W[50] * W[151] + W[97] * W[104] + W[144] * W[57] + W[191] * W[10];
+    W[202] = W[6] * W[201] + W[53] * W[154] + W[100] * W[107] + W[147] * W[60] + W[194] * W[13];
+    W[203] = W[7] * W[201] + W[54] * W[154] + W[101] * W[107] + W[148] * W[60] + W[195] * W[13];
+    W[211] = W[2] * W[194] + W[49] * W[147] + W[96] * W[100] + W[143] * W[53] + W[190] * W[6];
+    W[212] = W[3] * W[195] + W[50] * W[148] + W[97] * W[101] + W[144] * W[54] + W[191] * W[7];
+    W[213] = W[211] + W[212];
+    W[217] = W[0] * W[199];
+    W[218] = W[0] * W[200];
+    W[219] = W[4] * W[202];
+    W[221] = W[4] * W[203];
+    W[215] = W[26] * W[213];
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+double_pendulum_taylor_run_12(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[237] = (X[4] * W[191] + 2.0 * X[8] * W[144] + 3.0 * X[12] * W[97] + 4.0 * X[16] * W[50]
+            + 5.0 * X[20] * W[3]) / 5.0;
+    W[238] = -((X[4] * W[190] + 2.0 * X[8] * W[143] + 3.0 * X[12] * W[96] + 4.0 * X[16] * W[49]
+            + 5.0 * X[20] * W[2])) / 5.0;
+    W[241] = (X[5] * W[195] + 2.0 * X[9] * W[148] + 3.0 * X[13] * W[101] + 4.0 * X[17] * W[54]
+            + 5.0 * X[21] * W[7]) / 5.0;
+    W[242] = -((X[5] * W[194] + 2.0 * X[9] * W[147] + 3.0 * X[13] * W[100] + 4.0 * X[17] * W[53]
+            + 5.0 * X[21] * W[6])) / 5.0;
+    W[245] = (X[2] * X[22] + X[6] * X[18] + X[10] * X[14]) * 2.0;
+    W[248] = (X[3] * X[23] + X[7] * X[19] + X[11] * X[15]) * 2.0;
+    W[254] = W[18] * W[241];
+    W[256] = W[20] * W[237];
+    W[246] = W[2] * W[245] + W[49] * W[198] + W[96] * W[151] + W[143] * W[104] + W[190] * W[57]
+            + W[237] * W[10];
+    W[247] = W[3] * W[245] + W[50] * W[198] + W[97] * W[151] + W[144] * W[104] + W[191] * W[57]
+            + W[238] * W[10];
+    W[249] = W[6] * W[248] + W[53] * W[201] + W[100] * W[154] + W[147] * W[107] + W[194] * W[60]
+            + W[241] * W[13];
+    W[250] = W[7] * W[248] + W[54] * W[201] + W[101] * W[154] + W[148] * W[107] + W[195] * W[60]
+            + W[242] * W[13];
+    W[258] = W[2] * W[241] + W[49] * W[194] + W[96] * W[147] + W[143] * W[100] + W[190] * W[53]
+            + W[237] * W[6];
+    W[259] = W[3] * W[242] + W[50] * W[195] + W[97] * W[148] + W[144] * W[101] + W[191] * W[54]
+            + W[238] * W[7];
+    W[260] = W[258] + W[259];
+    W[264] = W[0] * W[246];
+    W[265] = W[0] * W[247];
+    W[266] = W[4] * W[249];
+    W[268] = W[4] * W[250];
+    W[262] = W[26] * W[260];
+    return 0;
+}
+
+/* Lines 20 .. 38 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+double_pendulum_taylor_run_15(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[314] = W[311] + W[313];
+    W[316] = W[312] + W[315];
+    W[317] = W[2] * W[316] + W[49] * W[269] + W[96] * W[222] + W[143] * W[175] + W[190] * W[128]
+            + W[237] * W[81] + W[284] * W[34];
+    W[318] = W[3] * W[314] + W[50] * W[267] + W[97] * W[220] + W[144] * W[173] + W[191] * W[126]
+            + W[238] * W[79] + W[285] * W[32];
+    W[322] = W[6] * W[316] + W[53] * W[269] + W[100] * W[222] + W[147] * W[175] + W[194] * W[128]
+            + W[241] * W[81] + W[288] * W[34];
+    W[323] = W[7] * W[314] + W[54] * W[267] + W[101] * W[220] + W[148] * W[173] + W[195] * W[126]
+            + W[242] * W[79] + W[289] * W[32];
+    W[319] = W[317] - W[318];
+    W[324] = W[322] - W[323];
+    W[320] = W[17] * W[319];
+    W[325] = W[16] * W[324];
+    W[321] = W[303] + W[320];
+    W[326] = W[301] + W[325];
+    X[28] = X[26] / 7.0;
+    X[29] = X[27] / 7.0;
+    W[327] = W[74] * W[281] + W[121] * W[234] + W[168] * W[187] + W[215] * W[140] + W[262] * W[93]
+            + W[309] * W[46] + W[321];
+    W[328] = W[74] * W[280] + W[121] * W[233] + W[168] * W[186] + W[215] * W[139] + W[262] * W[92]
+            + W[309] * W[45] + W[326];
+    if (solve(ctx, 6, NULL, W + 327))
+        return -1;
+    X[30] = W[327] / 7.0;
+    X[31] = W[328] / 7.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART int
+double_pendulum_taylor_run_16(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[331] = (X[4] * W[285] + 2.0 * X[8] * W[238] + 3.0 * X[12] * W[191] + 4.0 * X[16] * W[144]
+            + 5.0 * X[20] * W[97] + 6.0 * X[24] * W[50] + 7.0 * X[28] * W[3]) / 7.0;
+    W[332] = -((X[4] * W[284] + 2.0 * X[8] * W[237] + 3.0 * X[12] * W[190] + 4.0 * X[16] * W[143]
+            + 5.0 * X[20] * W[96] + 6.0 * X[24] * W[49] + 7.0 * X[28] * W[2])) / 7.0;
+    W[335] = (X[5] * W[289] + 2.0 * X[9] * W[242] + 3.0 * X[13] * W[195] + 4.0 * X[17] * W[148]
+            + 5.0 * X[21] * W[101] + 6.0 * X[25] * W[54] + 7.0 * X[29] * W[7]) / 7.0;
+    W[336] = -((X[5] * W[288] + 2.0 * X[9] * W[241] + 3.0 * X[13] * W[194] + 4.0 * X[17] * W[147]
+            + 5.0 * X[21] * W[100] + 6.0 * X[25] * W[53] + 7.0 * X[29] * W[6])) / 7.0;
+    W[339] = (X[2] * X[30] + X[6] * X[26] + X[10] * X[22] + X[14] * X[18]) * 2.0;
+    W[342] = (X[3] * X[31] + X[7] * X[27] + X[11] * X[23] + X[15] * X[19]) * 2.0;
+    W[348] = W[18] * W[335];
+    W[350] = W[20] * W[331];
+    W[340] = W[2] * W[339] + W[49] * W[292] + W[96] * W[245] + W[143] * W[198] + W[190] * W[151]
+            + W[237] * W[104] + W[284] * W[57] + W[331] * W[10];
+    W[341] = W[3] * W[339] + W[50] * W[292] + W[97] * W[245] + W[144] * W[198] + W[191] * W[151]
+            + W[238] * W[104] + W[285] * W[57] + W[332] * W[10];
+    W[343] = W[6] * W[342] + W[53] * W[295] + W[100] * W[248] + W[147] * W[201] + W[194] * W[154]
+            + W[241] * W[107] + W[288] * W[60] + W[335] * W[13];
+    W[344] = W[7] * W[342] + W[54] * W[295] + W[101] * W[248] + W[148] * W[201] + W[195] * W[154]
+            + W[242] * W[107] + W[289] * W[60] + W[336] * W[13];
+    W[352] = W[2] * W[335] + W[49] * W[288] + W[96] * W[241] + W[143] * W[194] + W[190] * W[147]
+            + W[237] * W[100] + W[284] * W[53] + W[331] * W[6];
+    W[353] = W[3] * W[336] + W[50] * W[289] + W[97] * W[242] + W[144] * W[195] + W[191] * W[148]
+            + W[238] * W[101] + W[285] * W[54] + W[332] * W[7];
+    W[354] = W[352] + W[353];
+    W[358] = W[0] * W[340];
+    W[359] = W[0] * W[341];
+    W[360] = W[4] * W[343];
+    W[362] = W[4] * W[344];
+    W[356] = W[26] * W[354];
+    return 0;
+}
+
+/* Lines 20 .. 38 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+double_pendulum_taylor_run_19(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[408] = W[405] + W[407];
+    W[410] = W[406] + W[409];
+    W[411] = W[2] * W[410] + W[49] * W[363] + W[96] * W[316] + W[143] * W[269] + W[190] * W[222]
+            + W[237] * W[175] + W[284] * W[128] + W[331] * W[81] + W[378] * W[34];
+    W[412] = W[3] * W[408] + W[50] * W[361] + W[97] * W[314] + W[144] * W[267] + W[191] * W[220]
+            + W[238] * W[173] + W[285] * W[126] + W[332] * W[79] + W[379] * W[32];
+    W[416] = W[6] * W[410] + W[53] * W[363] + W[100] * W[316] + W[147] * W[269] + W[194] * W[222]
+            + W[241] * W[175] + W[288] * W[128] + W[335] * W[81] + W[382] * W[34];
+    W[417] = W[7] * W[408] + W[54] * W[361] + W[101] * W[314] + W[148] * W[267] + W[195] * W[220]
+            + W[242] * W[173] + W[289] * W[126] + W[336] * W[79] + W[383] * W[32];
+    W[413] = W[411] - W[412];
+    W[418] = W[416] - W[417];
+    W[414] = W[17] * W[413];
+    W[419] = W[16] * W[418];
+    W[415] = W[397] + W[414];
+    W[420] = W[395] + W[419];
+    X[36] = X[34] / 9.0;
+    X[37] = X[35] / 9.0;
+    W[421] = W[74] * W[375] + W[121] * W[328] + W[168] * W[281] + W[215] * W[234] + W[262] * W[187]
+            + W[309] * W[140] + W[356] * W[93] + W[403] * W[46] + W[415];
+    W[422] = W[74] * W[374] + W[121] * W[327] + W[168] * W[280] + W[215] * W[233] + W[262] * W[186]
+            + W[309] * W[139] + W[356] * W[92] + W[403] * W[45] + W[420];
+    if (solve(ctx, 8, NULL, W + 421))
+        return -1;
+    X[38] = W[421] / 9.0;
+    X[39] = W[422] / 9.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 9, in the fourth unit. */
+EOMC_PART int
+double_pendulum_taylor_run_20(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[425] = (X[4] * W[379] + 2.0 * X[8] * W[332] + 3.0 * X[12] * W[285] + 4.0 * X[16] * W[238]
+            + 5.0 * X[20] * W[191] + 6.0 * X[24] * W[144] + 7.0 * X[28] * W[97] + 8.0 * X[32] * W[50]
+            + 9.0 * X[36] * W[3]) / 9.0;
+    W[426] = -((X[4] * W[378] + 2.0 * X[8] * W[331] + 3.0 * X[12] * W[284] + 4.0 * X[16] * W[237]
+            + 5.0 * X[20] * W[190] + 6.0 * X[24] * W[143] + 7.0 * X[28] * W[96] + 8.0 * X[32] * W[49]
+            + 9.0 * X[36] * W[2])) / 9.0;
+    W[429] = (X[5] * W[383] + 2.0 * X[9] * W[336] + 3.0 * X[13] * W[289] + 4.0 * X[17] * W[242]
+            + 5.0 * X[21] * W[195] + 6.0 * X[25] * W[148] + 7.0 * X[29] * W[101] + 8.0 * X[33] * W[54]
+            + 9.0 * X[37] * W[7]) / 9.0;
+    W[430] = -((X[5] * W[382] + 2.0 * X[9] * W[335] + 3.0 * X[13] * W[288] + 4.0 * X[17] * W[241]
+            + 5.0 * X[21] * W[194] + 6.0 * X[25] * W[147] + 7.0 * X[29] * W[100] + 8.0 * X[33] * W[53]
+            + 9.0 * X[37] * W[6])) / 9.0;
+    W[433] = (X[2] * X[38] + X[6] * X[34] + X[10] * X[30] + X[14] * X[26] + X[18] * X[22]) * 2.0;
+    W[436] = (X[3] * X[39] + X[7] * X[35] + X[11] * X[31] + X[15] * X[27] + X[19] * X[23]) * 2.0;
+    W[442] = W[18] * W[429];
+    W[444] = W[20] * W[425];
+    W[434] = W[2] * W[433] + W[49] * W[386] + W[96] * W[339] + W[143] * W[292] + W[190] * W[245]
+            + W[237] * W[198] + W[284] * W[151] + W[331] * W[104] + W[378] * W[57] + W[425] * W[10];
+    W[435] = W[3] * W[433] + W[50] * W[386] + W[97] * W[339] + W[144] * W[292] + W[191] * W[245]
+            + W[238] * W[198] + W[285] * W[151] + W[332] * W[104] + W[379] * W[57] + W[426] * W[10];
+    W[437] = W[6] * W[436] + W[53] * W[389] + W[100] * W[342] + W[147] * W[295] + W[194] * W[248]
+            + W[241] * W[201] + W[288] * W[154] + W[335] * W[107] + W[382] * W[60] + W[429] * W[13];
+    W[438] = W[7] * W[436] + W[54] * W[389] + W[101] * W[342] + W[148] * W[295] + W[195] * W[248]
+            + W[242] * W[201] + W[289] * W[154] + W[336] * W[107] + W[383] * W[60] + W[430] * W[13];
+    W[446] = W[2] * W[429] + W[49] * W[382] + W[96] * W[335] + W[143] * W[288] + W[190] * W[241]
+            + W[237] * W[194] + W[284] * W[147] + W[331] * W[100] + W[378] * W[53] + W[425] * W[6];
+    W[447] = W[3] * W[430] + W[50] * W[383] + W[97] * W[336] + W[144] * W[289] + W[191] * W[242]
+            + W[238] * W[195] + W[285] * W[148] + W[332] * W[101] + W[379] * W[54] + W[426] * W[7];
+    W[448] = W[446] + W[447];
+    W[452] = W[0] * W[434];
+    W[453] = W[0] * W[435];
+    W[454] = W[4] * W[437];
+    W[456] = W[4] * W[438];
+    W[450] = W[26] * W[448];
+    return 0;
+}
+
+/* Lines 20 .. 38 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+double_pendulum_taylor_run_23(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[502] = W[499] + W[501];
+    W[504] = W[500] + W[503];
+    W[505] = W[2] * W[504] + W[49] * W[457] + W[96] * W[410] + W[143] * W[363] + W[190] * W[316]
+            + W[237] * W[269] + W[284] * W[222] + W[331] * W[175] + W[378] * W[128] + W[425] * W[81]
+            + W[472] * W[34];
+    W[506] = W[3] * W[502] + W[50] * W[455] + W[97] * W[408] + W[144] * W[361] + W[191] * W[314]
+            + W[238] * W[267] + W[285] * W[220] + W[332] * W[173] + W[379] * W[126] + W[426] * W[79]
+            + W[473] * W[32];
+    W[510] = W[6] * W[504] + W[53] * W[457] + W[100] * W[410] + W[147] * W[363] + W[194] * W[316]
+            + W[241] * W[269] + W[288] * W[222] + W[335] * W[175] + W[382] * W[128] + W[429] * W[81]
+            + W[476] * W[34];
+    W[511] = W[7] * W[502] + W[54] * W[455] + W[101] * W[408] + W[148] * W[361] + W[195] * W[314]
+            + W[242] * W[267] + W[289] * W[220] + W[336] * W[173] + W[383] * W[126] + W[430] * W[79]
+            + W[477] * W[32];
+    W[507] = W[505] - W[506];
+    W[512] = W[510] - W[511];
+    W[508] = W[17] * W[507];
+    W[513] = W[16] * W[512];
+    W[509] = W[491] + W[508];
+    W[514] = W[489] + W[513];
+    X[44] = X[42] / 11.0;
+    X[45] = X[43] / 11.0;
+    W[515] = W[74] * W[469] + W[121] * W[422] + W[168] * W[375] + W[215] * W[328] + W[262] * W[281]
+            + W[309] * W[234] + W[356] * W[187] + W[403] * W[140] + W[450] * W[93] + W[497] * W[46]
+            + W[509];
+    W[516] = W[74] * W[468] + W[121] * W[421] + W[168] * W[374] + W[215] * W[327] + W[262] * W[280]
+            + W[309] * W[233] + W[356] * W[186] + W[403] * W[139] + W[450] * W[92] + W[497] * W[45]
+            + W[514];
+    if (solve(ctx, 10, NULL, W + 515))
+        return -1;
+    X[46] = W[515] / 11.0;
+    X[47] = W[516] / 11.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 11, in the fourth unit. */
+EOMC_PART int
+double_pendulum_taylor_run_24(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[519] = (X[4] * W[473] + 2.0 * X[8] * W[426] + 3.0 * X[12] * W[379] + 4.0 * X[16] * W[332]
+            + 5.0 * X[20] * W[285] + 6.0 * X[24] * W[238] + 7.0 * X[28] * W[191] + 8.0 * X[32] * W[144]
+            + 9.0 * X[36] * W[97] + 10.0 * X[40] * W[50] + 11.0 * X[44] * W[3]) / 11.0;
+    W[520] = -((X[4] * W[472] + 2.0 * X[8] * W[425] + 3.0 * X[12] * W[378] + 4.0 * X[16] * W[331]
+            + 5.0 * X[20] * W[284] + 6.0 * X[24] * W[237] + 7.0 * X[28] * W[190] + 8.0 * X[32] * W[143]
+            + 9.0 * X[36] * W[96] + 10.0 * X[40] * W[49] + 11.0 * X[44] * W[2])) / 11.0;
+    W[523] = (X[5] * W[477] + 2.0 * X[9] * W[430] + 3.0 * X[13] * W[383] + 4.0 * X[17] * W[336]
+            + 5.0 * X[21] * W[289] + 6.0 * X[25] * W[242] + 7.0 * X[29] * W[195] + 8.0 * X[33] * W[148]
+            + 9.0 * X[37] * W[101] + 10.0 * X[41] * W[54] + 11.0 * X[45] * W[7]) / 11.0;
+    W[524] = -((X[5] * W[476] + 2.0 * X[9] * W[429] + 3.0 * X[13] * W[382] + 4.0 * X[17] * W[335]
+            + 5.0 * X[21] * W[288] + 6.0 * X[25] * W[241] + 7.0 * X[29] * W[194] + 8.0 * X[33] * W[147]
+            + 9.0 * X[37] * W[100] + 10.0 * X[41] * W[53] + 11.0 * X[45] * W[6])) / 11.0;
+    W[527] = (X[2] * X[46] + X[6] * X[42] + X[10] * X[38] + X[14] * X[34] + X[18] * X[30] + X[22] * X[26]) * 2.0;
+    W[530] = (X[3] * X[47] + X[7] * X[43] + X[11] * X[39] + X[15] * X[35] + X[19] * X[31] + X[23] * X[27]) * 2.0;
+    W[536] = W[18] * W[523];
+    W[538] = W[20] * W[519];
+    W[528] = W[2] * W[527] + W[49] * W[480] + W[96] * W[433] + W[143] * W[386] + W[190] * W[339]
+            + W[237] * W[292] + W[284] * W[245] + W[331] * W[198] + W[378] * W[151] + W[425] * W[104]
+            + W[472] * W[57] + W[519] * W[10];
+    W[529] = W[3] * W[527] + W[50] * W[480] + W[97] * W[433] + W[144] * W[386] + W[191] * W[339]
+            + W[238] * W[292] + W[285] * W[245] + W[332] * W[198] + W[379] * W[151] + W[426] * W[104]
+            + W[473] * W[57] + W[520] * W[10];
+    W[531] = W[6] * W[530] + W[53] * W[483] + W[100] * W[436] + W[147] * W[389] + W[194] * W[342]
+            + W[241] * W[295] + W[288] * W[248] + W[335] * W[201] + W[382] * W[154] + W[429] * W[107]
+            + W[476] * W[60] + W[523] * W[13];
+    W[532] = W[7] * W[530] + W[54] * W[483] + W[101] * W[436] + W[148] * W[389] + W[195] * W[342]
+            + W[242] * W[295] + W[289] * W[248] + W[336] * W[201] + W[383] * W[154] + W[430] * W[107]
+            + W[477] * W[60] + W[524] * W[13];
+    W[540] = W[2] * W[523] + W[49] * W[476] + W[96] * W[429] + W[143] * W[382] + W[190] * W[335]
+            + W[237] * W[288] + W[284] * W[241] + W[331] * W[194] + W[378] * W[147] + W[425] * W[100]
+            + W[472] * W[53] + W[519] * W[6];
+    W[541] = W[3] * W[524] + W[50] * W[477] + W[97] * W[430] + W[144] * W[383] + W[191] * W[336]
+            + W[238] * W[289] + W[285] * W[242] + W[332] * W[195] + W[379] * W[148] + W[426] * W[101]
+            + W[473] * W[54] + W[520] * W[7];
+    W[542] = W[540] + W[541];
+    W[546] = W[0] * W[528];
+    W[547] = W[0] * W[529];
+    W[548] = W[4] * W[531];
+    W[550] = W[4] * W[532];
+    W[544] = W[26] * W[542];
+    return 0;
+}
+
+/* Lines 20 .. 38 of taylor_run's order 12, in the fourth unit. */
+EOMC_PART int
+double_pendulum_taylor_run_27(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[596] = W[593] + W[595];
+    W[598] = W[594] + W[597];
+    W[599] = W[2] * W[598] + W[49] * W[551] + W[96] * W[504] + W[143] * W[457] + W[190] * W[410]
+            + W[237] * W[363] + W[284] * W[316] + W[331] * W[269] + W[378] * W[222] + W[425] * W[175]
+            + W[472] * W[128] + W[519] * W[81] + W[566] * W[34];
+    W[600] = W[3] * W[596] + W[50] * W[549] + W[97] * W[502] + W[144] * W[455] + W[191] * W[408]
+            + W[238] * W[361] + W[285] * W[314] + W[332] * W[267] + W[379] * W[220] + W[426] * W[173]
+            + W[473] * W[126] + W[520] * W[79] + W[567] * W[32];
+    W[604] = W[6] * W[598] + W[53] * W[551] + W[100] * W[504] + W[147] * W[457] + W[194] * W[410]
+            + W[241] * W[363] + W[288] * W[316] + W[335] * W[269] + W[382] * W[222] + W[429] * W[175]
+            + W[476] * W[128] + W[523] * W[81] + W[570] * W[34];
+    W[605] = W[7] * W[596] + W[54] * W[549] + W[101] * W[502] + W[148] * W[455] + W[195] * W[408]
+            + W[242] * W[361] + W[289] * W[314] + W[336] * W[267] + W[383] * W[220] + W[430] * W[173]
+            + W[477] * W[126] + W[524] * W[79] + W[571] * W[32];
+    W[601] = W[599] - W[600];
+    W[606] = W[604] - W[605];
+    W[602] = W[17] * W[601];
+    W[607] = W[16] * W[606];
+    W[603] = W[585] + W[602];
+    W[608] = W[583] + W[607];
+    X[52] = X[50] / 13.0;
+    X[53] = X[51] / 13.0;
+    W[609] = W[74] * W[563] + W[121] * W[516] + W[168] * W[469] + W[215] * W[422] + W[262] * W[375]
+            + W[309] * W[328] + W[356] * W[281] + W[403] * W[234] + W[450] * W[187] + W[497] * W[140]
+            + W[544] * W[93] + W[591] * W[46] + W[603];
+    W[610] = W[74] * W[562] + W[121] * W[515] + W[168] * W[468] + W[215] * W[421] + W[262] * W[374]
+            + W[309] * W[327] + W[356] * W[280] + W[403] * W[233] + W[450] * W[186] + W[497] * W[139]
+            + W[544] * W[92] + W[591] * W[45] + W[608];
+    if (solve(ctx, 12, NULL, W + 609))
+        return -1;
+    X[54] = W[609] / 13.0;
+    X[55] = W[610] / 13.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+double_pendulum_taylor_run_28(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[613] = (X[4] * W[567] + 2.0 * X[8] * W[520] + 3.0 * X[12] * W[473] + 4.0 * X[16] * W[426]
+            + 5.0 * X[20] * W[379] + 6.0 * X[24] * W[332] + 7.0 * X[28] * W[285] + 8.0 * X[32] * W[238]
+            + 9.0 * X[36] * W[191] + 10.0 * X[40] * W[144] + 11.0 * X[44] * W[97] + 12.0 * X[48] * W[50]
+            + 13.0 * X[52] * W[3]) / 13.0;
+    W[614] = -((X[4] * W[566] + 2.0 * X[8] * W[519] + 3.0 * X[12] * W[472] + 4.0 * X[16] * W[425]
+            + 5.0 * X[20] * W[378] + 6.0 * X[24] * W[331] + 7.0 * X[28] * W[284] + 8.0 * X[32] * W[237]
+            + 9.0 * X[36] * W[190] + 10.0 * X[40] * W[143] + 11.0 * X[44] * W[96] + 12.0 * X[48] * W[49]
+            + 13.0 * X[52] * W[2])) / 13.0;
+    W[617] = (X[5] * W[571] + 2.0 * X[9] * W[524] + 3.0 * X[13] * W[477] + 4.0 * X[17] * W[430]
+            + 5.0 * X[21] * W[383] + 6.0 * X[25] * W[336] + 7.0 * X[29] * W[289] + 8.0 * X[33] * W[242]
+            + 9.0 * X[37] * W[195] + 10.0 * X[41] * W[148] + 11.0 * X[45] * W[101] + 12.0 * X[49] * W[54]
+            + 13.0 * X[53] * W[7]) / 13.0;
+    W[618] = -((X[5] * W[570] + 2.0 * X[9] * W[523] + 3.0 * X[13] * W[476] + 4.0 * X[17] * W[429]
+            + 5.0 * X[21] * W[382] + 6.0 * X[25] * W[335] + 7.0 * X[29] * W[288] + 8.0 * X[33] * W[241]
+            + 9.0 * X[37] * W[194] + 10.0 * X[41] * W[147] + 11.0 * X[45] * W[100] + 12.0 * X[49] * W[53]
+            + 13.0 * X[53] * W[6])) / 13.0;
+    W[621] = (X[2] * X[54] + X[6] * X[50] + X[10] * X[46] + X[14] * X[42] + X[18] * X[38] + X[22] * X[34]
+            + X[26] * X[30]) * 2.0;
+    W[624] = (X[3] * X[55] + X[7] * X[51] + X[11] * X[47] + X[15] * X[43] + X[19] * X[39] + X[23] * X[35]
+            + X[27] * X[31]) * 2.0;
+    W[630] = W[18] * W[617];
+    W[632] = W[20] * W[613];
+    W[622] = W[2] * W[621] + W[49] * W[574] + W[96] * W[527] + W[143] * W[480] + W[190] * W[433]
+            + W[237] * W[386] + W[284] * W[339] + W[331] * W[292] + W[378] * W[245] + W[425] * W[198]
+            + W[472] * W[151] + W[519] * W[104] + W[566] * W[57] + W[613] * W[10];
+    W[623] = W[3] * W[621] + W[50] * W[574] + W[97] * W[527] + W[144] * W[480] + W[191] * W[433]
+            + W[238] * W[386] + W[285] * W[339] + W[332] * W[292] + W[379] * W[245] + W[426] * W[198]
+            + W[473] * W[151] + W[520] * W[104] + W[567] * W[57] + W[614] * W[10];
+    W[625] = W[6] * W[624] + W[53] * W[577] + W[100] * W[530] + W[147] * W[483] + W[194] * W[436]
+            + W[241] * W[389] + W[288] * W[342] + W[335] * W[295] + W[382] * W[248] + W[429] * W[201]
+            + W[476] * W[154] + W[523] * W[107] + W[570] * W[60] + W[617] * W[13];
+    W[626] = W[7] * W[624] + W[54] * W[577] + W[101] * W[530] + W[148] * W[483] + W[195] * W[436]
+            + W[242] * W[389] + W[289] * W[342] + W[336] * W[295] + W[383] * W[248] + W[430] * W[201]
+            + W[477] * W[154] + W[524] * W[107] + W[571] * W[60] + W[618] * W[13];
+    W[634] = W[2] * W[617] + W[49] * W[570] + W[96] * W[523] + W[143] * W[476] + W[190] * W[429]
+            + W[237] * W[382] + W[284] * W[335] + W[331] * W[288] + W[378] * W[241] + W[425] * W[194]
+            + W[472] * W[147] + W[519] * W[100] + W[566] * W[53] + W[613] * W[6];
+    W[635] = W[3] * W[618] + W[50] * W[571] + W[97] * W[524] + W[144] * W[477] + W[191] * W[430]
+            + W[238] * W[383] + W[285] * W[336] + W[332] * W[289] + W[379] * W[242] + W[426] * W[195]
+            + W[473] * W[148] + W[520] * W[101] + W[567] * W[54] + W[614] * W[7];
+    W[636] = W[634] + W[635];
+    W[640] = W[0] * W[622];
+    W[641] = W[0] * W[623];
+    W[642] = W[4] * W[625];
+    W[644] = W[4] * W[626];
+    W[638] = W[26] * W[636];
+    return 0;
+}
+
+/* Lines 20 .. 38 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+double_pendulum_taylor_run_31(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[690] = W[687] + W[689];
+    W[692] = W[688] + W[691];
+    W[693] = W[2] * W[692] + W[49] * W[645] + W[96] * W[598] + W[143] * W[551] + W[190] * W[504]
+            + W[237] * W[457] + W[284] * W[410] + W[331] * W[363] + W[378] * W[316] + W[425] * W[269]
+            + W[472] * W[222] + W[519] * W[175] + W[566] * W[128] + W[613] * W[81] + W[660] * W[34];
+    W[694] = W[3] * W[690] + W[50] * W[643] + W[97] * W[596] + W[144] * W[549] + W[191] * W[502]
+            + W[238] * W[455] + W[285] * W[408] + W[332] * W[361] + W[379] * W[314] + W[426] * W[267]
+            + W[473] * W[220] + W[520] * W[173] + W[567] * W[126] + W[614] * W[79] + W[661] * W[32];
+    W[698] = W[6] * W[692] + W[53] * W[645] + W[100] * W[598] + W[147] * W[551] + W[194] * W[504]
+            + W[241] * W[457] + W[288] * W[410] + W[335] * W[363] + W[382] * W[316] + W[429] * W[269]
+            + W[476] * W[222] + W[523] * W[175] + W[570] * W[128] + W[617] * W[81] + W[664] * W[34];
+    W[699] = W[7] * W[690] + W[54] * W[643] + W[101] * W[596] + W[148] * W[549] + W[195] * W[502]
+            + W[242] * W[455] + W[289] * W[408] + W[336] * W[361] + W[383] * W[314] + W[430] * W[267]
+            + W[477] * W[220] + W[524] * W[173] + W[571] * W[126] + W[618] * W[79] + W[665] * W[32];
+    W[695] = W[693] - W[694];
+    W[700] = W[698] - W[699];
+    W[696] = W[17] * W[695];
+    W[701] = W[16] * W[700];
+    W[697] = W[679] + W[696];
+    W[702] = W[677] + W[701];
+    X[60] = X[58] / 15.0;
+    X[61] = X[59] / 15.0;
+    W[703] = W[74] * W[657] + W[121] * W[610] + W[168] * W[563] + W[215] * W[516] + W[262] * W[469]
+            + W[309] * W[422] + W[356] * W[375] + W[403] * W[328] + W[450] * W[281] + W[497] * W[234]
+            + W[544] * W[187] + W[591] * W[140] + W[638] * W[93] + W[685] * W[46] + W[697];
+    W[704] = W[74] * W[656] + W[121] * W[609] + W[168] * W[562] + W[215] * W[515] + W[262] * W[468]
+            + W[309] * W[421] + W[356] * W[374] + W[403] * W[327] + W[450] * W[280] + W[497] * W[233]
+            + W[544] * W[186] + W[591] * W[139] + W[638] * W[92] + W[685] * W[45] + W[702];
+    if (solve(ctx, 14, NULL, W + 703))
+        return -1;
+    X[62] = W[703] / 15.0;
+    X[63] = W[704] / 15.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+double_pendulum_taylor_run_32(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[707] = (X[4] * W[661] + 2.0 * X[8] * W[614] + 3.0 * X[12] * W[567] + 4.0 * X[16] * W[520]
+            + 5.0 * X[20] * W[473] + 6.0 * X[24] * W[426] + 7.0 * X[28] * W[379] + 8.0 * X[32] * W[332]
+            + 9.0 * X[36] * W[285] + 10.0 * X[40] * W[238] + 11.0 * X[44] * W[191] + 12.0 * X[48] * W[144]
+            + 13.0 * X[52] * W[97] + 14.0 * X[56] * W[50] + 15.0 * X[60] * W[3]) / 15.0;
+    W[708] = -((X[4] * W[660] + 2.0 * X[8] * W[613] + 3.0 * X[12] * W[566] + 4.0 * X[16] * W[519]
+            + 5.0 * X[20] * W[472] + 6.0 * X[24] * W[425] + 7.0 * X[28] * W[378] + 8.0 * X[32] * W[331]
+            + 9.0 * X[36] * W[284] + 10.0 * X[40] * W[237] + 11.0 * X[44] * W[190] + 12.0 * X[48] * W[143]
+            + 13.0 * X[52] * W[96] + 14.0 * X[56] * W[49] + 15.0 * X[60] * W[2])) / 15.0;
+    W[711] = (X[5] * W[665] + 2.0 * X[9] * W[618] + 3.0 * X[13] * W[571] + 4.0 * X[17] * W[524]
+            + 5.0 * X[21] * W[477] + 6.0 * X[25] * W[430] + 7.0 * X[29] * W[383] + 8.0 * X[33] * W[336]
+            + 9.0 * X[37] * W[289] + 10.0 * X[41] * W[242] + 11.0 * X[45] * W[195] + 12.0 * X[49] * W[148]
+            + 13.0 * X[53] * W[101] + 14.0 * X[57] * W[54] + 15.0 * X[61] * W[7]) / 15.0;
+    W[712] = -((X[5] * W[664] + 2.0 * X[9] * W[617] + 3.0 * X[13] * W[570] + 4.0 * X[17] * W[523]
+            + 5.0 * X[21] * W[476] + 6.0 * X[25] * W[429] + 7.0 * X[29] * W[382] + 8.0 * X[33] * W[335]
+            + 9.0 * X[37] * W[288] + 10.0 * X[41] * W[241] + 11.0 * X[45] * W[194] + 12.0 * X[49] * W[147]
+            + 13.0 * X[53] * W[100] + 14.0 * X[57] * W[53] + 15.0 * X[61] * W[6])) / 15.0;
+    W[715] = (X[2] * X[62] + X[6] * X[58] + X[10] * X[54] + X[14] * X[50] + X[18] * X[46] + X[22] * X[42]
+            + X[26] * X[38] + X[30] * X[34]) * 2.0;
+    W[718] = (X[3] * X[63] + X[7] * X[59] + X[11] * X[55] + X[15] * X[51] + X[19] * X[47] + X[23] * X[43]
+            + X[27] * X[39] + X[31] * X[35]) * 2.0;
+    W[724] = W[18] * W[711];
+    W[726] = W[20] * W[707];
+    W[716] = W[2] * W[715] + W[49] * W[668] + W[96] * W[621] + W[143] * W[574] + W[190] * W[527]
+            + W[237] * W[480] + W[284] * W[433] + W[331] * W[386] + W[378] * W[339] + W[425] * W[292]
+            + W[472] * W[245] + W[519] * W[198] + W[566] * W[151] + W[613] * W[104] + W[660] * W[57]
+            + W[707] * W[10];
+    W[717] = W[3] * W[715] + W[50] * W[668] + W[97] * W[621] + W[144] * W[574] + W[191] * W[527]
+            + W[238] * W[480] + W[285] * W[433] + W[332] * W[386] + W[379] * W[339] + W[426] * W[292]
+            + W[473] * W[245] + W[520] * W[198] + W[567] * W[151] + W[614] * W[104] + W[661] * W[57]
+            + W[708] * W[10];
+    W[719] = W[6] * W[718] + W[53] * W[671] + W[100] * W[624] + W[147] * W[577] + W[194] * W[530]
+            + W[241] * W[483] + W[288] * W[436] + W[335] * W[389] + W[382] * W[342] + W[429] * W[295]
+            + W[476] * W[248] + W[523] * W[201] + W[570] * W[154] + W[617] * W[107] + W[664] * W[60]
+            + W[711] * W[13];
+    W[720] = W[7] * W[718] + W[54] * W[671] + W[101] * W[624] + W[148] * W[577] + W[195] * W[530]
+            + W[242] * W[483] + W[289] * W[436] + W[336] * W[389] + W[383] * W[342] + W[430] * W[295]
+            + W[477] * W[248] + W[524] * W[201] + W[571] * W[154] + W[618] * W[107] + W[665] * W[60]
+            + W[712] * W[13];
+    W[728] = W[2] * W[711] + W[49] * W[664] + W[96] * W[617] + W[143] * W[570] + W[190] * W[523]
+            + W[237] * W[476] + W[284] * W[429] + W[331] * W[382] + W[378] * W[335] + W[425] * W[288]
+            + W[472] * W[241] + W[519] * W[194] + W[566] * W[147] + W[613] * W[100] + W[660] * W[53]
+            + W[707] * W[6];
+    W[729] = W[3] * W[712] + W[50] * W[665] + W[97] * W[618] + W[144] * W[571] + W[191] * W[524]
+            + W[238] * W[477] + W[285] * W[430] + W[332] * W[383] + W[379] * W[336] + W[426] * W[289]
+            + W[473] * W[242] + W[520] * W[195] + W[567] * W[148] + W[614] * W[101] + W[661] * W[54]
+            + W[708] * W[7];
+    W[730] = W[728] + W[729];
+    W[734] = W[0] * W[716];
+    W[735] = W[0] * W[717];
+    W[736] = W[4] * W[719];
+    W[738] = W[4] * W[720];
+    W[732] = W[26] * W[730];
+    return 0;
+}
+
+/* Lines 20 .. 38 of taylor_run's order 16, in the fourth unit. */
+EOMC_PART int
+double_pendulum_taylor_run_35(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[784] = W[781] + W[783];
+    W[786] = W[782] + W[785];
+    W[787] = W[2] * W[786] + W[49] * W[739] + W[96] * W[692] + W[143] * W[645] + W[190] * W[598]
+            + W[237] * W[551] + W[284] * W[504] + W[331] * W[457] + W[378] * W[410] + W[425] * W[363]
+            + W[472] * W[316] + W[519] * W[269] + W[566] * W[222] + W[613] * W[175] + W[660] * W[128]
+            + W[707] * W[81] + W[754] * W[34];
+    W[788] = W[3] * W[784] + W[50] * W[737] + W[97] * W[690] + W[144] * W[643] + W[191] * W[596]
+            + W[238] * W[549] + W[285] * W[502] + W[332] * W[455] + W[379] * W[408] + W[426] * W[361]
+            + W[473] * W[314] + W[520] * W[267] + W[567] * W[220] + W[614] * W[173] + W[661] * W[126]
+            + W[708] * W[79] + W[755] * W[32];
+    W[792] = W[6] * W[786] + W[53] * W[739] + W[100] * W[692] + W[147] * W[645] + W[194] * W[598]
+            + W[241] * W[551] + W[288] * W[504] + W[335] * W[457] + W[382] * W[410] + W[429] * W[363]
+            + W[476] * W[316] + W[523] * W[269] + W[570] * W[222] + W[617] * W[175] + W[664] * W[128]
+            + W[711] * W[81] + W[758] * W[34];
+    W[793] = W[7] * W[784] + W[54] * W[737] + W[101] * W[690] + W[148] * W[643] + W[195] * W[596]
+            + W[242] * W[549] + W[289] * W[502] + W[336] * W[455] + W[383] * W[408] + W[430] * W[361]
+            + W[477] * W[314] + W[524] * W[267] + W[571] * W[220] + W[618] * W[173] + W[665] * W[126]
+            + W[712] * W[79] + W[759] * W[32];
+    W[789] = W[787] - W[788];
+    W[794] = W[792] - W[793];
+    W[790] = W[17] * W[789];
+    W[795] = W[16] * W[794];
+    W[791] = W[773] + W[790];
+    W[796] = W[771] + W[795];
+    X[68] = X[66] / 17.0;
+    X[69] = X[67] / 17.0;
+    W[797] = W[74] * W[751] + W[121] * W[704] + W[168] * W[657] + W[215] * W[610] + W[262] * W[563]
+            + W[309] * W[516] + W[356] * W[469] + W[403] * W[422] + W[450] * W[375] + W[497] * W[328]
+            + W[544] * W[281] + W[591] * W[234] + W[638] * W[187] + W[685] * W[140] + W[732] * W[93]
+            + W[779] * W[46] + W[791];
+    W[798] = W[74] * W[750] + W[121] * W[703] + W[168] * W[656] + W[215] * W[609] + W[262] * W[562]
+            + W[309] * W[515] + W[356] * W[468] + W[403] * W[421] + W[450] * W[374] + W[497] * W[327]
+            + W[544] * W[280] + W[591] * W[233] + W[638] * W[186] + W[685] * W[139] + W[732] * W[92]
+            + W[779] * W[45] + W[796];
+    if (solve(ctx, 16, NULL, W + 797))
+        return -1;
+    X[70] = W[797] / 17.0;
+    X[71] = W[798] / 17.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+double_pendulum_taylor_run_36(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[801] = (X[4] * W[755] + 2.0 * X[8] * W[708] + 3.0 * X[12] * W[661] + 4.0 * X[16] * W[614]
+            + 5.0 * X[20] * W[567] + 6.0 * X[24] * W[520] + 7.0 * X[28] * W[473] + 8.0 * X[32] * W[426]
+            + 9.0 * X[36] * W[379] + 10.0 * X[40] * W[332] + 11.0 * X[44] * W[285] + 12.0 * X[48] * W[238]
+            + 13.0 * X[52] * W[191] + 14.0 * X[56] * W[144] + 15.0 * X[60] * W[97] + 16.0 * X[64] * W[50]
+            + 17.0 * X[68] * W[3]) / 17.0;
+    W[802] = -((X[4] * W[754] + 2.0 * X[8] * W[707] + 3.0 * X[12] * W[660] + 4.0 * X[16] * W[613]
+            + 5.0 * X[20] * W[566] + 6.0 * X[24] * W[519] + 7.0 * X[28] * W[472] + 8.0 * X[32] * W[425]
+            + 9.0 * X[36] * W[378] + 10.0 * X[40] * W[331] + 11.0 * X[44] * W[284] + 12.0 * X[48] * W[237]
+            + 13.0 * X[52] * W[190] + 14.0 * X[56] * W[143] + 15.0 * X[60] * W[96] + 16.0 * X[64] * W[49]
+            + 17.0 * X[68] * W[2])) / 17.0;
+    W[805] = (X[5] * W[759] + 2.0 * X[9] * W[712] + 3.0 * X[13] * W[665] + 4.0 * X[17] * W[618]
+            + 5.0 * X[21] * W[571] + 6.0 * X[25] * W[524] + 7.0 * X[29] * W[477] + 8.0 * X[33] * W[430]
+            + 9.0 * X[37] * W[383] + 10.0 * X[41] * W[336] + 11.0 * X[45] * W[289] + 12.0 * X[49] * W[242]
+            + 13.0 * X[53] * W[195] + 14.0 * X[57] * W[148] + 15.0 * X[61] * W[101] + 16.0 * X[65] * W[54]
+            + 17.0 * X[69] * W[7]) / 17.0;
+    W[806] = -((X[5] * W[758] + 2.0 * X[9] * W[711] + 3.0 * X[13] * W[664] + 4.0 * X[17] * W[617]
+            + 5.0 * X[21] * W[570] + 6.0 * X[25] * W[523] + 7.0 * X[29] * W[476] + 8.0 * X[33] * W[429]
+            + 9.0 * X[37] * W[382] + 10.0 * X[41] * W[335] + 11.0 * X[45] * W[288] + 12.0 * X[49] * W[241]
+            + 13.0 * X[53] * W[194] + 14.0 * X[57] * W[147] + 15.0 * X[61] * W[100] + 16.0 * X[65] * W[53]
+            + 17.0 * X[69] * W[6])) / 17.0;
+    W[809] = (X[2] * X[70] + X[6] * X[66] + X[10] * X[62] + X[14] * X[58] + X[18] * X[54] + X[22] * X[50]
+            + X[26] * X[46] + X[30] * X[42] + X[34] * X[38]) * 2.0;
+    W[812] = (X[3] * X[71] + X[7] * X[67] + X[11] * X[63] + X[15] * X[59] + X[19] * X[55] + X[23] * X[51]
+            + X[27] * X[47] + X[31] * X[43] + X[35] * X[39]) * 2.0;
+    W[818] = W[18] * W[805];
+    W[820] = W[20] * W[801];
+    W[810] = W[2] * W[809] + W[49] * W[762] + W[96] * W[715] + W[143] * W[668] + W[190] * W[621]
+            + W[237] * W[574] + W[284] * W[527] + W[331] * W[480] + W[378] * W[433] + W[425] * W[386]
+            + W[472] * W[339] + W[519] * W[292] + W[566] * W[245] + W[613] * W[198] + W[660] * W[151]
+            + W[707] * W[104] + W[754] * W[57] + W[801] * W[10];
+    W[811] = W[3] * W[809] + W[50] * W[762] + W[97] * W[715] + W[144] * W[668] + W[191] * W[621]
+            + W[238] * W[574] + W[285] * W[527] + W[332] * W[480] + W[379] * W[433] + W[426] * W[386]
+            + W[473] * W[339] + W[520] * W[292] + W[567] * W[245] + W[614] * W[198] + W[661] * W[151]
+            + W[708] * W[104] + W[755] * W[57] + W[802] * W[10];
+    W[813] = W[6] * W[812] + W[53] * W[765] + W[100] * W[718] + W[147] * W[671] + W[194] * W[624]
+            + W[241] * W[577] + W[288] * W[530] + W[335] * W[483] + W[382] * W[436] + W[429] * W[389]
+            + W[476] * W[342] + W[523] * W[295] + W[570] * W[248] + W[617] * W[201] + W[664] * W[154]
+            + W[711] * W[107] + W[758] * W[60] + W[805] * W[13];
+    W[814] = W[7] * W[812] + W[54] * W[765] + W[101] * W[718] + W[148] * W[671] + W[195] * W[624]
+            + W[242] * W[577] + W[289] * W[530] + W[336] * W[483] + W[383] * W[436] + W[430] * W[389]
+            + W[477] * W[342] + W[524] * W[295] + W[571] * W[248] + W[618] * W[201] + W[665] * W[154]
+            + W[712] * W[107] + W[759] * W[60] + W[806] * W[13];
+    W[822] = W[2] * W[805] + W[49] * W[758] + W[96] * W[711] + W[143] * W[664] + W[190] * W[617]
+            + W[237] * W[570] + W[284] * W[523] + W[331] * W[476] + W[378] * W[429] + W[425] * W[382]
+            + W[472] * W[335] + W[519] * W[288] + W[566] * W[241] + W[613] * W[194] + W[660] * W[147]
+            + W[707] * W[100] + W[754] * W[53] + W[801] * W[6];
+    W[823] = W[3] * W[806] + W[50] * W[759] + W[97] * W[712] + W[144] * W[665] + W[191] * W[618]
+            + W[238] * W[571] + W[285] * W[524] + W[332] * W[477] + W[379] * W[430] + W[426] * W[383]
+            + W[473] * W[336] + W[520] * W[289] + W[567] * W[242] + W[614] * W[195] + W[661] * W[148]
+            + W[708] * W[101] + W[755] * W[54] + W[802] * W[7];
+    W[824] = W[822] + W[823];
+    W[828] = W[0] * W[810];
+    W[829] = W[0] * W[811];
+    W[830] = W[4] * W[813];
+    W[832] = W[4] * W[814];
+    W[826] = W[26] * W[824];
+    return 0;
+}
+
+/* Lines 20 .. 38 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+double_pendulum_taylor_run_39(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[878] = W[875] + W[877];
+    W[880] = W[876] + W[879];
+    W[881] = W[2] * W[880] + W[49] * W[833] + W[96] * W[786] + W[143] * W[739] + W[190] * W[692]
+            + W[237] * W[645] + W[284] * W[598] + W[331] * W[551] + W[378] * W[504] + W[425] * W[457]
+            + W[472] * W[410] + W[519] * W[363] + W[566] * W[316] + W[613] * W[269] + W[660] * W[222]
+            + W[707] * W[175] + W[754] * W[128] + W[801] * W[81] + W[848] * W[34];
+    W[882] = W[3] * W[878] + W[50] * W[831] + W[97] * W[784] + W[144] * W[737] + W[191] * W[690]
+            + W[238] * W[643] + W[285] * W[596] + W[332] * W[549] + W[379] * W[502] + W[426] * W[455]
+            + W[473] * W[408] + W[520] * W[361] + W[567] * W[314] + W[614] * W[267] + W[661] * W[220]
+            + W[708] * W[173] + W[755] * W[126] + W[802] * W[79] + W[849] * W[32];
+    W[886] = W[6] * W[880] + W[53] * W[833] + W[100] * W[786] + W[147] * W[739] + W[194] * W[692]
+            + W[241] * W[645] + W[288] * W[598] + W[335] * W[551] + W[382] * W[504] + W[429] * W[457]
+            + W[476] * W[410] + W[523] * W[363] + W[570] * W[316] + W[617] * W[269] + W[664] * W[222]
+            + W[711] * W[175] + W[758] * W[128] + W[805] * W[81] + W[852] * W[34];
+    W[887] = W[7] * W[878] + W[54] * W[831] + W[101] * W[784] + W[148] * W[737] + W[195] * W[690]
+            + W[242] * W[643] + W[289] * W[596] + W[336] * W[549] + W[383] * W[502] + W[430] * W[455]
+            + W[477] * W[408] + W[524] * W[361] + W[571] * W[314] + W[618] * W[267] + W[665] * W[220]
+            + W[712] * W[173] + W[759] * W[126] + W[806] * W[79] + W[853] * W[32];
+    W[883] = W[881] - W[882];
+    W[888] = W[886] - W[887];
+    W[884] = W[17] * W[883];
+    W[889] = W[16] * W[888];
+    W[885] = W[867] + W[884];
+    W[890] = W[865] + W[889];
+    X[76] = X[74] / 19.0;
+    X[77] = X[75] / 19.0;
+    W[891] = W[74] * W[845] + W[121] * W[798] + W[168] * W[751] + W[215] * W[704] + W[262] * W[657]
+            + W[309] * W[610] + W[356] * W[563] + W[403] * W[516] + W[450] * W[469] + W[497] * W[422]
+            + W[544] * W[375] + W[591] * W[328] + W[638] * W[281] + W[685] * W[234] + W[732] * W[187]
+            + W[779] * W[140] + W[826] * W[93] + W[873] * W[46] + W[885];
+    W[892] = W[74] * W[844] + W[121] * W[797] + W[168] * W[750] + W[215] * W[703] + W[262] * W[656]
+            + W[309] * W[609] + W[356] * W[562] + W[403] * W[515] + W[450] * W[468] + W[497] * W[421]
+            + W[544] * W[374] + W[591] * W[327] + W[638] * W[280] + W[685] * W[233] + W[732] * W[186]
+            + W[779] * W[139] + W[826] * W[92] + W[873] * W[45] + W[890];
+    if (solve(ctx, 18, NULL, W + 891))
+        return -1;
+    X[78] = W[891] / 19.0;
+    X[79] = W[892] / 19.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 19, in the fourth unit. */
+EOMC_PART int
+double_pendulum_taylor_run_40(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[895] = (X[4] * W[849] + 2.0 * X[8] * W[802] + 3.0 * X[12] * W[755] + 4.0 * X[16] * W[708]
+            + 5.0 * X[20] * W[661] + 6.0 * X[24] * W[614] + 7.0 * X[28] * W[567] + 8.0 * X[32] * W[520]
+            + 9.0 * X[36] * W[473] + 10.0 * X[40] * W[426] + 11.0 * X[44] * W[379] + 12.0 * X[48] * W[332]
+            + 13.0 * X[52] * W[285] + 14.0 * X[56] * W[238] + 15.0 * X[60] * W[191] + 16.0 * X[64] * W[144]
+            + 17.0 * X[68] * W[97] + 18.0 * X[72] * W[50] + 19.0 * X[76] * W[3]) / 19.0;
+    W[896] = -((X[4] * W[848] + 2.0 * X[8] * W[801] + 3.0 * X[12] * W[754] + 4.0 * X[16] * W[707]
+            + 5.0 * X[20] * W[660] + 6.0 * X[24] * W[613] + 7.0 * X[28] * W[566] + 8.0 * X[32] * W[519]
+            + 9.0 * X[36] * W[472] + 10.0 * X[40] * W[425] + 11.0 * X[44] * W[378] + 12.0 * X[48] * W[331]
+            + 13.0 * X[52] * W[284] + 14.0 * X[56] * W[237] + 15.0 * X[60] * W[190] + 16.0 * X[64] * W[143]
+            + 17.0 * X[68] * W[96] + 18.0 * X[72] * W[49] + 19.0 * X[76] * W[2])) / 19.0;
+    W[899] = (X[5] * W[853] + 2.0 * X[9] * W[806] + 3.0 * X[13] * W[759] + 4.0 * X[17] * W[712]
+            + 5.0 * X[21] * W[665] + 6.0 * X[25] * W[618] + 7.0 * X[29] * W[571] + 8.0 * X[33] * W[524]
+            + 9.0 * X[37] * W[477] + 10.0 * X[41] * W[430] + 11.0 * X[45] * W[383] + 12.0 * X[49] * W[336]
+            + 13.0 * X[53] * W[289] + 14.0 * X[57] * W[242] + 15.0 * X[61] * W[195] + 16.0 * X[65] * W[148]
+            + 17.0 * X[69] * W[101] + 18.0 * X[73] * W[54] + 19.0 * X[77] * W[7]) / 19.0;
+    W[900] = -((X[5] * W[852] + 2.0 * X[9] * W[805] + 3.0 * X[13] * W[758] + 4.0 * X[17] * W[711]
+            + 5.0 * X[21] * W[664] + 6.0 * X[25] * W[617] + 7.0 * X[29] * W[570] + 8.0 * X[33] * W[523]
+            + 9.0 * X[37] * W[476] + 10.0 * X[41] * W[429] + 11.0 * X[45] * W[382] + 12.0 * X[49] * W[335]
+            + 13.0 * X[53] * W[288] + 14.0 * X[57] * W[241] + 15.0 * X[61] * W[194] + 16.0 * X[65] * W[147]
+            + 17.0 * X[69] * W[100] + 18.0 * X[73] * W[53] + 19.0 * X[77] * W[6])) / 19.0;
+    W[903] = (X[2] * X[78] + X[6] * X[74] + X[10] * X[70] + X[14] * X[66] + X[18] * X[62] + X[22] * X[58]
+            + X[26] * X[54] + X[30] * X[50] + X[34] * X[46] + X[38] * X[42]) * 2.0;
+    W[906] = (X[3] * X[79] + X[7] * X[75] + X[11] * X[71] + X[15] * X[67] + X[19] * X[63] + X[23] * X[59]
+            + X[27] * X[55] + X[31] * X[51] + X[35] * X[47] + X[39] * X[43]) * 2.0;
+    W[912] = W[18] * W[899];
+    W[914] = W[20] * W[895];
+    W[904] = W[2] * W[903] + W[49] * W[856] + W[96] * W[809] + W[143] * W[762] + W[190] * W[715]
+            + W[237] * W[668] + W[284] * W[621] + W[331] * W[574] + W[378] * W[527] + W[425] * W[480]
+            + W[472] * W[433] + W[519] * W[386] + W[566] * W[339] + W[613] * W[292] + W[660] * W[245]
+            + W[707] * W[198] + W[754] * W[151] + W[801] * W[104] + W[848] * W[57] + W[895] * W[10];
+    W[905] = W[3] * W[903] + W[50] * W[856] + W[97] * W[809] + W[144] * W[762] + W[191] * W[715]
+            + W[238] * W[668] + W[285] * W[621] + W[332] * W[574] + W[379] * W[527] + W[426] * W[480]
+            + W[473] * W[433] + W[520] * W[386] + W[567] * W[339] + W[614] * W[292] + W[661] * W[245]
+            + W[708] * W[198] + W[755] * W[151] + W[802] * W[104] + W[849] * W[57] + W[896] * W[10];
+    W[907] = W[6] * W[906] + W[53] * W[859] + W[100] * W[812] + W[147] * W[765] + W[194] * W[718]
+            + W[241] * W[671] + W[288] * W[624] + W[335] * W[577] + W[382] * W[530] + W[429] * W[483]
+            + W[476] * W[436] + W[523] * W[389] + W[570] * W[342] + W[617] * W[295] + W[664] * W[248]
+            + W[711] * W[201] + W[758] * W[154] + W[805] * W[107] + W[852] * W[60] + W[899] * W[13];
+    W[908] = W[7] * W[906] + W[54] * W[859] + W[101] * W[812] + W[148] * W[765] + W[195] * W[718]
+            + W[242] * W[671] + W[289] * W[624] + W[336] * W[577] + W[383] * W[530] + W[430] * W[483]
+            + W[477] * W[436] + W[524] * W[389] + W[571] * W[342] + W[618] * W[295] + W[665] * W[248]
+            + W[712] * W[201] + W[759] * W[154] + W[806] * W[107] + W[853] * W[60] + W[900] * W[13];
+    W[916] = W[2] * W[899] + W[49] * W[852] + W[96] * W[805] + W[143] * W[758] + W[190] * W[711]
+            + W[237] * W[664] + W[284] * W[617] + W[331] * W[570] + W[378] * W[523] + W[425] * W[476]
+            + W[472] * W[429] + W[519] * W[382] + W[566] * W[335] + W[613] * W[288] + W[660] * W[241]
+            + W[707] * W[194] + W[754] * W[147] + W[801] * W[100] + W[848] * W[53] + W[895] * W[6];
+    W[917] = W[3] * W[900] + W[50] * W[853] + W[97] * W[806] + W[144] * W[759] + W[191] * W[712]
+            + W[238] * W[665] + W[285] * W[618] + W[332] * W[571] + W[379] * W[524] + W[426] * W[477]
+            + W[473] * W[430] + W[520] * W[383] + W[567] * W[336] + W[614] * W[289] + W[661] * W[242]
+            + W[708] * W[195] + W[755] * W[148] + W[802] * W[101] + W[849] * W[54] + W[896] * W[7];
+    W[918] = W[916] + W[917];
+    W[922] = W[0] * W[904];
+    W[923] = W[0] * W[905];
+    W[924] = W[4] * W[907];
+    W[926] = W[4] * W[908];
+    W[920] = W[26] * W[918];
+    return 0;
+}
+
+#endif /* EOMC_EXTENDED */
+
+#endif /* EOMC_UNIT 4 */

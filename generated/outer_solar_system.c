@@ -1605,6 +1605,204 @@ outer_solar_system_place_velocity(eomc_real t, const eomc_real *q,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define outer_solar_system_jacobian_part2 outer_solar_system_jacobian_part2_ext
+#define outer_solar_system_taylor_run_1 outer_solar_system_taylor_run_1_ext
+#define outer_solar_system_taylor_run_2 outer_solar_system_taylor_run_2_ext
+#define outer_solar_system_taylor_run_3 outer_solar_system_taylor_run_3_ext
+#define outer_solar_system_taylor_run_4 outer_solar_system_taylor_run_4_ext
+#define outer_solar_system_taylor_run_5 outer_solar_system_taylor_run_5_ext
+#define outer_solar_system_taylor_run_6 outer_solar_system_taylor_run_6_ext
+#define outer_solar_system_taylor_run_7 outer_solar_system_taylor_run_7_ext
+#define outer_solar_system_taylor_run_8 outer_solar_system_taylor_run_8_ext
+#define outer_solar_system_taylor_run_9 outer_solar_system_taylor_run_9_ext
+#define outer_solar_system_taylor_run_10 outer_solar_system_taylor_run_10_ext
+#define outer_solar_system_taylor_run_11 outer_solar_system_taylor_run_11_ext
+#define outer_solar_system_taylor_run_12 outer_solar_system_taylor_run_12_ext
+#define outer_solar_system_taylor_run_13 outer_solar_system_taylor_run_13_ext
+#define outer_solar_system_taylor_run_14 outer_solar_system_taylor_run_14_ext
+#define outer_solar_system_taylor_run_15 outer_solar_system_taylor_run_15_ext
+#define outer_solar_system_taylor_run_16 outer_solar_system_taylor_run_16_ext
+#define outer_solar_system_taylor_run_17 outer_solar_system_taylor_run_17_ext
+#define outer_solar_system_taylor_run_18 outer_solar_system_taylor_run_18_ext
+#define outer_solar_system_taylor_run_19 outer_solar_system_taylor_run_19_ext
+#define outer_solar_system_taylor_run_20 outer_solar_system_taylor_run_20_ext
+#define outer_solar_system_taylor_run_21 outer_solar_system_taylor_run_21_ext
+#define outer_solar_system_taylor_run_22 outer_solar_system_taylor_run_22_ext
+#define outer_solar_system_taylor_run_23 outer_solar_system_taylor_run_23_ext
+#define outer_solar_system_taylor_run_24 outer_solar_system_taylor_run_24_ext
+#define outer_solar_system_taylor_run_25 outer_solar_system_taylor_run_25_ext
+#define outer_solar_system_taylor_run_26 outer_solar_system_taylor_run_26_ext
+#define outer_solar_system_taylor_run_27 outer_solar_system_taylor_run_27_ext
+#define outer_solar_system_taylor_run_28 outer_solar_system_taylor_run_28_ext
+#define outer_solar_system_taylor_run_29 outer_solar_system_taylor_run_29_ext
+#define outer_solar_system_taylor_run_30 outer_solar_system_taylor_run_30_ext
+#define outer_solar_system_taylor_run_31 outer_solar_system_taylor_run_31_ext
+#define outer_solar_system_taylor_run_32 outer_solar_system_taylor_run_32_ext
+#define outer_solar_system_taylor_run_33 outer_solar_system_taylor_run_33_ext
+#define outer_solar_system_taylor_run_34 outer_solar_system_taylor_run_34_ext
+#define outer_solar_system_taylor_run_35 outer_solar_system_taylor_run_35_ext
+#define outer_solar_system_taylor_run_36 outer_solar_system_taylor_run_36_ext
+#define outer_solar_system_taylor_run_37 outer_solar_system_taylor_run_37_ext
+#define outer_solar_system_taylor_run_39 outer_solar_system_taylor_run_39_ext
+#define outer_solar_system_taylor_run_41 outer_solar_system_taylor_run_41_ext
+#define outer_solar_system_taylor_run_43 outer_solar_system_taylor_run_43_ext
+#define outer_solar_system_taylor_run_45 outer_solar_system_taylor_run_45_ext
+#define outer_solar_system_taylor_run_47 outer_solar_system_taylor_run_47_ext
+#define outer_solar_system_taylor_run_50 outer_solar_system_taylor_run_50_ext
+#define outer_solar_system_taylor_run_52 outer_solar_system_taylor_run_52_ext
+#define outer_solar_system_taylor_run_54 outer_solar_system_taylor_run_54_ext
+#define outer_solar_system_taylor_run_56 outer_solar_system_taylor_run_56_ext
+#define outer_solar_system_taylor_run_57 outer_solar_system_taylor_run_57_ext
+#define outer_solar_system_taylor_run_59 outer_solar_system_taylor_run_59_ext
+#define outer_solar_system_taylor_run_61 outer_solar_system_taylor_run_61_ext
+#define outer_solar_system_taylor_run_63 outer_solar_system_taylor_run_63_ext
+#define outer_solar_system_taylor_run_65 outer_solar_system_taylor_run_65_ext
+#define outer_solar_system_taylor_run_68 outer_solar_system_taylor_run_68_ext
+#define outer_solar_system_taylor_run_70 outer_solar_system_taylor_run_70_ext
+#define outer_solar_system_taylor_run_72 outer_solar_system_taylor_run_72_ext
+#define outer_solar_system_taylor_run_74 outer_solar_system_taylor_run_74_ext
+#define outer_solar_system_taylor_run_76 outer_solar_system_taylor_run_76_ext
+#define outer_solar_system_taylor_run_78 outer_solar_system_taylor_run_78_ext
+#define outer_solar_system_taylor_run_80 outer_solar_system_taylor_run_80_ext
+#define outer_solar_system_taylor_run_82 outer_solar_system_taylor_run_82_ext
+#define outer_solar_system_taylor_run_84 outer_solar_system_taylor_run_84_ext
+#define outer_solar_system_taylor_run_85 outer_solar_system_taylor_run_85_ext
+#define outer_solar_system_taylor_run_86 outer_solar_system_taylor_run_86_ext
+#define outer_solar_system_taylor_run_88 outer_solar_system_taylor_run_88_ext
+#define outer_solar_system_taylor_run_90 outer_solar_system_taylor_run_90_ext
+#define outer_solar_system_taylor_run_92 outer_solar_system_taylor_run_92_ext
+#define outer_solar_system_taylor_run_94 outer_solar_system_taylor_run_94_ext
+#define outer_solar_system_taylor_run_96 outer_solar_system_taylor_run_96_ext
+#define outer_solar_system_taylor_run_98 outer_solar_system_taylor_run_98_ext
+#define outer_solar_system_taylor_run_100 outer_solar_system_taylor_run_100_ext
+#define outer_solar_system_taylor_run_102 outer_solar_system_taylor_run_102_ext
+#define outer_solar_system_taylor_run_103 outer_solar_system_taylor_run_103_ext
+#define outer_solar_system_taylor_run_104 outer_solar_system_taylor_run_104_ext
+#define outer_solar_system_taylor_run_106 outer_solar_system_taylor_run_106_ext
+#define outer_solar_system_taylor_run_108 outer_solar_system_taylor_run_108_ext
+#define outer_solar_system_taylor_run_109 outer_solar_system_taylor_run_109_ext
+#define outer_solar_system_taylor_run_112 outer_solar_system_taylor_run_112_ext
+#define outer_solar_system_taylor_run_114 outer_solar_system_taylor_run_114_ext
+#define outer_solar_system_taylor_run_116 outer_solar_system_taylor_run_116_ext
+#define outer_solar_system_taylor_run_118 outer_solar_system_taylor_run_118_ext
+#define outer_solar_system_taylor_run_120 outer_solar_system_taylor_run_120_ext
+#define outer_solar_system_taylor_run_121 outer_solar_system_taylor_run_121_ext
+#define outer_solar_system_taylor_run_122 outer_solar_system_taylor_run_122_ext
+#define outer_solar_system_taylor_run_124 outer_solar_system_taylor_run_124_ext
+#define outer_solar_system_taylor_run_126 outer_solar_system_taylor_run_126_ext
+#define outer_solar_system_taylor_run_127 outer_solar_system_taylor_run_127_ext
+#define outer_solar_system_taylor_run_130 outer_solar_system_taylor_run_130_ext
+#define outer_solar_system_taylor_run_132 outer_solar_system_taylor_run_132_ext
+#define outer_solar_system_taylor_run_134 outer_solar_system_taylor_run_134_ext
+#define outer_solar_system_taylor_run_135 outer_solar_system_taylor_run_135_ext
+#define outer_solar_system_taylor_run_137 outer_solar_system_taylor_run_137_ext
+#define outer_solar_system_taylor_run_142 outer_solar_system_taylor_run_142_ext
+#define outer_solar_system_taylor_run_144 outer_solar_system_taylor_run_144_ext
+#define outer_solar_system_taylor_run_146 outer_solar_system_taylor_run_146_ext
+#define outer_solar_system_taylor_run_147 outer_solar_system_taylor_run_147_ext
+#define outer_solar_system_taylor_run_149 outer_solar_system_taylor_run_149_ext
+#define outer_solar_system_taylor_run_151 outer_solar_system_taylor_run_151_ext
+#define outer_solar_system_taylor_run_153 outer_solar_system_taylor_run_153_ext
+#define outer_solar_system_taylor_run_155 outer_solar_system_taylor_run_155_ext
+#define outer_solar_system_taylor_run_160 outer_solar_system_taylor_run_160_ext
+#define outer_solar_system_taylor_run_162 outer_solar_system_taylor_run_162_ext
+#define outer_solar_system_taylor_run_164 outer_solar_system_taylor_run_164_ext
+#define outer_solar_system_taylor_run_166 outer_solar_system_taylor_run_166_ext
+#define outer_solar_system_taylor_run_168 outer_solar_system_taylor_run_168_ext
+#define outer_solar_system_taylor_run_170 outer_solar_system_taylor_run_170_ext
+#define outer_solar_system_taylor_run_171 outer_solar_system_taylor_run_171_ext
+#define outer_solar_system_taylor_run_173 outer_solar_system_taylor_run_173_ext
+#define outer_solar_system_taylor_run_179 outer_solar_system_taylor_run_179_ext
+#define outer_solar_system_taylor_run_181 outer_solar_system_taylor_run_181_ext
+#define outer_solar_system_taylor_run_183 outer_solar_system_taylor_run_183_ext
+#define outer_solar_system_taylor_run_185 outer_solar_system_taylor_run_185_ext
+#define outer_solar_system_taylor_run_187 outer_solar_system_taylor_run_187_ext
+#define outer_solar_system_taylor_run_189 outer_solar_system_taylor_run_189_ext
+#define outer_solar_system_taylor_run_191 outer_solar_system_taylor_run_191_ext
+#define outer_solar_system_taylor_run_197 outer_solar_system_taylor_run_197_ext
+#define outer_solar_system_taylor_run_199 outer_solar_system_taylor_run_199_ext
+#define outer_solar_system_taylor_run_202 outer_solar_system_taylor_run_202_ext
+#define outer_solar_system_taylor_run_204 outer_solar_system_taylor_run_204_ext
+#define outer_solar_system_taylor_run_206 outer_solar_system_taylor_run_206_ext
+#define outer_solar_system_taylor_run_207 outer_solar_system_taylor_run_207_ext
+#define outer_solar_system_taylor_run_209 outer_solar_system_taylor_run_209_ext
+#define outer_solar_system_taylor_run_215 outer_solar_system_taylor_run_215_ext
+#define outer_solar_system_taylor_run_217 outer_solar_system_taylor_run_217_ext
+#define outer_solar_system_taylor_run_220 outer_solar_system_taylor_run_220_ext
+#define outer_solar_system_taylor_run_222 outer_solar_system_taylor_run_222_ext
+#define outer_solar_system_taylor_run_224 outer_solar_system_taylor_run_224_ext
+#define outer_solar_system_taylor_run_225 outer_solar_system_taylor_run_225_ext
+#define outer_solar_system_taylor_run_227 outer_solar_system_taylor_run_227_ext
+#define outer_solar_system_taylor_run_233 outer_solar_system_taylor_run_233_ext
+#define outer_solar_system_taylor_run_236 outer_solar_system_taylor_run_236_ext
+#define outer_solar_system_taylor_run_237 outer_solar_system_taylor_run_237_ext
+#define outer_solar_system_taylor_run_239 outer_solar_system_taylor_run_239_ext
+#define outer_solar_system_taylor_run_241 outer_solar_system_taylor_run_241_ext
+#define outer_solar_system_taylor_run_244 outer_solar_system_taylor_run_244_ext
+#define outer_solar_system_taylor_run_246 outer_solar_system_taylor_run_246_ext
+#define outer_solar_system_taylor_run_247 outer_solar_system_taylor_run_247_ext
+#define outer_solar_system_taylor_run_248 outer_solar_system_taylor_run_248_ext
+#define outer_solar_system_taylor_run_249 outer_solar_system_taylor_run_249_ext
+#define outer_solar_system_taylor_run_250 outer_solar_system_taylor_run_250_ext
+#define outer_solar_system_taylor_run_251 outer_solar_system_taylor_run_251_ext
+#define outer_solar_system_taylor_run_254 outer_solar_system_taylor_run_254_ext
+#define outer_solar_system_taylor_run_255 outer_solar_system_taylor_run_255_ext
+#define outer_solar_system_taylor_run_257 outer_solar_system_taylor_run_257_ext
+#define outer_solar_system_taylor_run_259 outer_solar_system_taylor_run_259_ext
+#define outer_solar_system_taylor_run_262 outer_solar_system_taylor_run_262_ext
+#define outer_solar_system_taylor_run_264 outer_solar_system_taylor_run_264_ext
+#define outer_solar_system_taylor_run_265 outer_solar_system_taylor_run_265_ext
+#define outer_solar_system_taylor_run_266 outer_solar_system_taylor_run_266_ext
+#define outer_solar_system_taylor_run_267 outer_solar_system_taylor_run_267_ext
+#define outer_solar_system_taylor_run_268 outer_solar_system_taylor_run_268_ext
+#define outer_solar_system_taylor_run_269 outer_solar_system_taylor_run_269_ext
+#define outer_solar_system_taylor_run_271 outer_solar_system_taylor_run_271_ext
+#define outer_solar_system_taylor_run_274 outer_solar_system_taylor_run_274_ext
+#define outer_solar_system_taylor_run_276 outer_solar_system_taylor_run_276_ext
+#define outer_solar_system_taylor_run_278 outer_solar_system_taylor_run_278_ext
+#define outer_solar_system_taylor_run_279 outer_solar_system_taylor_run_279_ext
+#define outer_solar_system_taylor_run_281 outer_solar_system_taylor_run_281_ext
+#define outer_solar_system_taylor_run_288 outer_solar_system_taylor_run_288_ext
+#define outer_solar_system_taylor_run_290 outer_solar_system_taylor_run_290_ext
+#define outer_solar_system_taylor_run_292 outer_solar_system_taylor_run_292_ext
+#define outer_solar_system_taylor_run_294 outer_solar_system_taylor_run_294_ext
+#define outer_solar_system_taylor_run_296 outer_solar_system_taylor_run_296_ext
+#define outer_solar_system_taylor_run_297 outer_solar_system_taylor_run_297_ext
+#define outer_solar_system_taylor_run_299 outer_solar_system_taylor_run_299_ext
+#define outer_solar_system_taylor_run_307 outer_solar_system_taylor_run_307_ext
+#define outer_solar_system_taylor_run_309 outer_solar_system_taylor_run_309_ext
+#define outer_solar_system_taylor_run_311 outer_solar_system_taylor_run_311_ext
+#define outer_solar_system_taylor_run_313 outer_solar_system_taylor_run_313_ext
+#define outer_solar_system_taylor_run_316 outer_solar_system_taylor_run_316_ext
+#define outer_solar_system_taylor_run_318 outer_solar_system_taylor_run_318_ext
+#define outer_solar_system_taylor_run_319 outer_solar_system_taylor_run_319_ext
+#define outer_solar_system_taylor_run_320 outer_solar_system_taylor_run_320_ext
+#define outer_solar_system_taylor_run_321 outer_solar_system_taylor_run_321_ext
+#define outer_solar_system_taylor_run_322 outer_solar_system_taylor_run_322_ext
+#define outer_solar_system_taylor_run_323 outer_solar_system_taylor_run_323_ext
+#define outer_solar_system_taylor_run_324 outer_solar_system_taylor_run_324_ext
+#define outer_solar_system_taylor_run_326 outer_solar_system_taylor_run_326_ext
+#define outer_solar_system_taylor_run_327 outer_solar_system_taylor_run_327_ext
+#define outer_solar_system_taylor_run_329 outer_solar_system_taylor_run_329_ext
+#define outer_solar_system_taylor_run_331 outer_solar_system_taylor_run_331_ext
+#define outer_solar_system_taylor_run_334 outer_solar_system_taylor_run_334_ext
+#define outer_solar_system_taylor_run_336 outer_solar_system_taylor_run_336_ext
+#define outer_solar_system_taylor_run_337 outer_solar_system_taylor_run_337_ext
+#define outer_solar_system_taylor_run_338 outer_solar_system_taylor_run_338_ext
+#define outer_solar_system_taylor_run_339 outer_solar_system_taylor_run_339_ext
+#define outer_solar_system_taylor_run_340 outer_solar_system_taylor_run_340_ext
+#define outer_solar_system_taylor_run_341 outer_solar_system_taylor_run_341_ext
+#define outer_solar_system_taylor_run_342 outer_solar_system_taylor_run_342_ext
+#define outer_solar_system_taylor_run_343 outer_solar_system_taylor_run_343_ext
+#define outer_solar_system_taylor_run_346 outer_solar_system_taylor_run_346_ext
+#define outer_solar_system_taylor_run_348 outer_solar_system_taylor_run_348_ext
+#define outer_solar_system_taylor_run_350 outer_solar_system_taylor_run_350_ext
+#define outer_solar_system_taylor_run_351 outer_solar_system_taylor_run_351_ext
+#define outer_solar_system_taylor_run_353 outer_solar_system_taylor_run_353_ext
+#define outer_solar_system_taylor_run_362 outer_solar_system_taylor_run_362_ext
+#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED
@@ -3532,159 +3730,11 @@ outer_solar_system_jacobian_part1(eomc_real t, const eomc_real *q,
     s[1] = w1499;
 }
 
-/* jacobian: part 2 of 2 */
-static EOMC_NOINLINE void
+EOMC_PART void
 outer_solar_system_jacobian_part2(eomc_real t, const eomc_real *q,
     const eomc_real *v, const eomc_real *a, const eomc_real *p,
     const eomc_real *u, eomc_real *dEdq, eomc_real *dEdv, eomc_real *dEdu,
-    eomc_real *dEdt, eomc_real *s)
-{
-    (void)s; (void)t; (void)q; (void)v; (void)a; (void)p; (void)u; (void)dEdq; (void)dEdv; (void)dEdu; (void)dEdt;
-    const eomc_real w1500 = s[0] + s[1];
-    const eomc_real w1501 = s[2] * w1500;
-    dEdq[286] = w1501;
-    const eomc_real w1502 = s[3] + s[4];
-    const eomc_real w1503 = s[5] + w1502;
-    const eomc_real w1504 = s[6] + w1503;
-    const eomc_real w1505 = s[7] + w1504;
-    const eomc_real w1506 = s[2] * w1505;
-    dEdq[287] = w1506;
-    const eomc_real w1507 = s[2] * s[8];
-    const eomc_real w1508 = -w1507;
-    dEdq[288] = w1508;
-    const eomc_real w1509 = s[2] * s[9];
-    const eomc_real w1510 = s[10] - w1509;
-    dEdq[289] = w1510;
-    const eomc_real w1511 = s[2] * s[11];
-    const eomc_real w1512 = -w1511;
-    dEdq[290] = w1512;
-    const eomc_real w1513 = s[2] * s[12];
-    const eomc_real w1514 = -w1513;
-    dEdq[291] = w1514;
-    const eomc_real w1515 = s[2] * s[13];
-    const eomc_real w1516 = s[14] - w1515;
-    dEdq[292] = w1516;
-    const eomc_real w1517 = s[2] * s[15];
-    const eomc_real w1518 = -w1517;
-    dEdq[293] = w1518;
-    const eomc_real w1519 = s[2] * s[16];
-    const eomc_real w1520 = -w1519;
-    dEdq[294] = w1520;
-    const eomc_real w1521 = s[2] * s[17];
-    const eomc_real w1522 = s[18] - w1521;
-    dEdq[295] = w1522;
-    const eomc_real w1523 = s[2] * s[19];
-    const eomc_real w1524 = -w1523;
-    dEdq[296] = w1524;
-    const eomc_real w1525 = s[2] * s[20];
-    const eomc_real w1526 = -w1525;
-    dEdq[297] = w1526;
-    const eomc_real w1527 = s[2] * s[21];
-    const eomc_real w1528 = s[22] - w1527;
-    dEdq[298] = w1528;
-    const eomc_real w1529 = s[2] * s[23];
-    const eomc_real w1530 = -w1529;
-    dEdq[299] = w1530;
-    const eomc_real w1531 = s[2] * s[24];
-    const eomc_real w1532 = -w1531;
-    dEdq[300] = w1532;
-    const eomc_real w1533 = s[2] * s[25];
-    const eomc_real w1534 = s[26] - w1533;
-    dEdq[301] = w1534;
-    const eomc_real w1535 = s[2] * s[27];
-    const eomc_real w1536 = -w1535;
-    dEdq[302] = w1536;
-    const eomc_real w1537 = s[20] + s[24];
-    const eomc_real w1538 = s[16] + w1537;
-    const eomc_real w1539 = s[12] + w1538;
-    const eomc_real w1540 = s[8] + w1539;
-    const eomc_real w1541 = s[2] * w1540;
-    dEdq[303] = w1541;
-    const eomc_real w1542 = w1533 - s[26];
-    const eomc_real w1543 = w1527 - s[22];
-    const eomc_real w1544 = w1542 + w1543;
-    const eomc_real w1545 = w1521 - s[18];
-    const eomc_real w1546 = w1544 + w1545;
-    const eomc_real w1547 = w1515 - s[14];
-    const eomc_real w1548 = w1546 + w1547;
-    const eomc_real w1549 = w1509 - s[10];
-    const eomc_real w1550 = w1548 + w1549;
-    dEdq[304] = w1550;
-    const eomc_real w1551 = s[23] + s[27];
-    const eomc_real w1552 = s[19] + w1551;
-    const eomc_real w1553 = s[15] + w1552;
-    const eomc_real w1554 = s[11] + w1553;
-    const eomc_real w1555 = s[2] * w1554;
-    dEdq[305] = w1555;
-    const eomc_real w1556 = s[2] * s[28];
-    const eomc_real w1557 = -w1556;
-    dEdq[306] = w1557;
-    const eomc_real w1558 = s[2] * s[29];
-    const eomc_real w1559 = -w1558;
-    dEdq[307] = w1559;
-    const eomc_real w1560 = s[2] * s[30];
-    const eomc_real w1561 = s[10] - w1560;
-    dEdq[308] = w1561;
-    const eomc_real w1562 = s[2] * s[31];
-    const eomc_real w1563 = -w1562;
-    dEdq[309] = w1563;
-    const eomc_real w1564 = s[2] * s[32];
-    const eomc_real w1565 = -w1564;
-    dEdq[310] = w1565;
-    const eomc_real w1566 = s[2] * s[33];
-    const eomc_real w1567 = s[14] - w1566;
-    dEdq[311] = w1567;
-    const eomc_real w1568 = s[2] * s[34];
-    const eomc_real w1569 = -w1568;
-    dEdq[312] = w1569;
-    const eomc_real w1570 = s[2] * s[35];
-    const eomc_real w1571 = -w1570;
-    dEdq[313] = w1571;
-    const eomc_real w1572 = s[2] * s[36];
-    const eomc_real w1573 = s[18] - w1572;
-    dEdq[314] = w1573;
-    const eomc_real w1574 = s[2] * s[37];
-    const eomc_real w1575 = -w1574;
-    dEdq[315] = w1575;
-    const eomc_real w1576 = s[2] * s[38];
-    const eomc_real w1577 = -w1576;
-    dEdq[316] = w1577;
-    const eomc_real w1578 = s[2] * s[39];
-    const eomc_real w1579 = s[22] - w1578;
-    dEdq[317] = w1579;
-    const eomc_real w1580 = s[2] * s[40];
-    const eomc_real w1581 = -w1580;
-    dEdq[318] = w1581;
-    const eomc_real w1582 = s[2] * s[41];
-    const eomc_real w1583 = -w1582;
-    dEdq[319] = w1583;
-    const eomc_real w1584 = s[2] * s[42];
-    const eomc_real w1585 = s[26] - w1584;
-    dEdq[320] = w1585;
-    const eomc_real w1586 = s[37] + s[40];
-    const eomc_real w1587 = s[34] + w1586;
-    const eomc_real w1588 = s[31] + w1587;
-    const eomc_real w1589 = s[28] + w1588;
-    const eomc_real w1590 = s[2] * w1589;
-    dEdq[321] = w1590;
-    const eomc_real w1591 = s[38] + s[41];
-    const eomc_real w1592 = s[35] + w1591;
-    const eomc_real w1593 = s[32] + w1592;
-    const eomc_real w1594 = s[29] + w1593;
-    const eomc_real w1595 = s[2] * w1594;
-    dEdq[322] = w1595;
-    const eomc_real w1596 = w1584 - s[26];
-    const eomc_real w1597 = w1578 - s[22];
-    const eomc_real w1598 = w1596 + w1597;
-    const eomc_real w1599 = w1572 - s[18];
-    const eomc_real w1600 = w1598 + w1599;
-    const eomc_real w1601 = w1566 - s[14];
-    const eomc_real w1602 = w1600 + w1601;
-    const eomc_real w1603 = w1560 - s[10];
-    const eomc_real w1604 = w1602 + w1603;
-    dEdq[323] = w1604;
-}
-
+    eomc_real *dEdt, eomc_real *s);
 /* Partial derivatives of the residual E(t, q, q', q'') with u held fixed. */
 static void
 outer_solar_system_jacobian(eomc_real t, const eomc_real *q, const eomc_real *v,
@@ -4029,812 +4079,13 @@ outer_solar_system_taylor(int k, int K, eomc_real t0, const eomc_real *p,
  * q''s, M being constant and diagonal, from -(h_j / M_jj) / (k + 1).
  * Written out to order 20, each recurrence's sum with its indices fixed
  * (the same arithmetic in the same order); above that, the loop. */
-/* Its terms are too many for the C compiler's optimizer, whose time grows
- * faster than they do; each is one statement on values in memory either
- * way (lowered.h, LOW_SERIES_OPTIMIZED_TERMS). */
-#if defined(__clang__)
-#define EOMC_UNOPTIMIZED __attribute__((optnone, noinline))
-#elif defined(__GNUC__)
-#define EOMC_UNOPTIMIZED __attribute__((optimize("O0"), noinline))
-#else
-#define EOMC_UNOPTIMIZED
-#endif
-static EOMC_UNOPTIMIZED int
-outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *T, eomc_real *X, eomc_tay_solve solve,
-    void *ctx)
+/* Lines 340 .. 350 of taylor_run's order 1. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_38(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    const int S = K + 1;
-    (void)solve, (void)ctx;
-    if (K > 20) {
-        static const int state[36] = {0, 4, 9, 1, 5, 10, 14, 17, 21, 25, 28, 32, 36, 39, 43, 47,
-            50, 54, 375, 376, 377, 378, 379, 380, 381, 382, 383, 384, 385, 386, 387, 388,
-            389, 390, 391, 392};
-        for (int i = 0; i < 36; i++)
-            T[state[i] * S] = X[i];
-        for (int k = 0; k < K; k++) {
-            outer_solar_system_taylor(k, K, t0, p, u, T);
-            eomc_tay_integ(T, T + 375 * S, k);
-            eomc_tay_integ(T + 4 * S, T + 376 * S, k);
-            eomc_tay_integ(T + 9 * S, T + 377 * S, k);
-            eomc_tay_integ(T + 1 * S, T + 378 * S, k);
-            eomc_tay_integ(T + 5 * S, T + 379 * S, k);
-            eomc_tay_integ(T + 10 * S, T + 380 * S, k);
-            eomc_tay_integ(T + 14 * S, T + 381 * S, k);
-            eomc_tay_integ(T + 17 * S, T + 382 * S, k);
-            eomc_tay_integ(T + 21 * S, T + 383 * S, k);
-            eomc_tay_integ(T + 25 * S, T + 384 * S, k);
-            eomc_tay_integ(T + 28 * S, T + 385 * S, k);
-            eomc_tay_integ(T + 32 * S, T + 386 * S, k);
-            eomc_tay_integ(T + 36 * S, T + 387 * S, k);
-            eomc_tay_integ(T + 39 * S, T + 388 * S, k);
-            eomc_tay_integ(T + 43 * S, T + 389 * S, k);
-            eomc_tay_integ(T + 47 * S, T + 390 * S, k);
-            eomc_tay_integ(T + 50 * S, T + 391 * S, k);
-            eomc_tay_integ(T + 54 * S, T + 392 * S, k);
-            eomc_tay_accel(T + 375 * S, T + 189 * S, T + 138 * S, k);
-            eomc_tay_accel(T + 376 * S, T + 204 * S, T + 138 * S, k);
-            eomc_tay_accel(T + 377 * S, T + 219 * S, T + 138 * S, k);
-            eomc_tay_accel(T + 378 * S, T + 240 * S, T + 140 * S, k);
-            eomc_tay_accel(T + 379 * S, T + 253 * S, T + 140 * S, k);
-            eomc_tay_accel(T + 380 * S, T + 266 * S, T + 140 * S, k);
-            eomc_tay_accel(T + 381 * S, T + 283 * S, T + 141 * S, k);
-            eomc_tay_accel(T + 382 * S, T + 294 * S, T + 141 * S, k);
-            eomc_tay_accel(T + 383 * S, T + 305 * S, T + 141 * S, k);
-            eomc_tay_accel(T + 384 * S, T + 318 * S, T + 142 * S, k);
-            eomc_tay_accel(T + 385 * S, T + 327 * S, T + 142 * S, k);
-            eomc_tay_accel(T + 386 * S, T + 336 * S, T + 142 * S, k);
-            eomc_tay_accel(T + 387 * S, T + 345 * S, T + 143 * S, k);
-            eomc_tay_accel(T + 388 * S, T + 352 * S, T + 143 * S, k);
-            eomc_tay_accel(T + 389 * S, T + 359 * S, T + 143 * S, k);
-            eomc_tay_accel(T + 390 * S, T + 364 * S, T + 144 * S, k);
-            eomc_tay_accel(T + 391 * S, T + 369 * S, T + 144 * S, k);
-            eomc_tay_accel(T + 392 * S, T + 374 * S, T + 144 * S, k);
-        }
-        for (int j = 1; j <= K; j++)
-            for (int i = 0; i < 36; i++)
-                X[j * 36 + i] = T[state[i] * S + j];
-        return 0;
-    }
-    eomc_real W[8253]; /* slot s's coefficient j at W[j * 393 + s], but the
-                   * state's: X[j * 36 + i], q's then v's */
-    /* order 0 */
-    W[2] = X[0] - X[3];
-    W[6] = X[1] - X[4];
-    W[11] = X[2] - X[5];
-    W[15] = X[0] - X[6];
-    W[18] = X[1] - X[7];
-    W[22] = X[2] - X[8];
-    W[26] = X[0] - X[9];
-    W[29] = X[1] - X[10];
-    W[33] = X[2] - X[11];
-    W[37] = X[0] - X[12];
-    W[40] = X[1] - X[13];
-    W[44] = X[2] - X[14];
-    W[48] = X[0] - X[15];
-    W[51] = X[1] - X[16];
-    W[55] = X[2] - X[17];
-    W[58] = X[3] - X[6];
-    W[60] = X[4] - X[7];
-    W[63] = X[5] - X[8];
-    W[66] = X[3] - X[9];
-    W[68] = X[4] - X[10];
-    W[71] = X[5] - X[11];
-    W[74] = X[3] - X[12];
-    W[76] = X[4] - X[13];
-    W[79] = X[5] - X[14];
-    W[82] = X[3] - X[15];
-    W[84] = X[4] - X[16];
-    W[87] = X[5] - X[17];
-    W[90] = X[6] - X[9];
-    W[92] = X[7] - X[10];
-    W[95] = X[8] - X[11];
-    W[98] = X[6] - X[12];
-    W[100] = X[7] - X[13];
-    W[103] = X[8] - X[14];
-    W[106] = X[6] - X[15];
-    W[108] = X[7] - X[16];
-    W[111] = X[8] - X[17];
-    W[114] = X[9] - X[12];
-    W[116] = X[10] - X[13];
-    W[119] = X[11] - X[14];
-    W[122] = X[9] - X[15];
-    W[124] = X[10] - X[16];
-    W[127] = X[11] - X[17];
-    W[130] = X[12] - X[15];
-    W[132] = X[13] - X[16];
-    W[135] = X[14] - X[17];
-    W[138] = p[1];
-    W[139] = p[0];
-    W[140] = p[2];
-    W[141] = p[3];
-    W[142] = p[4];
-    W[143] = p[5];
-    W[144] = p[6];
-    W[145] = p[7];
-    W[146] = p[8];
-    W[147] = p[9];
-    W[148] = p[10];
-    W[149] = p[11];
-    W[150] = p[12];
-    W[151] = p[13];
-    W[152] = p[14];
-    W[153] = p[15];
-    W[154] = p[16];
-    W[155] = p[17];
-    W[156] = p[18];
-    W[157] = p[19];
-    W[158] = p[20];
-    W[159] = p[21];
-    W[160] = 0.5;
-    W[161] = p[28];
-    W[162] = -2.0;
-    W[165] = -1.5;
-    W[3] = W[2] * W[2];
-    W[7] = W[6] * W[6];
-    W[12] = W[11] * W[11];
-    W[16] = W[15] * W[15];
-    W[19] = W[18] * W[18];
-    W[23] = W[22] * W[22];
-    W[27] = W[26] * W[26];
-    W[30] = W[29] * W[29];
-    W[34] = W[33] * W[33];
-    W[38] = W[37] * W[37];
-    W[41] = W[40] * W[40];
-    W[45] = W[44] * W[44];
-    W[49] = W[48] * W[48];
-    W[52] = W[51] * W[51];
-    W[56] = W[55] * W[55];
-    W[59] = W[58] * W[58];
-    W[61] = W[60] * W[60];
-    W[64] = W[63] * W[63];
-    W[67] = W[66] * W[66];
-    W[69] = W[68] * W[68];
-    W[72] = W[71] * W[71];
-    W[75] = W[74] * W[74];
-    W[77] = W[76] * W[76];
-    W[80] = W[79] * W[79];
-    W[83] = W[82] * W[82];
-    W[85] = W[84] * W[84];
-    W[88] = W[87] * W[87];
-    W[91] = W[90] * W[90];
-    W[93] = W[92] * W[92];
-    W[96] = W[95] * W[95];
-    W[99] = W[98] * W[98];
-    W[101] = W[100] * W[100];
-    W[104] = W[103] * W[103];
-    W[107] = W[106] * W[106];
-    W[109] = W[108] * W[108];
-    W[112] = W[111] * W[111];
-    W[115] = W[114] * W[114];
-    W[117] = W[116] * W[116];
-    W[120] = W[119] * W[119];
-    W[123] = W[122] * W[122];
-    W[125] = W[124] * W[124];
-    W[128] = W[127] * W[127];
-    W[131] = W[130] * W[130];
-    W[133] = W[132] * W[132];
-    W[136] = W[135] * W[135];
-    W[163] = W[162] * W[139];
-    W[164] = W[160] * W[149];
-    W[169] = W[160] * W[148];
-    W[174] = W[160] * W[147];
-    W[179] = W[160] * W[146];
-    W[184] = W[160] * W[145];
-    W[220] = W[160] * W[153];
-    W[224] = W[160] * W[152];
-    W[229] = W[160] * W[151];
-    W[234] = W[160] * W[150];
-    W[267] = W[160] * W[156];
-    W[271] = W[160] * W[155];
-    W[276] = W[160] * W[154];
-    W[306] = W[160] * W[158];
-    W[310] = W[160] * W[157];
-    W[337] = W[160] * W[159];
-    W[8] = W[3] + W[7];
-    W[20] = W[16] + W[19];
-    W[31] = W[27] + W[30];
-    W[42] = W[38] + W[41];
-    W[53] = W[49] + W[52];
-    W[62] = W[59] + W[61];
-    W[70] = W[67] + W[69];
-    W[78] = W[75] + W[77];
-    W[86] = W[83] + W[85];
-    W[94] = W[91] + W[93];
-    W[102] = W[99] + W[101];
-    W[110] = W[107] + W[109];
-    W[118] = W[115] + W[117];
-    W[126] = W[123] + W[125];
-    W[134] = W[131] + W[133];
-    W[13] = W[8] + W[12];
-    W[24] = W[20] + W[23];
-    W[35] = W[31] + W[34];
-    W[46] = W[42] + W[45];
-    W[57] = W[53] + W[56];
-    W[65] = W[62] + W[64];
-    W[73] = W[70] + W[72];
-    W[81] = W[78] + W[80];
-    W[89] = W[86] + W[88];
-    W[97] = W[94] + W[96];
-    W[105] = W[102] + W[104];
-    W[113] = W[110] + W[112];
-    W[121] = W[118] + W[120];
-    W[129] = W[126] + W[128];
-    W[137] = W[134] + W[136];
-    W[166] = pow(W[57], W[165]);
-    W[170] = pow(W[46], W[165]);
-    W[175] = pow(W[35], W[165]);
-    W[180] = pow(W[24], W[165]);
-    W[185] = pow(W[13], W[165]);
-    W[221] = pow(W[89], W[165]);
-    W[225] = pow(W[81], W[165]);
-    W[230] = pow(W[73], W[165]);
-    W[235] = pow(W[65], W[165]);
-    W[268] = pow(W[113], W[165]);
-    W[272] = pow(W[105], W[165]);
-    W[277] = pow(W[97], W[165]);
-    W[307] = pow(W[129], W[165]);
-    W[311] = pow(W[121], W[165]);
-    W[338] = pow(W[137], W[165]);
-    W[167] = W[48] * W[166];
-    W[171] = W[37] * W[170];
-    W[176] = W[26] * W[175];
-    W[181] = W[15] * W[180];
-    W[186] = W[2] * W[185];
-    W[190] = W[51] * W[166];
-    W[192] = W[40] * W[170];
-    W[195] = W[29] * W[175];
-    W[198] = W[18] * W[180];
-    W[201] = W[6] * W[185];
-    W[205] = W[55] * W[166];
-    W[207] = W[44] * W[170];
-    W[210] = W[33] * W[175];
-    W[213] = W[22] * W[180];
-    W[216] = W[11] * W[185];
-    W[222] = W[82] * W[221];
-    W[226] = W[74] * W[225];
-    W[231] = W[66] * W[230];
-    W[236] = W[58] * W[235];
-    W[241] = W[84] * W[221];
-    W[243] = W[76] * W[225];
-    W[246] = W[68] * W[230];
-    W[249] = W[60] * W[235];
-    W[254] = W[87] * W[221];
-    W[256] = W[79] * W[225];
-    W[259] = W[71] * W[230];
-    W[262] = W[63] * W[235];
-    W[269] = W[106] * W[268];
-    W[273] = W[98] * W[272];
-    W[278] = W[90] * W[277];
-    W[284] = W[108] * W[268];
-    W[286] = W[100] * W[272];
-    W[289] = W[92] * W[277];
-    W[295] = W[111] * W[268];
-    W[297] = W[103] * W[272];
-    W[300] = W[95] * W[277];
-    W[308] = W[122] * W[307];
-    W[312] = W[114] * W[311];
-    W[319] = W[124] * W[307];
-    W[321] = W[116] * W[311];
-    W[328] = W[127] * W[307];
-    W[330] = W[119] * W[311];
-    W[339] = W[130] * W[338];
-    W[346] = W[132] * W[338];
-    W[353] = W[135] * W[338];
-    W[168] = W[164] * W[167];
-    W[172] = W[169] * W[171];
-    W[177] = W[174] * W[176];
-    W[182] = W[179] * W[181];
-    W[187] = W[184] * W[186];
-    W[191] = W[164] * W[190];
-    W[193] = W[169] * W[192];
-    W[196] = W[174] * W[195];
-    W[199] = W[179] * W[198];
-    W[202] = W[184] * W[201];
-    W[206] = W[164] * W[205];
-    W[208] = W[169] * W[207];
-    W[211] = W[174] * W[210];
-    W[214] = W[179] * W[213];
-    W[217] = W[184] * W[216];
-    W[223] = W[220] * W[222];
-    W[227] = W[224] * W[226];
-    W[232] = W[229] * W[231];
-    W[237] = W[234] * W[236];
-    W[242] = W[220] * W[241];
-    W[244] = W[224] * W[243];
-    W[247] = W[229] * W[246];
-    W[250] = W[234] * W[249];
-    W[255] = W[220] * W[254];
-    W[257] = W[224] * W[256];
-    W[260] = W[229] * W[259];
-    W[263] = W[234] * W[262];
-    W[270] = W[267] * W[269];
-    W[274] = W[271] * W[273];
-    W[279] = W[276] * W[278];
-    W[285] = W[267] * W[284];
-    W[287] = W[271] * W[286];
-    W[290] = W[276] * W[289];
-    W[296] = W[267] * W[295];
-    W[298] = W[271] * W[297];
-    W[301] = W[276] * W[300];
-    W[309] = W[306] * W[308];
-    W[313] = W[310] * W[312];
-    W[320] = W[306] * W[319];
-    W[322] = W[310] * W[321];
-    W[329] = W[306] * W[328];
-    W[331] = W[310] * W[330];
-    W[340] = W[337] * W[339];
-    W[347] = W[337] * W[346];
-    W[354] = W[337] * W[353];
-    W[173] = W[168] + W[172];
-    W[194] = W[191] + W[193];
-    W[209] = W[206] + W[208];
-    W[228] = W[223] + W[227];
-    W[245] = W[242] + W[244];
-    W[258] = W[255] + W[257];
-    W[275] = W[270] + W[274];
-    W[288] = W[285] + W[287];
-    W[299] = W[296] + W[298];
-    W[314] = W[309] + W[313];
-    W[323] = W[320] + W[322];
-    W[332] = W[329] + W[331];
-    W[341] = W[340] - W[313];
-    W[348] = W[347] - W[322];
-    W[355] = W[354] - W[331];
-    W[360] = W[309] + W[340];
-    W[365] = W[320] + W[347];
-    W[370] = W[329] + W[354];
-    W[178] = W[173] + W[177];
-    W[197] = W[194] + W[196];
-    W[212] = W[209] + W[211];
-    W[233] = W[228] + W[232];
-    W[248] = W[245] + W[247];
-    W[261] = W[258] + W[260];
-    W[280] = W[275] + W[279];
-    W[291] = W[288] + W[290];
-    W[302] = W[299] + W[301];
-    W[315] = W[314] - W[279];
-    W[324] = W[323] - W[290];
-    W[333] = W[332] - W[301];
-    W[342] = W[341] - W[274];
-    W[349] = W[348] - W[287];
-    W[356] = W[355] - W[298];
-    W[361] = W[270] + W[360];
-    W[366] = W[285] + W[365];
-    W[371] = W[296] + W[370];
-    W[183] = W[178] + W[182];
-    W[200] = W[197] + W[199];
-    W[215] = W[212] + W[214];
-    W[238] = W[233] + W[237];
-    W[251] = W[248] + W[250];
-    W[264] = W[261] + W[263];
-    W[281] = W[280] - W[237];
-    W[292] = W[291] - W[250];
-    W[303] = W[302] - W[263];
-    W[316] = W[315] - W[232];
-    W[325] = W[324] - W[247];
-    W[334] = W[333] - W[260];
-    W[343] = W[342] - W[227];
-    W[350] = W[349] - W[244];
-    W[357] = W[356] - W[257];
-    W[362] = W[223] + W[361];
-    W[367] = W[242] + W[366];
-    W[372] = W[255] + W[371];
-    W[188] = W[183] + W[187];
-    W[203] = W[200] + W[202];
-    W[218] = W[215] + W[217];
-    W[239] = W[238] - W[187];
-    W[252] = W[251] - W[202];
-    W[265] = W[264] - W[217];
-    W[282] = W[281] - W[182];
-    W[293] = W[292] - W[199];
-    W[304] = W[303] - W[214];
-    W[317] = W[316] - W[177];
-    W[326] = W[325] - W[196];
-    W[335] = W[334] - W[211];
-    W[344] = W[343] - W[172];
-    W[351] = W[350] - W[193];
-    W[358] = W[357] - W[208];
-    W[363] = W[168] + W[362];
-    W[368] = W[191] + W[367];
-    W[373] = W[206] + W[372];
-    W[189] = W[161] * W[188];
-    W[204] = W[161] * W[203];
-    W[219] = W[161] * W[218];
-    W[240] = W[161] * W[239];
-    W[253] = W[161] * W[252];
-    W[266] = W[161] * W[265];
-    W[283] = W[161] * W[282];
-    W[294] = W[161] * W[293];
-    W[305] = W[161] * W[304];
-    W[318] = W[161] * W[317];
-    W[327] = W[161] * W[326];
-    W[336] = W[161] * W[335];
-    W[345] = W[161] * W[344];
-    W[352] = W[161] * W[351];
-    W[359] = W[161] * W[358];
-    W[364] = W[163] * W[363];
-    W[369] = W[163] * W[368];
-    W[374] = W[163] * W[373];
-    X[36] = X[18];
-    X[37] = X[19];
-    X[38] = X[20];
-    X[39] = X[21];
-    X[40] = X[22];
-    X[41] = X[23];
-    X[42] = X[24];
-    X[43] = X[25];
-    X[44] = X[26];
-    X[45] = X[27];
-    X[46] = X[28];
-    X[47] = X[29];
-    X[48] = X[30];
-    X[49] = X[31];
-    X[50] = X[32];
-    X[51] = X[33];
-    X[52] = X[34];
-    X[53] = X[35];
-    X[54] = -W[189] / W[138];
-    X[55] = -W[204] / W[138];
-    X[56] = -W[219] / W[138];
-    X[57] = -W[240] / W[140];
-    X[58] = -W[253] / W[140];
-    X[59] = -W[266] / W[140];
-    X[60] = -W[283] / W[141];
-    X[61] = -W[294] / W[141];
-    X[62] = -W[305] / W[141];
-    X[63] = -W[318] / W[142];
-    X[64] = -W[327] / W[142];
-    X[65] = -W[336] / W[142];
-    X[66] = -W[345] / W[143];
-    X[67] = -W[352] / W[143];
-    X[68] = -W[359] / W[143];
-    X[69] = -W[364] / W[144];
-    X[70] = -W[369] / W[144];
-    X[71] = -W[374] / W[144];
-    if (K == 1)
-        goto out;
-    /* order 1 */
-    W[395] = X[36] - X[39];
-    W[399] = X[37] - X[40];
-    W[404] = X[38] - X[41];
-    W[408] = X[36] - X[42];
-    W[411] = X[37] - X[43];
-    W[415] = X[38] - X[44];
-    W[419] = X[36] - X[45];
-    W[422] = X[37] - X[46];
-    W[426] = X[38] - X[47];
-    W[430] = X[36] - X[48];
-    W[433] = X[37] - X[49];
-    W[437] = X[38] - X[50];
-    W[441] = X[36] - X[51];
-    W[444] = X[37] - X[52];
-    W[448] = X[38] - X[53];
-    W[451] = X[39] - X[42];
-    W[453] = X[40] - X[43];
-    W[456] = X[41] - X[44];
-    W[459] = X[39] - X[45];
-    W[461] = X[40] - X[46];
-    W[464] = X[41] - X[47];
-    W[467] = X[39] - X[48];
-    W[469] = X[40] - X[49];
-    W[472] = X[41] - X[50];
-    W[475] = X[39] - X[51];
-    W[477] = X[40] - X[52];
-    W[480] = X[41] - X[53];
-    W[483] = X[42] - X[45];
-    W[485] = X[43] - X[46];
-    W[488] = X[44] - X[47];
-    W[491] = X[42] - X[48];
-    W[493] = X[43] - X[49];
-    W[496] = X[44] - X[50];
-    W[499] = X[42] - X[51];
-    W[501] = X[43] - X[52];
-    W[504] = X[44] - X[53];
-    W[507] = X[45] - X[48];
-    W[509] = X[46] - X[49];
-    W[512] = X[47] - X[50];
-    W[515] = X[45] - X[51];
-    W[517] = X[46] - X[52];
-    W[520] = X[47] - X[53];
-    W[523] = X[48] - X[51];
-    W[525] = X[49] - X[52];
-    W[528] = X[50] - X[53];
-    W[396] = W[2] * W[395] * 2.0;
-    W[400] = W[6] * W[399] * 2.0;
-    W[405] = W[11] * W[404] * 2.0;
-    W[409] = W[15] * W[408] * 2.0;
-    W[412] = W[18] * W[411] * 2.0;
-    W[416] = W[22] * W[415] * 2.0;
-    W[420] = W[26] * W[419] * 2.0;
-    W[423] = W[29] * W[422] * 2.0;
-    W[427] = W[33] * W[426] * 2.0;
-    W[431] = W[37] * W[430] * 2.0;
-    W[434] = W[40] * W[433] * 2.0;
-    W[438] = W[44] * W[437] * 2.0;
-    W[442] = W[48] * W[441] * 2.0;
-    W[445] = W[51] * W[444] * 2.0;
-    W[449] = W[55] * W[448] * 2.0;
-    W[452] = W[58] * W[451] * 2.0;
-    W[454] = W[60] * W[453] * 2.0;
-    W[457] = W[63] * W[456] * 2.0;
-    W[460] = W[66] * W[459] * 2.0;
-    W[462] = W[68] * W[461] * 2.0;
-    W[465] = W[71] * W[464] * 2.0;
-    W[468] = W[74] * W[467] * 2.0;
-    W[470] = W[76] * W[469] * 2.0;
-    W[473] = W[79] * W[472] * 2.0;
-    W[476] = W[82] * W[475] * 2.0;
-    W[478] = W[84] * W[477] * 2.0;
-    W[481] = W[87] * W[480] * 2.0;
-    W[484] = W[90] * W[483] * 2.0;
-    W[486] = W[92] * W[485] * 2.0;
-    W[489] = W[95] * W[488] * 2.0;
-    W[492] = W[98] * W[491] * 2.0;
-    W[494] = W[100] * W[493] * 2.0;
-    W[497] = W[103] * W[496] * 2.0;
-    W[500] = W[106] * W[499] * 2.0;
-    W[502] = W[108] * W[501] * 2.0;
-    W[505] = W[111] * W[504] * 2.0;
-    W[508] = W[114] * W[507] * 2.0;
-    W[510] = W[116] * W[509] * 2.0;
-    W[513] = W[119] * W[512] * 2.0;
-    W[516] = W[122] * W[515] * 2.0;
-    W[518] = W[124] * W[517] * 2.0;
-    W[521] = W[127] * W[520] * 2.0;
-    W[524] = W[130] * W[523] * 2.0;
-    W[526] = W[132] * W[525] * 2.0;
-    W[529] = W[135] * W[528] * 2.0;
-    W[401] = W[396] + W[400];
-    W[413] = W[409] + W[412];
-    W[424] = W[420] + W[423];
-    W[435] = W[431] + W[434];
-    W[446] = W[442] + W[445];
-    W[455] = W[452] + W[454];
-    W[463] = W[460] + W[462];
-    W[471] = W[468] + W[470];
-    W[479] = W[476] + W[478];
-    W[487] = W[484] + W[486];
-    W[495] = W[492] + W[494];
-    W[503] = W[500] + W[502];
-    W[511] = W[508] + W[510];
-    W[519] = W[516] + W[518];
-    W[527] = W[524] + W[526];
-    W[406] = W[401] + W[405];
-    W[417] = W[413] + W[416];
-    W[428] = W[424] + W[427];
-    W[439] = W[435] + W[438];
-    W[450] = W[446] + W[449];
-    W[458] = W[455] + W[457];
-    W[466] = W[463] + W[465];
-    W[474] = W[471] + W[473];
-    W[482] = W[479] + W[481];
-    W[490] = W[487] + W[489];
-    W[498] = W[495] + W[497];
-    W[506] = W[503] + W[505];
-    W[514] = W[511] + W[513];
-    W[522] = W[519] + W[521];
-    W[530] = W[527] + W[529];
-    W[559] = -1.5 * W[450] * W[166] / W[57];
-    W[563] = -1.5 * W[439] * W[170] / W[46];
-    W[568] = -1.5 * W[428] * W[175] / W[35];
-    W[573] = -1.5 * W[417] * W[180] / W[24];
-    W[578] = -1.5 * W[406] * W[185] / W[13];
-    W[614] = -1.5 * W[482] * W[221] / W[89];
-    W[618] = -1.5 * W[474] * W[225] / W[81];
-    W[623] = -1.5 * W[466] * W[230] / W[73];
-    W[628] = -1.5 * W[458] * W[235] / W[65];
-    W[661] = -1.5 * W[506] * W[268] / W[113];
-    W[665] = -1.5 * W[498] * W[272] / W[105];
-    W[670] = -1.5 * W[490] * W[277] / W[97];
-    W[700] = -1.5 * W[522] * W[307] / W[129];
-    W[704] = -1.5 * W[514] * W[311] / W[121];
-    W[731] = -1.5 * W[530] * W[338] / W[137];
-    W[560] = W[48] * W[559] + W[441] * W[166];
-    W[564] = W[37] * W[563] + W[430] * W[170];
-    W[569] = W[26] * W[568] + W[419] * W[175];
-    W[574] = W[15] * W[573] + W[408] * W[180];
-    W[579] = W[2] * W[578] + W[395] * W[185];
-    W[583] = W[51] * W[559] + W[444] * W[166];
-    W[585] = W[40] * W[563] + W[433] * W[170];
-    W[588] = W[29] * W[568] + W[422] * W[175];
-    W[591] = W[18] * W[573] + W[411] * W[180];
-    W[594] = W[6] * W[578] + W[399] * W[185];
-    W[598] = W[55] * W[559] + W[448] * W[166];
-    W[600] = W[44] * W[563] + W[437] * W[170];
-    W[603] = W[33] * W[568] + W[426] * W[175];
-    W[606] = W[22] * W[573] + W[415] * W[180];
-    W[609] = W[11] * W[578] + W[404] * W[185];
-    W[615] = W[82] * W[614] + W[475] * W[221];
-    W[619] = W[74] * W[618] + W[467] * W[225];
-    W[624] = W[66] * W[623] + W[459] * W[230];
-    W[629] = W[58] * W[628] + W[451] * W[235];
-    W[634] = W[84] * W[614] + W[477] * W[221];
-    W[636] = W[76] * W[618] + W[469] * W[225];
-    W[639] = W[68] * W[623] + W[461] * W[230];
-    W[642] = W[60] * W[628] + W[453] * W[235];
-    W[647] = W[87] * W[614] + W[480] * W[221];
-    W[649] = W[79] * W[618] + W[472] * W[225];
-    W[652] = W[71] * W[623] + W[464] * W[230];
-    W[655] = W[63] * W[628] + W[456] * W[235];
-    W[662] = W[106] * W[661] + W[499] * W[268];
-    W[666] = W[98] * W[665] + W[491] * W[272];
-    W[671] = W[90] * W[670] + W[483] * W[277];
-    W[677] = W[108] * W[661] + W[501] * W[268];
-    W[679] = W[100] * W[665] + W[493] * W[272];
-    W[682] = W[92] * W[670] + W[485] * W[277];
-    W[688] = W[111] * W[661] + W[504] * W[268];
-    W[690] = W[103] * W[665] + W[496] * W[272];
-    W[693] = W[95] * W[670] + W[488] * W[277];
-    W[701] = W[122] * W[700] + W[515] * W[307];
-    W[705] = W[114] * W[704] + W[507] * W[311];
-    W[712] = W[124] * W[700] + W[517] * W[307];
-    W[714] = W[116] * W[704] + W[509] * W[311];
-    W[721] = W[127] * W[700] + W[520] * W[307];
-    W[723] = W[119] * W[704] + W[512] * W[311];
-    W[732] = W[130] * W[731] + W[523] * W[338];
-    W[739] = W[132] * W[731] + W[525] * W[338];
-    W[746] = W[135] * W[731] + W[528] * W[338];
-    W[561] = W[164] * W[560];
-    W[565] = W[169] * W[564];
-    W[570] = W[174] * W[569];
-    W[575] = W[179] * W[574];
-    W[580] = W[184] * W[579];
-    W[584] = W[164] * W[583];
-    W[586] = W[169] * W[585];
-    W[589] = W[174] * W[588];
-    W[592] = W[179] * W[591];
-    W[595] = W[184] * W[594];
-    W[599] = W[164] * W[598];
-    W[601] = W[169] * W[600];
-    W[604] = W[174] * W[603];
-    W[607] = W[179] * W[606];
-    W[610] = W[184] * W[609];
-    W[616] = W[220] * W[615];
-    W[620] = W[224] * W[619];
-    W[625] = W[229] * W[624];
-    W[630] = W[234] * W[629];
-    W[635] = W[220] * W[634];
-    W[637] = W[224] * W[636];
-    W[640] = W[229] * W[639];
-    W[643] = W[234] * W[642];
-    W[648] = W[220] * W[647];
-    W[650] = W[224] * W[649];
-    W[653] = W[229] * W[652];
-    W[656] = W[234] * W[655];
-    W[663] = W[267] * W[662];
-    W[667] = W[271] * W[666];
-    W[672] = W[276] * W[671];
-    W[678] = W[267] * W[677];
-    W[680] = W[271] * W[679];
-    W[683] = W[276] * W[682];
-    W[689] = W[267] * W[688];
-    W[691] = W[271] * W[690];
-    W[694] = W[276] * W[693];
-    W[702] = W[306] * W[701];
-    W[706] = W[310] * W[705];
-    W[713] = W[306] * W[712];
-    W[715] = W[310] * W[714];
-    W[722] = W[306] * W[721];
-    W[724] = W[310] * W[723];
-    W[733] = W[337] * W[732];
-    W[740] = W[337] * W[739];
-    W[747] = W[337] * W[746];
-    W[566] = W[561] + W[565];
-    W[587] = W[584] + W[586];
-    W[602] = W[599] + W[601];
-    W[621] = W[616] + W[620];
-    W[638] = W[635] + W[637];
-    W[651] = W[648] + W[650];
-    W[668] = W[663] + W[667];
-    W[681] = W[678] + W[680];
-    W[692] = W[689] + W[691];
-    W[707] = W[702] + W[706];
-    W[716] = W[713] + W[715];
-    W[725] = W[722] + W[724];
-    W[734] = W[733] - W[706];
-    W[741] = W[740] - W[715];
-    W[748] = W[747] - W[724];
-    W[753] = W[702] + W[733];
-    W[758] = W[713] + W[740];
-    W[763] = W[722] + W[747];
-    W[571] = W[566] + W[570];
-    W[590] = W[587] + W[589];
-    W[605] = W[602] + W[604];
-    W[626] = W[621] + W[625];
-    W[641] = W[638] + W[640];
-    W[654] = W[651] + W[653];
-    W[673] = W[668] + W[672];
-    W[684] = W[681] + W[683];
-    W[695] = W[692] + W[694];
-    W[708] = W[707] - W[672];
-    W[717] = W[716] - W[683];
-    W[726] = W[725] - W[694];
-    W[735] = W[734] - W[667];
-    W[742] = W[741] - W[680];
-    W[749] = W[748] - W[691];
-    W[754] = W[663] + W[753];
-    W[759] = W[678] + W[758];
-    W[764] = W[689] + W[763];
-    W[576] = W[571] + W[575];
-    W[593] = W[590] + W[592];
-    W[608] = W[605] + W[607];
-    W[631] = W[626] + W[630];
-    W[644] = W[641] + W[643];
-    W[657] = W[654] + W[656];
-    W[674] = W[673] - W[630];
-    W[685] = W[684] - W[643];
-    W[696] = W[695] - W[656];
-    W[709] = W[708] - W[625];
-    W[718] = W[717] - W[640];
-    W[727] = W[726] - W[653];
-    W[736] = W[735] - W[620];
-    W[743] = W[742] - W[637];
-    W[750] = W[749] - W[650];
-    W[755] = W[616] + W[754];
-    W[760] = W[635] + W[759];
-    W[765] = W[648] + W[764];
-    W[581] = W[576] + W[580];
-    W[596] = W[593] + W[595];
-    W[611] = W[608] + W[610];
-    W[632] = W[631] - W[580];
-    W[645] = W[644] - W[595];
-    W[658] = W[657] - W[610];
-    W[675] = W[674] - W[575];
-    W[686] = W[685] - W[592];
-    W[697] = W[696] - W[607];
-    W[710] = W[709] - W[570];
-    W[719] = W[718] - W[589];
-    W[728] = W[727] - W[604];
-    W[737] = W[736] - W[565];
-    W[744] = W[743] - W[586];
-    W[751] = W[750] - W[601];
-    W[756] = W[561] + W[755];
-    W[761] = W[584] + W[760];
-    W[766] = W[599] + W[765];
-    W[582] = W[161] * W[581];
-    W[597] = W[161] * W[596];
-    W[612] = W[161] * W[611];
-    W[633] = W[161] * W[632];
-    W[646] = W[161] * W[645];
-    W[659] = W[161] * W[658];
-    W[676] = W[161] * W[675];
-    W[687] = W[161] * W[686];
-    W[698] = W[161] * W[697];
-    W[711] = W[161] * W[710];
-    W[720] = W[161] * W[719];
-    W[729] = W[161] * W[728];
-    W[738] = W[161] * W[737];
-    W[745] = W[161] * W[744];
-    W[752] = W[161] * W[751];
-    W[757] = W[163] * W[756];
-    W[762] = W[163] * W[761];
-    W[767] = W[163] * W[766];
-    X[72] = X[54] / 2.0;
-    X[73] = X[55] / 2.0;
-    X[74] = X[56] / 2.0;
-    X[75] = X[57] / 2.0;
-    X[76] = X[58] / 2.0;
-    X[77] = X[59] / 2.0;
-    X[78] = X[60] / 2.0;
-    X[79] = X[61] / 2.0;
-    X[80] = X[62] / 2.0;
-    X[81] = X[63] / 2.0;
-    X[82] = X[64] / 2.0;
-    X[83] = X[65] / 2.0;
-    X[84] = X[66] / 2.0;
-    X[85] = X[67] / 2.0;
-    X[86] = X[68] / 2.0;
-    X[87] = X[69] / 2.0;
-    X[88] = X[70] / 2.0;
-    X[89] = X[71] / 2.0;
-    X[90] = -W[582] / W[138] / 2.0;
-    X[91] = -W[597] / W[138] / 2.0;
-    X[92] = -W[612] / W[138] / 2.0;
-    X[93] = -W[633] / W[140] / 2.0;
-    X[94] = -W[646] / W[140] / 2.0;
-    X[95] = -W[659] / W[140] / 2.0;
-    X[96] = -W[676] / W[141] / 2.0;
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[97] = -W[687] / W[141] / 2.0;
     X[98] = -W[698] / W[141] / 2.0;
     X[99] = -W[711] / W[142] / 2.0;
@@ -4846,29 +4097,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[105] = -W[757] / W[144] / 2.0;
     X[106] = -W[762] / W[144] / 2.0;
     X[107] = -W[767] / W[144] / 2.0;
-    if (K == 2)
-        goto out;
-    /* order 2 */
-    W[788] = X[72] - X[75];
-    W[792] = X[73] - X[76];
-    W[797] = X[74] - X[77];
-    W[801] = X[72] - X[78];
-    W[804] = X[73] - X[79];
-    W[808] = X[74] - X[80];
-    W[812] = X[72] - X[81];
-    W[815] = X[73] - X[82];
-    W[819] = X[74] - X[83];
-    W[823] = X[72] - X[84];
-    W[826] = X[73] - X[85];
-    W[830] = X[74] - X[86];
-    W[834] = X[72] - X[87];
-    W[837] = X[73] - X[88];
-    W[841] = X[74] - X[89];
-    W[844] = X[75] - X[78];
-    W[846] = X[76] - X[79];
-    W[849] = X[77] - X[80];
-    W[852] = X[75] - X[81];
-    W[854] = X[76] - X[82];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_40(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[857] = X[77] - X[83];
     W[860] = X[75] - X[84];
     W[862] = X[76] - X[85];
@@ -4889,26 +4127,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[902] = X[82] - X[85];
     W[905] = X[83] - X[86];
     W[908] = X[81] - X[87];
-    W[910] = X[82] - X[88];
-    W[913] = X[83] - X[89];
-    W[916] = X[84] - X[87];
-    W[918] = X[85] - X[88];
-    W[921] = X[86] - X[89];
-    W[789] = W[2] * W[788] * 2.0 + W[395] * W[395];
-    W[793] = W[6] * W[792] * 2.0 + W[399] * W[399];
-    W[798] = W[11] * W[797] * 2.0 + W[404] * W[404];
-    W[802] = W[15] * W[801] * 2.0 + W[408] * W[408];
-    W[805] = W[18] * W[804] * 2.0 + W[411] * W[411];
-    W[809] = W[22] * W[808] * 2.0 + W[415] * W[415];
-    W[813] = W[26] * W[812] * 2.0 + W[419] * W[419];
-    W[816] = W[29] * W[815] * 2.0 + W[422] * W[422];
-    W[820] = W[33] * W[819] * 2.0 + W[426] * W[426];
-    W[824] = W[37] * W[823] * 2.0 + W[430] * W[430];
-    W[827] = W[40] * W[826] * 2.0 + W[433] * W[433];
-    W[831] = W[44] * W[830] * 2.0 + W[437] * W[437];
-    W[835] = W[48] * W[834] * 2.0 + W[441] * W[441];
-    W[838] = W[51] * W[837] * 2.0 + W[444] * W[444];
-    W[842] = W[55] * W[841] * 2.0 + W[448] * W[448];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_42(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[845] = W[58] * W[844] * 2.0 + W[451] * W[451];
     W[847] = W[60] * W[846] * 2.0 + W[453] * W[453];
     W[850] = W[63] * W[849] * 2.0 + W[456] * W[456];
@@ -4929,26 +4157,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[890] = W[103] * W[889] * 2.0 + W[496] * W[496];
     W[893] = W[106] * W[892] * 2.0 + W[499] * W[499];
     W[895] = W[108] * W[894] * 2.0 + W[501] * W[501];
-    W[898] = W[111] * W[897] * 2.0 + W[504] * W[504];
-    W[901] = W[114] * W[900] * 2.0 + W[507] * W[507];
-    W[903] = W[116] * W[902] * 2.0 + W[509] * W[509];
-    W[906] = W[119] * W[905] * 2.0 + W[512] * W[512];
-    W[909] = W[122] * W[908] * 2.0 + W[515] * W[515];
-    W[911] = W[124] * W[910] * 2.0 + W[517] * W[517];
-    W[914] = W[127] * W[913] * 2.0 + W[520] * W[520];
-    W[917] = W[130] * W[916] * 2.0 + W[523] * W[523];
-    W[919] = W[132] * W[918] * 2.0 + W[525] * W[525];
-    W[922] = W[135] * W[921] * 2.0 + W[528] * W[528];
-    W[794] = W[789] + W[793];
-    W[806] = W[802] + W[805];
-    W[817] = W[813] + W[816];
-    W[828] = W[824] + W[827];
-    W[839] = W[835] + W[838];
-    W[848] = W[845] + W[847];
-    W[856] = W[853] + W[855];
-    W[864] = W[861] + W[863];
-    W[872] = W[869] + W[871];
-    W[880] = W[877] + W[879];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_44(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[888] = W[885] + W[887];
     W[896] = W[893] + W[895];
     W[904] = W[901] + W[903];
@@ -4969,26 +4187,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[907] = W[904] + W[906];
     W[915] = W[912] + W[914];
     W[923] = W[920] + W[922];
-    W[952] = (-3.0 * W[843] * W[166] - 2.5 * W[450] * W[559]) / (2.0 * W[57]);
-    W[956] = (-3.0 * W[832] * W[170] - 2.5 * W[439] * W[563]) / (2.0 * W[46]);
-    W[961] = (-3.0 * W[821] * W[175] - 2.5 * W[428] * W[568]) / (2.0 * W[35]);
-    W[966] = (-3.0 * W[810] * W[180] - 2.5 * W[417] * W[573]) / (2.0 * W[24]);
-    W[971] = (-3.0 * W[799] * W[185] - 2.5 * W[406] * W[578]) / (2.0 * W[13]);
-    W[1007] = (-3.0 * W[875] * W[221] - 2.5 * W[482] * W[614]) / (2.0 * W[89]);
-    W[1011] = (-3.0 * W[867] * W[225] - 2.5 * W[474] * W[618]) / (2.0 * W[81]);
-    W[1016] = (-3.0 * W[859] * W[230] - 2.5 * W[466] * W[623]) / (2.0 * W[73]);
-    W[1021] = (-3.0 * W[851] * W[235] - 2.5 * W[458] * W[628]) / (2.0 * W[65]);
-    W[1054] = (-3.0 * W[899] * W[268] - 2.5 * W[506] * W[661]) / (2.0 * W[113]);
-    W[1058] = (-3.0 * W[891] * W[272] - 2.5 * W[498] * W[665]) / (2.0 * W[105]);
-    W[1063] = (-3.0 * W[883] * W[277] - 2.5 * W[490] * W[670]) / (2.0 * W[97]);
-    W[1093] = (-3.0 * W[915] * W[307] - 2.5 * W[522] * W[700]) / (2.0 * W[129]);
-    W[1097] = (-3.0 * W[907] * W[311] - 2.5 * W[514] * W[704]) / (2.0 * W[121]);
-    W[1124] = (-3.0 * W[923] * W[338] - 2.5 * W[530] * W[731]) / (2.0 * W[137]);
-    W[953] = W[48] * W[952] + W[441] * W[559] + W[834] * W[166];
-    W[957] = W[37] * W[956] + W[430] * W[563] + W[823] * W[170];
-    W[962] = W[26] * W[961] + W[419] * W[568] + W[812] * W[175];
-    W[967] = W[15] * W[966] + W[408] * W[573] + W[801] * W[180];
-    W[972] = W[2] * W[971] + W[395] * W[578] + W[788] * W[185];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_46(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[976] = W[51] * W[952] + W[444] * W[559] + W[837] * W[166];
     W[978] = W[40] * W[956] + W[433] * W[563] + W[826] * W[170];
     W[981] = W[29] * W[961] + W[422] * W[568] + W[815] * W[175];
@@ -5009,26 +4217,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[1035] = W[60] * W[1021] + W[453] * W[628] + W[846] * W[235];
     W[1040] = W[87] * W[1007] + W[480] * W[614] + W[873] * W[221];
     W[1042] = W[79] * W[1011] + W[472] * W[618] + W[865] * W[225];
-    W[1045] = W[71] * W[1016] + W[464] * W[623] + W[857] * W[230];
-    W[1048] = W[63] * W[1021] + W[456] * W[628] + W[849] * W[235];
-    W[1055] = W[106] * W[1054] + W[499] * W[661] + W[892] * W[268];
-    W[1059] = W[98] * W[1058] + W[491] * W[665] + W[884] * W[272];
-    W[1064] = W[90] * W[1063] + W[483] * W[670] + W[876] * W[277];
-    W[1070] = W[108] * W[1054] + W[501] * W[661] + W[894] * W[268];
-    W[1072] = W[100] * W[1058] + W[493] * W[665] + W[886] * W[272];
-    W[1075] = W[92] * W[1063] + W[485] * W[670] + W[878] * W[277];
-    W[1081] = W[111] * W[1054] + W[504] * W[661] + W[897] * W[268];
-    W[1083] = W[103] * W[1058] + W[496] * W[665] + W[889] * W[272];
-    W[1086] = W[95] * W[1063] + W[488] * W[670] + W[881] * W[277];
-    W[1094] = W[122] * W[1093] + W[515] * W[700] + W[908] * W[307];
-    W[1098] = W[114] * W[1097] + W[507] * W[704] + W[900] * W[311];
-    W[1105] = W[124] * W[1093] + W[517] * W[700] + W[910] * W[307];
-    W[1107] = W[116] * W[1097] + W[509] * W[704] + W[902] * W[311];
-    W[1114] = W[127] * W[1093] + W[520] * W[700] + W[913] * W[307];
-    W[1116] = W[119] * W[1097] + W[512] * W[704] + W[905] * W[311];
-    W[1125] = W[130] * W[1124] + W[523] * W[731] + W[916] * W[338];
-    W[1132] = W[132] * W[1124] + W[525] * W[731] + W[918] * W[338];
-    W[1139] = W[135] * W[1124] + W[528] * W[731] + W[921] * W[338];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_48(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[954] = W[164] * W[953];
     W[958] = W[169] * W[957];
     W[963] = W[174] * W[962];
@@ -5049,6 +4247,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[1018] = W[229] * W[1017];
     W[1023] = W[234] * W[1022];
     W[1028] = W[220] * W[1027];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_49(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1030] = W[224] * W[1029];
     W[1033] = W[229] * W[1032];
     W[1036] = W[234] * W[1035];
@@ -5069,26 +4277,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[1099] = W[310] * W[1098];
     W[1106] = W[306] * W[1105];
     W[1108] = W[310] * W[1107];
-    W[1115] = W[306] * W[1114];
-    W[1117] = W[310] * W[1116];
-    W[1126] = W[337] * W[1125];
-    W[1133] = W[337] * W[1132];
-    W[1140] = W[337] * W[1139];
-    W[959] = W[954] + W[958];
-    W[980] = W[977] + W[979];
-    W[995] = W[992] + W[994];
-    W[1014] = W[1009] + W[1013];
-    W[1031] = W[1028] + W[1030];
-    W[1044] = W[1041] + W[1043];
-    W[1061] = W[1056] + W[1060];
-    W[1074] = W[1071] + W[1073];
-    W[1085] = W[1082] + W[1084];
-    W[1100] = W[1095] + W[1099];
-    W[1109] = W[1106] + W[1108];
-    W[1118] = W[1115] + W[1117];
-    W[1127] = W[1126] - W[1099];
-    W[1134] = W[1133] - W[1108];
-    W[1141] = W[1140] - W[1117];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_51(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1146] = W[1095] + W[1126];
     W[1151] = W[1106] + W[1133];
     W[1156] = W[1115] + W[1140];
@@ -5109,26 +4307,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[1142] = W[1141] - W[1084];
     W[1147] = W[1056] + W[1146];
     W[1152] = W[1071] + W[1151];
-    W[1157] = W[1082] + W[1156];
-    W[969] = W[964] + W[968];
-    W[986] = W[983] + W[985];
-    W[1001] = W[998] + W[1000];
-    W[1024] = W[1019] + W[1023];
-    W[1037] = W[1034] + W[1036];
-    W[1050] = W[1047] + W[1049];
-    W[1067] = W[1066] - W[1023];
-    W[1078] = W[1077] - W[1036];
-    W[1089] = W[1088] - W[1049];
-    W[1102] = W[1101] - W[1018];
-    W[1111] = W[1110] - W[1033];
-    W[1120] = W[1119] - W[1046];
-    W[1129] = W[1128] - W[1013];
-    W[1136] = W[1135] - W[1030];
-    W[1143] = W[1142] - W[1043];
-    W[1148] = W[1009] + W[1147];
-    W[1153] = W[1028] + W[1152];
-    W[1158] = W[1041] + W[1157];
-    W[974] = W[969] + W[973];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_53(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[989] = W[986] + W[988];
     W[1004] = W[1001] + W[1003];
     W[1025] = W[1024] - W[973];
@@ -5149,26 +4337,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[975] = W[161] * W[974];
     W[990] = W[161] * W[989];
     W[1005] = W[161] * W[1004];
-    W[1026] = W[161] * W[1025];
-    W[1039] = W[161] * W[1038];
-    W[1052] = W[161] * W[1051];
-    W[1069] = W[161] * W[1068];
-    W[1080] = W[161] * W[1079];
-    W[1091] = W[161] * W[1090];
-    W[1104] = W[161] * W[1103];
-    W[1113] = W[161] * W[1112];
-    W[1122] = W[161] * W[1121];
-    W[1131] = W[161] * W[1130];
-    W[1138] = W[161] * W[1137];
-    W[1145] = W[161] * W[1144];
-    W[1150] = W[163] * W[1149];
-    W[1155] = W[163] * W[1154];
-    W[1160] = W[163] * W[1159];
-    X[108] = X[90] / 3.0;
-    X[109] = X[91] / 3.0;
-    X[110] = X[92] / 3.0;
-    X[111] = X[93] / 3.0;
-    X[112] = X[94] / 3.0;
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_55(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[113] = X[95] / 3.0;
     X[114] = X[96] / 3.0;
     X[115] = X[97] / 3.0;
@@ -5189,40 +4367,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[130] = -W[1039] / W[140] / 3.0;
     X[131] = -W[1052] / W[140] / 3.0;
     X[132] = -W[1069] / W[141] / 3.0;
-    X[133] = -W[1080] / W[141] / 3.0;
-    X[134] = -W[1091] / W[141] / 3.0;
-    X[135] = -W[1104] / W[142] / 3.0;
-    X[136] = -W[1113] / W[142] / 3.0;
-    X[137] = -W[1122] / W[142] / 3.0;
-    X[138] = -W[1131] / W[143] / 3.0;
-    X[139] = -W[1138] / W[143] / 3.0;
-    X[140] = -W[1145] / W[143] / 3.0;
-    X[141] = -W[1150] / W[144] / 3.0;
-    X[142] = -W[1155] / W[144] / 3.0;
-    X[143] = -W[1160] / W[144] / 3.0;
-    if (K == 3)
-        goto out;
-    /* order 3 */
-    W[1181] = X[108] - X[111];
-    W[1185] = X[109] - X[112];
-    W[1190] = X[110] - X[113];
-    W[1194] = X[108] - X[114];
-    W[1197] = X[109] - X[115];
-    W[1201] = X[110] - X[116];
-    W[1205] = X[108] - X[117];
-    W[1208] = X[109] - X[118];
-    W[1212] = X[110] - X[119];
-    W[1216] = X[108] - X[120];
-    W[1219] = X[109] - X[121];
-    W[1223] = X[110] - X[122];
-    W[1227] = X[108] - X[123];
-    W[1230] = X[109] - X[124];
-    W[1234] = X[110] - X[125];
-    W[1237] = X[111] - X[114];
-    W[1239] = X[112] - X[115];
-    W[1242] = X[113] - X[116];
-    W[1245] = X[111] - X[117];
-    W[1247] = X[112] - X[118];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_58(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1250] = X[113] - X[119];
     W[1253] = X[111] - X[120];
     W[1255] = X[112] - X[121];
@@ -5243,26 +4397,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[1295] = X[118] - X[121];
     W[1298] = X[119] - X[122];
     W[1301] = X[117] - X[123];
-    W[1303] = X[118] - X[124];
-    W[1306] = X[119] - X[125];
-    W[1309] = X[120] - X[123];
-    W[1311] = X[121] - X[124];
-    W[1314] = X[122] - X[125];
-    W[1182] = (W[2] * W[1181] + W[395] * W[788]) * 2.0;
-    W[1186] = (W[6] * W[1185] + W[399] * W[792]) * 2.0;
-    W[1191] = (W[11] * W[1190] + W[404] * W[797]) * 2.0;
-    W[1195] = (W[15] * W[1194] + W[408] * W[801]) * 2.0;
-    W[1198] = (W[18] * W[1197] + W[411] * W[804]) * 2.0;
-    W[1202] = (W[22] * W[1201] + W[415] * W[808]) * 2.0;
-    W[1206] = (W[26] * W[1205] + W[419] * W[812]) * 2.0;
-    W[1209] = (W[29] * W[1208] + W[422] * W[815]) * 2.0;
-    W[1213] = (W[33] * W[1212] + W[426] * W[819]) * 2.0;
-    W[1217] = (W[37] * W[1216] + W[430] * W[823]) * 2.0;
-    W[1220] = (W[40] * W[1219] + W[433] * W[826]) * 2.0;
-    W[1224] = (W[44] * W[1223] + W[437] * W[830]) * 2.0;
-    W[1228] = (W[48] * W[1227] + W[441] * W[834]) * 2.0;
-    W[1231] = (W[51] * W[1230] + W[444] * W[837]) * 2.0;
-    W[1235] = (W[55] * W[1234] + W[448] * W[841]) * 2.0;
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_60(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1238] = (W[58] * W[1237] + W[451] * W[844]) * 2.0;
     W[1240] = (W[60] * W[1239] + W[453] * W[846]) * 2.0;
     W[1243] = (W[63] * W[1242] + W[456] * W[849]) * 2.0;
@@ -5283,26 +4427,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[1283] = (W[103] * W[1282] + W[496] * W[889]) * 2.0;
     W[1286] = (W[106] * W[1285] + W[499] * W[892]) * 2.0;
     W[1288] = (W[108] * W[1287] + W[501] * W[894]) * 2.0;
-    W[1291] = (W[111] * W[1290] + W[504] * W[897]) * 2.0;
-    W[1294] = (W[114] * W[1293] + W[507] * W[900]) * 2.0;
-    W[1296] = (W[116] * W[1295] + W[509] * W[902]) * 2.0;
-    W[1299] = (W[119] * W[1298] + W[512] * W[905]) * 2.0;
-    W[1302] = (W[122] * W[1301] + W[515] * W[908]) * 2.0;
-    W[1304] = (W[124] * W[1303] + W[517] * W[910]) * 2.0;
-    W[1307] = (W[127] * W[1306] + W[520] * W[913]) * 2.0;
-    W[1310] = (W[130] * W[1309] + W[523] * W[916]) * 2.0;
-    W[1312] = (W[132] * W[1311] + W[525] * W[918]) * 2.0;
-    W[1315] = (W[135] * W[1314] + W[528] * W[921]) * 2.0;
-    W[1187] = W[1182] + W[1186];
-    W[1199] = W[1195] + W[1198];
-    W[1210] = W[1206] + W[1209];
-    W[1221] = W[1217] + W[1220];
-    W[1232] = W[1228] + W[1231];
-    W[1241] = W[1238] + W[1240];
-    W[1249] = W[1246] + W[1248];
-    W[1257] = W[1254] + W[1256];
-    W[1265] = W[1262] + W[1264];
-    W[1273] = W[1270] + W[1272];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_62(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1281] = W[1278] + W[1280];
     W[1289] = W[1286] + W[1288];
     W[1297] = W[1294] + W[1296];
@@ -5323,26 +4457,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[1300] = W[1297] + W[1299];
     W[1308] = W[1305] + W[1307];
     W[1316] = W[1313] + W[1315];
-    W[1345] = (-4.5 * W[1236] * W[166] - 4.0 * W[843] * W[559] - 3.5 * W[450] * W[952]) / (3.0 * W[57]);
-    W[1349] = (-4.5 * W[1225] * W[170] - 4.0 * W[832] * W[563] - 3.5 * W[439] * W[956]) / (3.0 * W[46]);
-    W[1354] = (-4.5 * W[1214] * W[175] - 4.0 * W[821] * W[568] - 3.5 * W[428] * W[961]) / (3.0 * W[35]);
-    W[1359] = (-4.5 * W[1203] * W[180] - 4.0 * W[810] * W[573] - 3.5 * W[417] * W[966]) / (3.0 * W[24]);
-    W[1364] = (-4.5 * W[1192] * W[185] - 4.0 * W[799] * W[578] - 3.5 * W[406] * W[971]) / (3.0 * W[13]);
-    W[1400] = (-4.5 * W[1268] * W[221] - 4.0 * W[875] * W[614] - 3.5 * W[482] * W[1007]) / (3.0 * W[89]);
-    W[1404] = (-4.5 * W[1260] * W[225] - 4.0 * W[867] * W[618] - 3.5 * W[474] * W[1011]) / (3.0 * W[81]);
-    W[1409] = (-4.5 * W[1252] * W[230] - 4.0 * W[859] * W[623] - 3.5 * W[466] * W[1016]) / (3.0 * W[73]);
-    W[1414] = (-4.5 * W[1244] * W[235] - 4.0 * W[851] * W[628] - 3.5 * W[458] * W[1021]) / (3.0 * W[65]);
-    W[1447] = (-4.5 * W[1292] * W[268] - 4.0 * W[899] * W[661] - 3.5 * W[506] * W[1054]) / (3.0 * W[113]);
-    W[1451] = (-4.5 * W[1284] * W[272] - 4.0 * W[891] * W[665] - 3.5 * W[498] * W[1058]) / (3.0 * W[105]);
-    W[1456] = (-4.5 * W[1276] * W[277] - 4.0 * W[883] * W[670] - 3.5 * W[490] * W[1063]) / (3.0 * W[97]);
-    W[1486] = (-4.5 * W[1308] * W[307] - 4.0 * W[915] * W[700] - 3.5 * W[522] * W[1093]) / (3.0 * W[129]);
-    W[1490] = (-4.5 * W[1300] * W[311] - 4.0 * W[907] * W[704] - 3.5 * W[514] * W[1097]) / (3.0 * W[121]);
-    W[1517] = (-4.5 * W[1316] * W[338] - 4.0 * W[923] * W[731] - 3.5 * W[530] * W[1124]) / (3.0 * W[137]);
-    W[1346] = W[48] * W[1345] + W[441] * W[952] + W[834] * W[559] + W[1227] * W[166];
-    W[1350] = W[37] * W[1349] + W[430] * W[956] + W[823] * W[563] + W[1216] * W[170];
-    W[1355] = W[26] * W[1354] + W[419] * W[961] + W[812] * W[568] + W[1205] * W[175];
-    W[1360] = W[15] * W[1359] + W[408] * W[966] + W[801] * W[573] + W[1194] * W[180];
-    W[1365] = W[2] * W[1364] + W[395] * W[971] + W[788] * W[578] + W[1181] * W[185];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_64(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1369] = W[51] * W[1345] + W[444] * W[952] + W[837] * W[559] + W[1230] * W[166];
     W[1371] = W[40] * W[1349] + W[433] * W[956] + W[826] * W[563] + W[1219] * W[170];
     W[1374] = W[29] * W[1354] + W[422] * W[961] + W[815] * W[568] + W[1208] * W[175];
@@ -5363,26 +4487,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[1428] = W[60] * W[1414] + W[453] * W[1021] + W[846] * W[628] + W[1239] * W[235];
     W[1433] = W[87] * W[1400] + W[480] * W[1007] + W[873] * W[614] + W[1266] * W[221];
     W[1435] = W[79] * W[1404] + W[472] * W[1011] + W[865] * W[618] + W[1258] * W[225];
-    W[1438] = W[71] * W[1409] + W[464] * W[1016] + W[857] * W[623] + W[1250] * W[230];
-    W[1441] = W[63] * W[1414] + W[456] * W[1021] + W[849] * W[628] + W[1242] * W[235];
-    W[1448] = W[106] * W[1447] + W[499] * W[1054] + W[892] * W[661] + W[1285] * W[268];
-    W[1452] = W[98] * W[1451] + W[491] * W[1058] + W[884] * W[665] + W[1277] * W[272];
-    W[1457] = W[90] * W[1456] + W[483] * W[1063] + W[876] * W[670] + W[1269] * W[277];
-    W[1463] = W[108] * W[1447] + W[501] * W[1054] + W[894] * W[661] + W[1287] * W[268];
-    W[1465] = W[100] * W[1451] + W[493] * W[1058] + W[886] * W[665] + W[1279] * W[272];
-    W[1468] = W[92] * W[1456] + W[485] * W[1063] + W[878] * W[670] + W[1271] * W[277];
-    W[1474] = W[111] * W[1447] + W[504] * W[1054] + W[897] * W[661] + W[1290] * W[268];
-    W[1476] = W[103] * W[1451] + W[496] * W[1058] + W[889] * W[665] + W[1282] * W[272];
-    W[1479] = W[95] * W[1456] + W[488] * W[1063] + W[881] * W[670] + W[1274] * W[277];
-    W[1487] = W[122] * W[1486] + W[515] * W[1093] + W[908] * W[700] + W[1301] * W[307];
-    W[1491] = W[114] * W[1490] + W[507] * W[1097] + W[900] * W[704] + W[1293] * W[311];
-    W[1498] = W[124] * W[1486] + W[517] * W[1093] + W[910] * W[700] + W[1303] * W[307];
-    W[1500] = W[116] * W[1490] + W[509] * W[1097] + W[902] * W[704] + W[1295] * W[311];
-    W[1507] = W[127] * W[1486] + W[520] * W[1093] + W[913] * W[700] + W[1306] * W[307];
-    W[1509] = W[119] * W[1490] + W[512] * W[1097] + W[905] * W[704] + W[1298] * W[311];
-    W[1518] = W[130] * W[1517] + W[523] * W[1124] + W[916] * W[731] + W[1309] * W[338];
-    W[1525] = W[132] * W[1517] + W[525] * W[1124] + W[918] * W[731] + W[1311] * W[338];
-    W[1532] = W[135] * W[1517] + W[528] * W[1124] + W[921] * W[731] + W[1314] * W[338];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_66(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1347] = W[164] * W[1346];
     W[1351] = W[169] * W[1350];
     W[1356] = W[174] * W[1355];
@@ -5403,6 +4517,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[1411] = W[229] * W[1410];
     W[1416] = W[234] * W[1415];
     W[1421] = W[220] * W[1420];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_67(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1423] = W[224] * W[1422];
     W[1426] = W[229] * W[1425];
     W[1429] = W[234] * W[1428];
@@ -5423,26 +4547,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[1492] = W[310] * W[1491];
     W[1499] = W[306] * W[1498];
     W[1501] = W[310] * W[1500];
-    W[1508] = W[306] * W[1507];
-    W[1510] = W[310] * W[1509];
-    W[1519] = W[337] * W[1518];
-    W[1526] = W[337] * W[1525];
-    W[1533] = W[337] * W[1532];
-    W[1352] = W[1347] + W[1351];
-    W[1373] = W[1370] + W[1372];
-    W[1388] = W[1385] + W[1387];
-    W[1407] = W[1402] + W[1406];
-    W[1424] = W[1421] + W[1423];
-    W[1437] = W[1434] + W[1436];
-    W[1454] = W[1449] + W[1453];
-    W[1467] = W[1464] + W[1466];
-    W[1478] = W[1475] + W[1477];
-    W[1493] = W[1488] + W[1492];
-    W[1502] = W[1499] + W[1501];
-    W[1511] = W[1508] + W[1510];
-    W[1520] = W[1519] - W[1492];
-    W[1527] = W[1526] - W[1501];
-    W[1534] = W[1533] - W[1510];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_69(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1539] = W[1488] + W[1519];
     W[1544] = W[1499] + W[1526];
     W[1549] = W[1508] + W[1533];
@@ -5463,26 +4577,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[1535] = W[1534] - W[1477];
     W[1540] = W[1449] + W[1539];
     W[1545] = W[1464] + W[1544];
-    W[1550] = W[1475] + W[1549];
-    W[1362] = W[1357] + W[1361];
-    W[1379] = W[1376] + W[1378];
-    W[1394] = W[1391] + W[1393];
-    W[1417] = W[1412] + W[1416];
-    W[1430] = W[1427] + W[1429];
-    W[1443] = W[1440] + W[1442];
-    W[1460] = W[1459] - W[1416];
-    W[1471] = W[1470] - W[1429];
-    W[1482] = W[1481] - W[1442];
-    W[1495] = W[1494] - W[1411];
-    W[1504] = W[1503] - W[1426];
-    W[1513] = W[1512] - W[1439];
-    W[1522] = W[1521] - W[1406];
-    W[1529] = W[1528] - W[1423];
-    W[1536] = W[1535] - W[1436];
-    W[1541] = W[1402] + W[1540];
-    W[1546] = W[1421] + W[1545];
-    W[1551] = W[1434] + W[1550];
-    W[1367] = W[1362] + W[1366];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_71(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1382] = W[1379] + W[1381];
     W[1397] = W[1394] + W[1396];
     W[1418] = W[1417] - W[1366];
@@ -5503,26 +4607,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[1368] = W[161] * W[1367];
     W[1383] = W[161] * W[1382];
     W[1398] = W[161] * W[1397];
-    W[1419] = W[161] * W[1418];
-    W[1432] = W[161] * W[1431];
-    W[1445] = W[161] * W[1444];
-    W[1462] = W[161] * W[1461];
-    W[1473] = W[161] * W[1472];
-    W[1484] = W[161] * W[1483];
-    W[1497] = W[161] * W[1496];
-    W[1506] = W[161] * W[1505];
-    W[1515] = W[161] * W[1514];
-    W[1524] = W[161] * W[1523];
-    W[1531] = W[161] * W[1530];
-    W[1538] = W[161] * W[1537];
-    W[1543] = W[163] * W[1542];
-    W[1548] = W[163] * W[1547];
-    W[1553] = W[163] * W[1552];
-    X[144] = X[126] / 4.0;
-    X[145] = X[127] / 4.0;
-    X[146] = X[128] / 4.0;
-    X[147] = X[129] / 4.0;
-    X[148] = X[130] / 4.0;
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_73(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[149] = X[131] / 4.0;
     X[150] = X[132] / 4.0;
     X[151] = X[133] / 4.0;
@@ -5543,20 +4637,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[166] = -W[1432] / W[140] / 4.0;
     X[167] = -W[1445] / W[140] / 4.0;
     X[168] = -W[1462] / W[141] / 4.0;
-    X[169] = -W[1473] / W[141] / 4.0;
-    X[170] = -W[1484] / W[141] / 4.0;
-    X[171] = -W[1497] / W[142] / 4.0;
-    X[172] = -W[1506] / W[142] / 4.0;
-    X[173] = -W[1515] / W[142] / 4.0;
-    X[174] = -W[1524] / W[143] / 4.0;
-    X[175] = -W[1531] / W[143] / 4.0;
-    X[176] = -W[1538] / W[143] / 4.0;
-    X[177] = -W[1543] / W[144] / 4.0;
-    X[178] = -W[1548] / W[144] / 4.0;
-    X[179] = -W[1553] / W[144] / 4.0;
-    if (K == 4)
-        goto out;
-    /* order 4 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 4. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_75(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1574] = X[144] - X[147];
     W[1578] = X[145] - X[148];
     W[1583] = X[146] - X[149];
@@ -5577,26 +4667,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[1635] = X[149] - X[152];
     W[1638] = X[147] - X[153];
     W[1640] = X[148] - X[154];
-    W[1643] = X[149] - X[155];
-    W[1646] = X[147] - X[156];
-    W[1648] = X[148] - X[157];
-    W[1651] = X[149] - X[158];
-    W[1654] = X[147] - X[159];
-    W[1656] = X[148] - X[160];
-    W[1659] = X[149] - X[161];
-    W[1662] = X[150] - X[153];
-    W[1664] = X[151] - X[154];
-    W[1667] = X[152] - X[155];
-    W[1670] = X[150] - X[156];
-    W[1672] = X[151] - X[157];
-    W[1675] = X[152] - X[158];
-    W[1678] = X[150] - X[159];
-    W[1680] = X[151] - X[160];
-    W[1683] = X[152] - X[161];
-    W[1686] = X[153] - X[156];
-    W[1688] = X[154] - X[157];
-    W[1691] = X[155] - X[158];
-    W[1694] = X[153] - X[159];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 4. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_77(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1696] = X[154] - X[160];
     W[1699] = X[155] - X[161];
     W[1702] = X[156] - X[159];
@@ -5617,26 +4697,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[1621] = (W[48] * W[1620] + W[441] * W[1227]) * 2.0 + W[834] * W[834];
     W[1624] = (W[51] * W[1623] + W[444] * W[1230]) * 2.0 + W[837] * W[837];
     W[1628] = (W[55] * W[1627] + W[448] * W[1234]) * 2.0 + W[841] * W[841];
-    W[1631] = (W[58] * W[1630] + W[451] * W[1237]) * 2.0 + W[844] * W[844];
-    W[1633] = (W[60] * W[1632] + W[453] * W[1239]) * 2.0 + W[846] * W[846];
-    W[1636] = (W[63] * W[1635] + W[456] * W[1242]) * 2.0 + W[849] * W[849];
-    W[1639] = (W[66] * W[1638] + W[459] * W[1245]) * 2.0 + W[852] * W[852];
-    W[1641] = (W[68] * W[1640] + W[461] * W[1247]) * 2.0 + W[854] * W[854];
-    W[1644] = (W[71] * W[1643] + W[464] * W[1250]) * 2.0 + W[857] * W[857];
-    W[1647] = (W[74] * W[1646] + W[467] * W[1253]) * 2.0 + W[860] * W[860];
-    W[1649] = (W[76] * W[1648] + W[469] * W[1255]) * 2.0 + W[862] * W[862];
-    W[1652] = (W[79] * W[1651] + W[472] * W[1258]) * 2.0 + W[865] * W[865];
-    W[1655] = (W[82] * W[1654] + W[475] * W[1261]) * 2.0 + W[868] * W[868];
-    W[1657] = (W[84] * W[1656] + W[477] * W[1263]) * 2.0 + W[870] * W[870];
-    W[1660] = (W[87] * W[1659] + W[480] * W[1266]) * 2.0 + W[873] * W[873];
-    W[1663] = (W[90] * W[1662] + W[483] * W[1269]) * 2.0 + W[876] * W[876];
-    W[1665] = (W[92] * W[1664] + W[485] * W[1271]) * 2.0 + W[878] * W[878];
-    W[1668] = (W[95] * W[1667] + W[488] * W[1274]) * 2.0 + W[881] * W[881];
-    W[1671] = (W[98] * W[1670] + W[491] * W[1277]) * 2.0 + W[884] * W[884];
-    W[1673] = (W[100] * W[1672] + W[493] * W[1279]) * 2.0 + W[886] * W[886];
-    W[1676] = (W[103] * W[1675] + W[496] * W[1282]) * 2.0 + W[889] * W[889];
-    W[1679] = (W[106] * W[1678] + W[499] * W[1285]) * 2.0 + W[892] * W[892];
-    W[1681] = (W[108] * W[1680] + W[501] * W[1287]) * 2.0 + W[894] * W[894];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 4. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_79(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1684] = (W[111] * W[1683] + W[504] * W[1290]) * 2.0 + W[897] * W[897];
     W[1687] = (W[114] * W[1686] + W[507] * W[1293]) * 2.0 + W[900] * W[900];
     W[1689] = (W[116] * W[1688] + W[509] * W[1295]) * 2.0 + W[902] * W[902];
@@ -5657,26 +4727,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[1650] = W[1647] + W[1649];
     W[1658] = W[1655] + W[1657];
     W[1666] = W[1663] + W[1665];
-    W[1674] = W[1671] + W[1673];
-    W[1682] = W[1679] + W[1681];
-    W[1690] = W[1687] + W[1689];
-    W[1698] = W[1695] + W[1697];
-    W[1706] = W[1703] + W[1705];
-    W[1585] = W[1580] + W[1584];
-    W[1596] = W[1592] + W[1595];
-    W[1607] = W[1603] + W[1606];
-    W[1618] = W[1614] + W[1617];
-    W[1629] = W[1625] + W[1628];
-    W[1637] = W[1634] + W[1636];
-    W[1645] = W[1642] + W[1644];
-    W[1653] = W[1650] + W[1652];
-    W[1661] = W[1658] + W[1660];
-    W[1669] = W[1666] + W[1668];
-    W[1677] = W[1674] + W[1676];
-    W[1685] = W[1682] + W[1684];
-    W[1693] = W[1690] + W[1692];
-    W[1701] = W[1698] + W[1700];
-    W[1709] = W[1706] + W[1708];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 4. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_81(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1738] = (-6.0 * W[1629] * W[166] - 5.5 * W[1236] * W[559] - 5.0 * W[843] * W[952] - 4.5 * W[450] * W[1345]) / (4.0 * W[57]);
     W[1742] = (-6.0 * W[1618] * W[170] - 5.5 * W[1225] * W[563] - 5.0 * W[832] * W[956] - 4.5 * W[439] * W[1349]) / (4.0 * W[46]);
     W[1747] = (-6.0 * W[1607] * W[175] - 5.5 * W[1214] * W[568] - 5.0 * W[821] * W[961] - 4.5 * W[428] * W[1354]) / (4.0 * W[35]);
@@ -5697,26 +4757,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[1748] = W[26] * W[1747] + W[419] * W[1354] + W[812] * W[961] + W[1205] * W[568] + W[1598] * W[175];
     W[1753] = W[15] * W[1752] + W[408] * W[1359] + W[801] * W[966] + W[1194] * W[573] + W[1587] * W[180];
     W[1758] = W[2] * W[1757] + W[395] * W[1364] + W[788] * W[971] + W[1181] * W[578] + W[1574] * W[185];
-    W[1762] = W[51] * W[1738] + W[444] * W[1345] + W[837] * W[952] + W[1230] * W[559] + W[1623] * W[166];
-    W[1764] = W[40] * W[1742] + W[433] * W[1349] + W[826] * W[956] + W[1219] * W[563] + W[1612] * W[170];
-    W[1767] = W[29] * W[1747] + W[422] * W[1354] + W[815] * W[961] + W[1208] * W[568] + W[1601] * W[175];
-    W[1770] = W[18] * W[1752] + W[411] * W[1359] + W[804] * W[966] + W[1197] * W[573] + W[1590] * W[180];
-    W[1773] = W[6] * W[1757] + W[399] * W[1364] + W[792] * W[971] + W[1185] * W[578] + W[1578] * W[185];
-    W[1777] = W[55] * W[1738] + W[448] * W[1345] + W[841] * W[952] + W[1234] * W[559] + W[1627] * W[166];
-    W[1779] = W[44] * W[1742] + W[437] * W[1349] + W[830] * W[956] + W[1223] * W[563] + W[1616] * W[170];
-    W[1782] = W[33] * W[1747] + W[426] * W[1354] + W[819] * W[961] + W[1212] * W[568] + W[1605] * W[175];
-    W[1785] = W[22] * W[1752] + W[415] * W[1359] + W[808] * W[966] + W[1201] * W[573] + W[1594] * W[180];
-    W[1788] = W[11] * W[1757] + W[404] * W[1364] + W[797] * W[971] + W[1190] * W[578] + W[1583] * W[185];
-    W[1794] = W[82] * W[1793] + W[475] * W[1400] + W[868] * W[1007] + W[1261] * W[614] + W[1654] * W[221];
-    W[1798] = W[74] * W[1797] + W[467] * W[1404] + W[860] * W[1011] + W[1253] * W[618] + W[1646] * W[225];
-    W[1803] = W[66] * W[1802] + W[459] * W[1409] + W[852] * W[1016] + W[1245] * W[623] + W[1638] * W[230];
-    W[1808] = W[58] * W[1807] + W[451] * W[1414] + W[844] * W[1021] + W[1237] * W[628] + W[1630] * W[235];
-    W[1813] = W[84] * W[1793] + W[477] * W[1400] + W[870] * W[1007] + W[1263] * W[614] + W[1656] * W[221];
-    W[1815] = W[76] * W[1797] + W[469] * W[1404] + W[862] * W[1011] + W[1255] * W[618] + W[1648] * W[225];
-    W[1818] = W[68] * W[1802] + W[461] * W[1409] + W[854] * W[1016] + W[1247] * W[623] + W[1640] * W[230];
-    W[1821] = W[60] * W[1807] + W[453] * W[1414] + W[846] * W[1021] + W[1239] * W[628] + W[1632] * W[235];
-    W[1826] = W[87] * W[1793] + W[480] * W[1400] + W[873] * W[1007] + W[1266] * W[614] + W[1659] * W[221];
-    W[1828] = W[79] * W[1797] + W[472] * W[1404] + W[865] * W[1011] + W[1258] * W[618] + W[1651] * W[225];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 4. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_83(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1831] = W[71] * W[1802] + W[464] * W[1409] + W[857] * W[1016] + W[1250] * W[623] + W[1643] * W[230];
     W[1834] = W[63] * W[1807] + W[456] * W[1414] + W[849] * W[1021] + W[1242] * W[628] + W[1635] * W[235];
     W[1841] = W[106] * W[1840] + W[499] * W[1447] + W[892] * W[1054] + W[1285] * W[661] + W[1678] * W[268];
@@ -5737,66 +4787,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[1911] = W[130] * W[1910] + W[523] * W[1517] + W[916] * W[1124] + W[1309] * W[731] + W[1702] * W[338];
     W[1918] = W[132] * W[1910] + W[525] * W[1517] + W[918] * W[1124] + W[1311] * W[731] + W[1704] * W[338];
     W[1925] = W[135] * W[1910] + W[528] * W[1517] + W[921] * W[1124] + W[1314] * W[731] + W[1707] * W[338];
-    W[1740] = W[164] * W[1739];
-    W[1744] = W[169] * W[1743];
-    W[1749] = W[174] * W[1748];
-    W[1754] = W[179] * W[1753];
-    W[1759] = W[184] * W[1758];
-    W[1763] = W[164] * W[1762];
-    W[1765] = W[169] * W[1764];
-    W[1768] = W[174] * W[1767];
-    W[1771] = W[179] * W[1770];
-    W[1774] = W[184] * W[1773];
-    W[1778] = W[164] * W[1777];
-    W[1780] = W[169] * W[1779];
-    W[1783] = W[174] * W[1782];
-    W[1786] = W[179] * W[1785];
-    W[1789] = W[184] * W[1788];
-    W[1795] = W[220] * W[1794];
-    W[1799] = W[224] * W[1798];
-    W[1804] = W[229] * W[1803];
-    W[1809] = W[234] * W[1808];
-    W[1814] = W[220] * W[1813];
-    W[1816] = W[224] * W[1815];
-    W[1819] = W[229] * W[1818];
-    W[1822] = W[234] * W[1821];
-    W[1827] = W[220] * W[1826];
-    W[1829] = W[224] * W[1828];
-    W[1832] = W[229] * W[1831];
-    W[1835] = W[234] * W[1834];
-    W[1842] = W[267] * W[1841];
-    W[1846] = W[271] * W[1845];
-    W[1851] = W[276] * W[1850];
-    W[1857] = W[267] * W[1856];
-    W[1859] = W[271] * W[1858];
-    W[1862] = W[276] * W[1861];
-    W[1868] = W[267] * W[1867];
-    W[1870] = W[271] * W[1869];
-    W[1873] = W[276] * W[1872];
-    W[1881] = W[306] * W[1880];
-    W[1885] = W[310] * W[1884];
-    W[1892] = W[306] * W[1891];
-    W[1894] = W[310] * W[1893];
-    W[1901] = W[306] * W[1900];
-    W[1903] = W[310] * W[1902];
-    W[1912] = W[337] * W[1911];
-    W[1919] = W[337] * W[1918];
-    W[1926] = W[337] * W[1925];
-    W[1745] = W[1740] + W[1744];
-    W[1766] = W[1763] + W[1765];
-    W[1781] = W[1778] + W[1780];
-    W[1800] = W[1795] + W[1799];
-    W[1817] = W[1814] + W[1816];
-    W[1830] = W[1827] + W[1829];
-    W[1847] = W[1842] + W[1846];
-    W[1860] = W[1857] + W[1859];
-    W[1871] = W[1868] + W[1870];
-    W[1886] = W[1881] + W[1885];
-    W[1895] = W[1892] + W[1894];
-    W[1904] = W[1901] + W[1903];
-    W[1913] = W[1912] - W[1885];
-    W[1920] = W[1919] - W[1894];
-    W[1927] = W[1926] - W[1903];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 4. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_87(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1932] = W[1881] + W[1912];
     W[1937] = W[1892] + W[1919];
     W[1942] = W[1901] + W[1926];
@@ -5817,26 +4817,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[1928] = W[1927] - W[1870];
     W[1933] = W[1842] + W[1932];
     W[1938] = W[1857] + W[1937];
-    W[1943] = W[1868] + W[1942];
-    W[1755] = W[1750] + W[1754];
-    W[1772] = W[1769] + W[1771];
-    W[1787] = W[1784] + W[1786];
-    W[1810] = W[1805] + W[1809];
-    W[1823] = W[1820] + W[1822];
-    W[1836] = W[1833] + W[1835];
-    W[1853] = W[1852] - W[1809];
-    W[1864] = W[1863] - W[1822];
-    W[1875] = W[1874] - W[1835];
-    W[1888] = W[1887] - W[1804];
-    W[1897] = W[1896] - W[1819];
-    W[1906] = W[1905] - W[1832];
-    W[1915] = W[1914] - W[1799];
-    W[1922] = W[1921] - W[1816];
-    W[1929] = W[1928] - W[1829];
-    W[1934] = W[1795] + W[1933];
-    W[1939] = W[1814] + W[1938];
-    W[1944] = W[1827] + W[1943];
-    W[1760] = W[1755] + W[1759];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 4. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_89(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1775] = W[1772] + W[1774];
     W[1790] = W[1787] + W[1789];
     W[1811] = W[1810] - W[1759];
@@ -5857,26 +4847,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[1761] = W[161] * W[1760];
     W[1776] = W[161] * W[1775];
     W[1791] = W[161] * W[1790];
-    W[1812] = W[161] * W[1811];
-    W[1825] = W[161] * W[1824];
-    W[1838] = W[161] * W[1837];
-    W[1855] = W[161] * W[1854];
-    W[1866] = W[161] * W[1865];
-    W[1877] = W[161] * W[1876];
-    W[1890] = W[161] * W[1889];
-    W[1899] = W[161] * W[1898];
-    W[1908] = W[161] * W[1907];
-    W[1917] = W[161] * W[1916];
-    W[1924] = W[161] * W[1923];
-    W[1931] = W[161] * W[1930];
-    W[1936] = W[163] * W[1935];
-    W[1941] = W[163] * W[1940];
-    W[1946] = W[163] * W[1945];
-    X[180] = X[162] / 5.0;
-    X[181] = X[163] / 5.0;
-    X[182] = X[164] / 5.0;
-    X[183] = X[165] / 5.0;
-    X[184] = X[166] / 5.0;
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 4. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_91(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[185] = X[167] / 5.0;
     X[186] = X[168] / 5.0;
     X[187] = X[169] / 5.0;
@@ -5897,20 +4877,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[202] = -W[1825] / W[140] / 5.0;
     X[203] = -W[1838] / W[140] / 5.0;
     X[204] = -W[1855] / W[141] / 5.0;
-    X[205] = -W[1866] / W[141] / 5.0;
-    X[206] = -W[1877] / W[141] / 5.0;
-    X[207] = -W[1890] / W[142] / 5.0;
-    X[208] = -W[1899] / W[142] / 5.0;
-    X[209] = -W[1908] / W[142] / 5.0;
-    X[210] = -W[1917] / W[143] / 5.0;
-    X[211] = -W[1924] / W[143] / 5.0;
-    X[212] = -W[1931] / W[143] / 5.0;
-    X[213] = -W[1936] / W[144] / 5.0;
-    X[214] = -W[1941] / W[144] / 5.0;
-    X[215] = -W[1946] / W[144] / 5.0;
-    if (K == 5)
-        goto out;
-    /* order 5 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_93(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1967] = X[180] - X[183];
     W[1971] = X[181] - X[184];
     W[1976] = X[182] - X[185];
@@ -5931,26 +4907,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[2028] = X[185] - X[188];
     W[2031] = X[183] - X[189];
     W[2033] = X[184] - X[190];
-    W[2036] = X[185] - X[191];
-    W[2039] = X[183] - X[192];
-    W[2041] = X[184] - X[193];
-    W[2044] = X[185] - X[194];
-    W[2047] = X[183] - X[195];
-    W[2049] = X[184] - X[196];
-    W[2052] = X[185] - X[197];
-    W[2055] = X[186] - X[189];
-    W[2057] = X[187] - X[190];
-    W[2060] = X[188] - X[191];
-    W[2063] = X[186] - X[192];
-    W[2065] = X[187] - X[193];
-    W[2068] = X[188] - X[194];
-    W[2071] = X[186] - X[195];
-    W[2073] = X[187] - X[196];
-    W[2076] = X[188] - X[197];
-    W[2079] = X[189] - X[192];
-    W[2081] = X[190] - X[193];
-    W[2084] = X[191] - X[194];
-    W[2087] = X[189] - X[195];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_95(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2089] = X[190] - X[196];
     W[2092] = X[191] - X[197];
     W[2095] = X[192] - X[195];
@@ -5971,26 +4937,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[2014] = (W[48] * W[2013] + W[441] * W[1620] + W[834] * W[1227]) * 2.0;
     W[2017] = (W[51] * W[2016] + W[444] * W[1623] + W[837] * W[1230]) * 2.0;
     W[2021] = (W[55] * W[2020] + W[448] * W[1627] + W[841] * W[1234]) * 2.0;
-    W[2024] = (W[58] * W[2023] + W[451] * W[1630] + W[844] * W[1237]) * 2.0;
-    W[2026] = (W[60] * W[2025] + W[453] * W[1632] + W[846] * W[1239]) * 2.0;
-    W[2029] = (W[63] * W[2028] + W[456] * W[1635] + W[849] * W[1242]) * 2.0;
-    W[2032] = (W[66] * W[2031] + W[459] * W[1638] + W[852] * W[1245]) * 2.0;
-    W[2034] = (W[68] * W[2033] + W[461] * W[1640] + W[854] * W[1247]) * 2.0;
-    W[2037] = (W[71] * W[2036] + W[464] * W[1643] + W[857] * W[1250]) * 2.0;
-    W[2040] = (W[74] * W[2039] + W[467] * W[1646] + W[860] * W[1253]) * 2.0;
-    W[2042] = (W[76] * W[2041] + W[469] * W[1648] + W[862] * W[1255]) * 2.0;
-    W[2045] = (W[79] * W[2044] + W[472] * W[1651] + W[865] * W[1258]) * 2.0;
-    W[2048] = (W[82] * W[2047] + W[475] * W[1654] + W[868] * W[1261]) * 2.0;
-    W[2050] = (W[84] * W[2049] + W[477] * W[1656] + W[870] * W[1263]) * 2.0;
-    W[2053] = (W[87] * W[2052] + W[480] * W[1659] + W[873] * W[1266]) * 2.0;
-    W[2056] = (W[90] * W[2055] + W[483] * W[1662] + W[876] * W[1269]) * 2.0;
-    W[2058] = (W[92] * W[2057] + W[485] * W[1664] + W[878] * W[1271]) * 2.0;
-    W[2061] = (W[95] * W[2060] + W[488] * W[1667] + W[881] * W[1274]) * 2.0;
-    W[2064] = (W[98] * W[2063] + W[491] * W[1670] + W[884] * W[1277]) * 2.0;
-    W[2066] = (W[100] * W[2065] + W[493] * W[1672] + W[886] * W[1279]) * 2.0;
-    W[2069] = (W[103] * W[2068] + W[496] * W[1675] + W[889] * W[1282]) * 2.0;
-    W[2072] = (W[106] * W[2071] + W[499] * W[1678] + W[892] * W[1285]) * 2.0;
-    W[2074] = (W[108] * W[2073] + W[501] * W[1680] + W[894] * W[1287]) * 2.0;
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_97(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2077] = (W[111] * W[2076] + W[504] * W[1683] + W[897] * W[1290]) * 2.0;
     W[2080] = (W[114] * W[2079] + W[507] * W[1686] + W[900] * W[1293]) * 2.0;
     W[2082] = (W[116] * W[2081] + W[509] * W[1688] + W[902] * W[1295]) * 2.0;
@@ -6011,26 +4967,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[2043] = W[2040] + W[2042];
     W[2051] = W[2048] + W[2050];
     W[2059] = W[2056] + W[2058];
-    W[2067] = W[2064] + W[2066];
-    W[2075] = W[2072] + W[2074];
-    W[2083] = W[2080] + W[2082];
-    W[2091] = W[2088] + W[2090];
-    W[2099] = W[2096] + W[2098];
-    W[1978] = W[1973] + W[1977];
-    W[1989] = W[1985] + W[1988];
-    W[2000] = W[1996] + W[1999];
-    W[2011] = W[2007] + W[2010];
-    W[2022] = W[2018] + W[2021];
-    W[2030] = W[2027] + W[2029];
-    W[2038] = W[2035] + W[2037];
-    W[2046] = W[2043] + W[2045];
-    W[2054] = W[2051] + W[2053];
-    W[2062] = W[2059] + W[2061];
-    W[2070] = W[2067] + W[2069];
-    W[2078] = W[2075] + W[2077];
-    W[2086] = W[2083] + W[2085];
-    W[2094] = W[2091] + W[2093];
-    W[2102] = W[2099] + W[2101];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_99(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2131] = (-7.5 * W[2022] * W[166] - 7.0 * W[1629] * W[559] - 6.5 * W[1236] * W[952] - 6.0 * W[843] * W[1345]
             - 5.5 * W[450] * W[1738]) / (5.0 * W[57]);
     W[2135] = (-7.5 * W[2011] * W[170] - 7.0 * W[1618] * W[563] - 6.5 * W[1225] * W[956] - 6.0 * W[832] * W[1349]
@@ -6071,46 +5017,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[1980] * W[180];
     W[2151] = W[2] * W[2150] + W[395] * W[1757] + W[788] * W[1364] + W[1181] * W[971] + W[1574] * W[578]
             + W[1967] * W[185];
-    W[2155] = W[51] * W[2131] + W[444] * W[1738] + W[837] * W[1345] + W[1230] * W[952] + W[1623] * W[559]
-            + W[2016] * W[166];
-    W[2157] = W[40] * W[2135] + W[433] * W[1742] + W[826] * W[1349] + W[1219] * W[956] + W[1612] * W[563]
-            + W[2005] * W[170];
-    W[2160] = W[29] * W[2140] + W[422] * W[1747] + W[815] * W[1354] + W[1208] * W[961] + W[1601] * W[568]
-            + W[1994] * W[175];
-    W[2163] = W[18] * W[2145] + W[411] * W[1752] + W[804] * W[1359] + W[1197] * W[966] + W[1590] * W[573]
-            + W[1983] * W[180];
-    W[2166] = W[6] * W[2150] + W[399] * W[1757] + W[792] * W[1364] + W[1185] * W[971] + W[1578] * W[578]
-            + W[1971] * W[185];
-    W[2170] = W[55] * W[2131] + W[448] * W[1738] + W[841] * W[1345] + W[1234] * W[952] + W[1627] * W[559]
-            + W[2020] * W[166];
-    W[2172] = W[44] * W[2135] + W[437] * W[1742] + W[830] * W[1349] + W[1223] * W[956] + W[1616] * W[563]
-            + W[2009] * W[170];
-    W[2175] = W[33] * W[2140] + W[426] * W[1747] + W[819] * W[1354] + W[1212] * W[961] + W[1605] * W[568]
-            + W[1998] * W[175];
-    W[2178] = W[22] * W[2145] + W[415] * W[1752] + W[808] * W[1359] + W[1201] * W[966] + W[1594] * W[573]
-            + W[1987] * W[180];
-    W[2181] = W[11] * W[2150] + W[404] * W[1757] + W[797] * W[1364] + W[1190] * W[971] + W[1583] * W[578]
-            + W[1976] * W[185];
-    W[2187] = W[82] * W[2186] + W[475] * W[1793] + W[868] * W[1400] + W[1261] * W[1007] + W[1654] * W[614]
-            + W[2047] * W[221];
-    W[2191] = W[74] * W[2190] + W[467] * W[1797] + W[860] * W[1404] + W[1253] * W[1011] + W[1646] * W[618]
-            + W[2039] * W[225];
-    W[2196] = W[66] * W[2195] + W[459] * W[1802] + W[852] * W[1409] + W[1245] * W[1016] + W[1638] * W[623]
-            + W[2031] * W[230];
-    W[2201] = W[58] * W[2200] + W[451] * W[1807] + W[844] * W[1414] + W[1237] * W[1021] + W[1630] * W[628]
-            + W[2023] * W[235];
-    W[2206] = W[84] * W[2186] + W[477] * W[1793] + W[870] * W[1400] + W[1263] * W[1007] + W[1656] * W[614]
-            + W[2049] * W[221];
-    W[2208] = W[76] * W[2190] + W[469] * W[1797] + W[862] * W[1404] + W[1255] * W[1011] + W[1648] * W[618]
-            + W[2041] * W[225];
-    W[2211] = W[68] * W[2195] + W[461] * W[1802] + W[854] * W[1409] + W[1247] * W[1016] + W[1640] * W[623]
-            + W[2033] * W[230];
-    W[2214] = W[60] * W[2200] + W[453] * W[1807] + W[846] * W[1414] + W[1239] * W[1021] + W[1632] * W[628]
-            + W[2025] * W[235];
-    W[2219] = W[87] * W[2186] + W[480] * W[1793] + W[873] * W[1400] + W[1266] * W[1007] + W[1659] * W[614]
-            + W[2052] * W[221];
-    W[2221] = W[79] * W[2190] + W[472] * W[1797] + W[865] * W[1404] + W[1258] * W[1011] + W[1651] * W[618]
-            + W[2044] * W[225];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_101(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2224] = W[71] * W[2195] + W[464] * W[1802] + W[857] * W[1409] + W[1250] * W[1016] + W[1643] * W[623]
             + W[2036] * W[230];
     W[2227] = W[63] * W[2200] + W[456] * W[1807] + W[849] * W[1414] + W[1242] * W[1021] + W[1635] * W[628]
@@ -6151,66 +5067,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[2097] * W[338];
     W[2318] = W[135] * W[2303] + W[528] * W[1910] + W[921] * W[1517] + W[1314] * W[1124] + W[1707] * W[731]
             + W[2100] * W[338];
-    W[2133] = W[164] * W[2132];
-    W[2137] = W[169] * W[2136];
-    W[2142] = W[174] * W[2141];
-    W[2147] = W[179] * W[2146];
-    W[2152] = W[184] * W[2151];
-    W[2156] = W[164] * W[2155];
-    W[2158] = W[169] * W[2157];
-    W[2161] = W[174] * W[2160];
-    W[2164] = W[179] * W[2163];
-    W[2167] = W[184] * W[2166];
-    W[2171] = W[164] * W[2170];
-    W[2173] = W[169] * W[2172];
-    W[2176] = W[174] * W[2175];
-    W[2179] = W[179] * W[2178];
-    W[2182] = W[184] * W[2181];
-    W[2188] = W[220] * W[2187];
-    W[2192] = W[224] * W[2191];
-    W[2197] = W[229] * W[2196];
-    W[2202] = W[234] * W[2201];
-    W[2207] = W[220] * W[2206];
-    W[2209] = W[224] * W[2208];
-    W[2212] = W[229] * W[2211];
-    W[2215] = W[234] * W[2214];
-    W[2220] = W[220] * W[2219];
-    W[2222] = W[224] * W[2221];
-    W[2225] = W[229] * W[2224];
-    W[2228] = W[234] * W[2227];
-    W[2235] = W[267] * W[2234];
-    W[2239] = W[271] * W[2238];
-    W[2244] = W[276] * W[2243];
-    W[2250] = W[267] * W[2249];
-    W[2252] = W[271] * W[2251];
-    W[2255] = W[276] * W[2254];
-    W[2261] = W[267] * W[2260];
-    W[2263] = W[271] * W[2262];
-    W[2266] = W[276] * W[2265];
-    W[2274] = W[306] * W[2273];
-    W[2278] = W[310] * W[2277];
-    W[2285] = W[306] * W[2284];
-    W[2287] = W[310] * W[2286];
-    W[2294] = W[306] * W[2293];
-    W[2296] = W[310] * W[2295];
-    W[2305] = W[337] * W[2304];
-    W[2312] = W[337] * W[2311];
-    W[2319] = W[337] * W[2318];
-    W[2138] = W[2133] + W[2137];
-    W[2159] = W[2156] + W[2158];
-    W[2174] = W[2171] + W[2173];
-    W[2193] = W[2188] + W[2192];
-    W[2210] = W[2207] + W[2209];
-    W[2223] = W[2220] + W[2222];
-    W[2240] = W[2235] + W[2239];
-    W[2253] = W[2250] + W[2252];
-    W[2264] = W[2261] + W[2263];
-    W[2279] = W[2274] + W[2278];
-    W[2288] = W[2285] + W[2287];
-    W[2297] = W[2294] + W[2296];
-    W[2306] = W[2305] - W[2278];
-    W[2313] = W[2312] - W[2287];
-    W[2320] = W[2319] - W[2296];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_105(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2325] = W[2274] + W[2305];
     W[2330] = W[2285] + W[2312];
     W[2335] = W[2294] + W[2319];
@@ -6231,26 +5097,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[2321] = W[2320] - W[2263];
     W[2326] = W[2235] + W[2325];
     W[2331] = W[2250] + W[2330];
-    W[2336] = W[2261] + W[2335];
-    W[2148] = W[2143] + W[2147];
-    W[2165] = W[2162] + W[2164];
-    W[2180] = W[2177] + W[2179];
-    W[2203] = W[2198] + W[2202];
-    W[2216] = W[2213] + W[2215];
-    W[2229] = W[2226] + W[2228];
-    W[2246] = W[2245] - W[2202];
-    W[2257] = W[2256] - W[2215];
-    W[2268] = W[2267] - W[2228];
-    W[2281] = W[2280] - W[2197];
-    W[2290] = W[2289] - W[2212];
-    W[2299] = W[2298] - W[2225];
-    W[2308] = W[2307] - W[2192];
-    W[2315] = W[2314] - W[2209];
-    W[2322] = W[2321] - W[2222];
-    W[2327] = W[2188] + W[2326];
-    W[2332] = W[2207] + W[2331];
-    W[2337] = W[2220] + W[2336];
-    W[2153] = W[2148] + W[2152];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_107(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2168] = W[2165] + W[2167];
     W[2183] = W[2180] + W[2182];
     W[2204] = W[2203] - W[2152];
@@ -6271,46 +5127,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[2154] = W[161] * W[2153];
     W[2169] = W[161] * W[2168];
     W[2184] = W[161] * W[2183];
-    W[2205] = W[161] * W[2204];
-    W[2218] = W[161] * W[2217];
-    W[2231] = W[161] * W[2230];
-    W[2248] = W[161] * W[2247];
-    W[2259] = W[161] * W[2258];
-    W[2270] = W[161] * W[2269];
-    W[2283] = W[161] * W[2282];
-    W[2292] = W[161] * W[2291];
-    W[2301] = W[161] * W[2300];
-    W[2310] = W[161] * W[2309];
-    W[2317] = W[161] * W[2316];
-    W[2324] = W[161] * W[2323];
-    W[2329] = W[163] * W[2328];
-    W[2334] = W[163] * W[2333];
-    W[2339] = W[163] * W[2338];
-    X[216] = X[198] / 6.0;
-    X[217] = X[199] / 6.0;
-    X[218] = X[200] / 6.0;
-    X[219] = X[201] / 6.0;
-    X[220] = X[202] / 6.0;
-    X[221] = X[203] / 6.0;
-    X[222] = X[204] / 6.0;
-    X[223] = X[205] / 6.0;
-    X[224] = X[206] / 6.0;
-    X[225] = X[207] / 6.0;
-    X[226] = X[208] / 6.0;
-    X[227] = X[209] / 6.0;
-    X[228] = X[210] / 6.0;
-    X[229] = X[211] / 6.0;
-    X[230] = X[212] / 6.0;
-    X[231] = X[213] / 6.0;
-    X[232] = X[214] / 6.0;
-    X[233] = X[215] / 6.0;
-    X[234] = -W[2154] / W[138] / 6.0;
-    X[235] = -W[2169] / W[138] / 6.0;
-    X[236] = -W[2184] / W[138] / 6.0;
-    X[237] = -W[2205] / W[140] / 6.0;
-    X[238] = -W[2218] / W[140] / 6.0;
-    X[239] = -W[2231] / W[140] / 6.0;
-    X[240] = -W[2248] / W[141] / 6.0;
+    return 0;
+}
+
+/* Lines 340 .. 350 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_110(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[241] = -W[2259] / W[141] / 6.0;
     X[242] = -W[2270] / W[141] / 6.0;
     X[243] = -W[2283] / W[142] / 6.0;
@@ -6322,9 +5148,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[249] = -W[2329] / W[144] / 6.0;
     X[250] = -W[2334] / W[144] / 6.0;
     X[251] = -W[2339] / W[144] / 6.0;
-    if (K == 6)
-        goto out;
-    /* order 6 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_111(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2360] = X[216] - X[219];
     W[2364] = X[217] - X[220];
     W[2369] = X[218] - X[221];
@@ -6345,26 +5178,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[2421] = X[221] - X[224];
     W[2424] = X[219] - X[225];
     W[2426] = X[220] - X[226];
-    W[2429] = X[221] - X[227];
-    W[2432] = X[219] - X[228];
-    W[2434] = X[220] - X[229];
-    W[2437] = X[221] - X[230];
-    W[2440] = X[219] - X[231];
-    W[2442] = X[220] - X[232];
-    W[2445] = X[221] - X[233];
-    W[2448] = X[222] - X[225];
-    W[2450] = X[223] - X[226];
-    W[2453] = X[224] - X[227];
-    W[2456] = X[222] - X[228];
-    W[2458] = X[223] - X[229];
-    W[2461] = X[224] - X[230];
-    W[2464] = X[222] - X[231];
-    W[2466] = X[223] - X[232];
-    W[2469] = X[224] - X[233];
-    W[2472] = X[225] - X[228];
-    W[2474] = X[226] - X[229];
-    W[2477] = X[227] - X[230];
-    W[2480] = X[225] - X[231];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_113(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2482] = X[226] - X[232];
     W[2485] = X[227] - X[233];
     W[2488] = X[228] - X[231];
@@ -6385,26 +5208,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[2407] = (W[48] * W[2406] + W[441] * W[2013] + W[834] * W[1620]) * 2.0 + W[1227] * W[1227];
     W[2410] = (W[51] * W[2409] + W[444] * W[2016] + W[837] * W[1623]) * 2.0 + W[1230] * W[1230];
     W[2414] = (W[55] * W[2413] + W[448] * W[2020] + W[841] * W[1627]) * 2.0 + W[1234] * W[1234];
-    W[2417] = (W[58] * W[2416] + W[451] * W[2023] + W[844] * W[1630]) * 2.0 + W[1237] * W[1237];
-    W[2419] = (W[60] * W[2418] + W[453] * W[2025] + W[846] * W[1632]) * 2.0 + W[1239] * W[1239];
-    W[2422] = (W[63] * W[2421] + W[456] * W[2028] + W[849] * W[1635]) * 2.0 + W[1242] * W[1242];
-    W[2425] = (W[66] * W[2424] + W[459] * W[2031] + W[852] * W[1638]) * 2.0 + W[1245] * W[1245];
-    W[2427] = (W[68] * W[2426] + W[461] * W[2033] + W[854] * W[1640]) * 2.0 + W[1247] * W[1247];
-    W[2430] = (W[71] * W[2429] + W[464] * W[2036] + W[857] * W[1643]) * 2.0 + W[1250] * W[1250];
-    W[2433] = (W[74] * W[2432] + W[467] * W[2039] + W[860] * W[1646]) * 2.0 + W[1253] * W[1253];
-    W[2435] = (W[76] * W[2434] + W[469] * W[2041] + W[862] * W[1648]) * 2.0 + W[1255] * W[1255];
-    W[2438] = (W[79] * W[2437] + W[472] * W[2044] + W[865] * W[1651]) * 2.0 + W[1258] * W[1258];
-    W[2441] = (W[82] * W[2440] + W[475] * W[2047] + W[868] * W[1654]) * 2.0 + W[1261] * W[1261];
-    W[2443] = (W[84] * W[2442] + W[477] * W[2049] + W[870] * W[1656]) * 2.0 + W[1263] * W[1263];
-    W[2446] = (W[87] * W[2445] + W[480] * W[2052] + W[873] * W[1659]) * 2.0 + W[1266] * W[1266];
-    W[2449] = (W[90] * W[2448] + W[483] * W[2055] + W[876] * W[1662]) * 2.0 + W[1269] * W[1269];
-    W[2451] = (W[92] * W[2450] + W[485] * W[2057] + W[878] * W[1664]) * 2.0 + W[1271] * W[1271];
-    W[2454] = (W[95] * W[2453] + W[488] * W[2060] + W[881] * W[1667]) * 2.0 + W[1274] * W[1274];
-    W[2457] = (W[98] * W[2456] + W[491] * W[2063] + W[884] * W[1670]) * 2.0 + W[1277] * W[1277];
-    W[2459] = (W[100] * W[2458] + W[493] * W[2065] + W[886] * W[1672]) * 2.0 + W[1279] * W[1279];
-    W[2462] = (W[103] * W[2461] + W[496] * W[2068] + W[889] * W[1675]) * 2.0 + W[1282] * W[1282];
-    W[2465] = (W[106] * W[2464] + W[499] * W[2071] + W[892] * W[1678]) * 2.0 + W[1285] * W[1285];
-    W[2467] = (W[108] * W[2466] + W[501] * W[2073] + W[894] * W[1680]) * 2.0 + W[1287] * W[1287];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_115(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2470] = (W[111] * W[2469] + W[504] * W[2076] + W[897] * W[1683]) * 2.0 + W[1290] * W[1290];
     W[2473] = (W[114] * W[2472] + W[507] * W[2079] + W[900] * W[1686]) * 2.0 + W[1293] * W[1293];
     W[2475] = (W[116] * W[2474] + W[509] * W[2081] + W[902] * W[1688]) * 2.0 + W[1295] * W[1295];
@@ -6425,26 +5238,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[2436] = W[2433] + W[2435];
     W[2444] = W[2441] + W[2443];
     W[2452] = W[2449] + W[2451];
-    W[2460] = W[2457] + W[2459];
-    W[2468] = W[2465] + W[2467];
-    W[2476] = W[2473] + W[2475];
-    W[2484] = W[2481] + W[2483];
-    W[2492] = W[2489] + W[2491];
-    W[2371] = W[2366] + W[2370];
-    W[2382] = W[2378] + W[2381];
-    W[2393] = W[2389] + W[2392];
-    W[2404] = W[2400] + W[2403];
-    W[2415] = W[2411] + W[2414];
-    W[2423] = W[2420] + W[2422];
-    W[2431] = W[2428] + W[2430];
-    W[2439] = W[2436] + W[2438];
-    W[2447] = W[2444] + W[2446];
-    W[2455] = W[2452] + W[2454];
-    W[2463] = W[2460] + W[2462];
-    W[2471] = W[2468] + W[2470];
-    W[2479] = W[2476] + W[2478];
-    W[2487] = W[2484] + W[2486];
-    W[2495] = W[2492] + W[2494];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_117(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2524] = (-9.0 * W[2415] * W[166] - 8.5 * W[2022] * W[559] - 8.0 * W[1629] * W[952] - 7.5 * W[1236] * W[1345]
             - 7.0 * W[843] * W[1738] - 6.5 * W[450] * W[2131]) / (6.0 * W[57]);
     W[2528] = (-9.0 * W[2404] * W[170] - 8.5 * W[2011] * W[563] - 8.0 * W[1618] * W[956] - 7.5 * W[1225] * W[1349]
@@ -6485,46 +5288,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[1980] * W[573] + W[2373] * W[180];
     W[2544] = W[2] * W[2543] + W[395] * W[2150] + W[788] * W[1757] + W[1181] * W[1364] + W[1574] * W[971]
             + W[1967] * W[578] + W[2360] * W[185];
-    W[2548] = W[51] * W[2524] + W[444] * W[2131] + W[837] * W[1738] + W[1230] * W[1345] + W[1623] * W[952]
-            + W[2016] * W[559] + W[2409] * W[166];
-    W[2550] = W[40] * W[2528] + W[433] * W[2135] + W[826] * W[1742] + W[1219] * W[1349] + W[1612] * W[956]
-            + W[2005] * W[563] + W[2398] * W[170];
-    W[2553] = W[29] * W[2533] + W[422] * W[2140] + W[815] * W[1747] + W[1208] * W[1354] + W[1601] * W[961]
-            + W[1994] * W[568] + W[2387] * W[175];
-    W[2556] = W[18] * W[2538] + W[411] * W[2145] + W[804] * W[1752] + W[1197] * W[1359] + W[1590] * W[966]
-            + W[1983] * W[573] + W[2376] * W[180];
-    W[2559] = W[6] * W[2543] + W[399] * W[2150] + W[792] * W[1757] + W[1185] * W[1364] + W[1578] * W[971]
-            + W[1971] * W[578] + W[2364] * W[185];
-    W[2563] = W[55] * W[2524] + W[448] * W[2131] + W[841] * W[1738] + W[1234] * W[1345] + W[1627] * W[952]
-            + W[2020] * W[559] + W[2413] * W[166];
-    W[2565] = W[44] * W[2528] + W[437] * W[2135] + W[830] * W[1742] + W[1223] * W[1349] + W[1616] * W[956]
-            + W[2009] * W[563] + W[2402] * W[170];
-    W[2568] = W[33] * W[2533] + W[426] * W[2140] + W[819] * W[1747] + W[1212] * W[1354] + W[1605] * W[961]
-            + W[1998] * W[568] + W[2391] * W[175];
-    W[2571] = W[22] * W[2538] + W[415] * W[2145] + W[808] * W[1752] + W[1201] * W[1359] + W[1594] * W[966]
-            + W[1987] * W[573] + W[2380] * W[180];
-    W[2574] = W[11] * W[2543] + W[404] * W[2150] + W[797] * W[1757] + W[1190] * W[1364] + W[1583] * W[971]
-            + W[1976] * W[578] + W[2369] * W[185];
-    W[2580] = W[82] * W[2579] + W[475] * W[2186] + W[868] * W[1793] + W[1261] * W[1400] + W[1654] * W[1007]
-            + W[2047] * W[614] + W[2440] * W[221];
-    W[2584] = W[74] * W[2583] + W[467] * W[2190] + W[860] * W[1797] + W[1253] * W[1404] + W[1646] * W[1011]
-            + W[2039] * W[618] + W[2432] * W[225];
-    W[2589] = W[66] * W[2588] + W[459] * W[2195] + W[852] * W[1802] + W[1245] * W[1409] + W[1638] * W[1016]
-            + W[2031] * W[623] + W[2424] * W[230];
-    W[2594] = W[58] * W[2593] + W[451] * W[2200] + W[844] * W[1807] + W[1237] * W[1414] + W[1630] * W[1021]
-            + W[2023] * W[628] + W[2416] * W[235];
-    W[2599] = W[84] * W[2579] + W[477] * W[2186] + W[870] * W[1793] + W[1263] * W[1400] + W[1656] * W[1007]
-            + W[2049] * W[614] + W[2442] * W[221];
-    W[2601] = W[76] * W[2583] + W[469] * W[2190] + W[862] * W[1797] + W[1255] * W[1404] + W[1648] * W[1011]
-            + W[2041] * W[618] + W[2434] * W[225];
-    W[2604] = W[68] * W[2588] + W[461] * W[2195] + W[854] * W[1802] + W[1247] * W[1409] + W[1640] * W[1016]
-            + W[2033] * W[623] + W[2426] * W[230];
-    W[2607] = W[60] * W[2593] + W[453] * W[2200] + W[846] * W[1807] + W[1239] * W[1414] + W[1632] * W[1021]
-            + W[2025] * W[628] + W[2418] * W[235];
-    W[2612] = W[87] * W[2579] + W[480] * W[2186] + W[873] * W[1793] + W[1266] * W[1400] + W[1659] * W[1007]
-            + W[2052] * W[614] + W[2445] * W[221];
-    W[2614] = W[79] * W[2583] + W[472] * W[2190] + W[865] * W[1797] + W[1258] * W[1404] + W[1651] * W[1011]
-            + W[2044] * W[618] + W[2437] * W[225];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_119(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2617] = W[71] * W[2588] + W[464] * W[2195] + W[857] * W[1802] + W[1250] * W[1409] + W[1643] * W[1016]
             + W[2036] * W[623] + W[2429] * W[230];
     W[2620] = W[63] * W[2593] + W[456] * W[2200] + W[849] * W[1807] + W[1242] * W[1414] + W[1635] * W[1021]
@@ -6565,66 +5338,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[2097] * W[731] + W[2490] * W[338];
     W[2711] = W[135] * W[2696] + W[528] * W[2303] + W[921] * W[1910] + W[1314] * W[1517] + W[1707] * W[1124]
             + W[2100] * W[731] + W[2493] * W[338];
-    W[2526] = W[164] * W[2525];
-    W[2530] = W[169] * W[2529];
-    W[2535] = W[174] * W[2534];
-    W[2540] = W[179] * W[2539];
-    W[2545] = W[184] * W[2544];
-    W[2549] = W[164] * W[2548];
-    W[2551] = W[169] * W[2550];
-    W[2554] = W[174] * W[2553];
-    W[2557] = W[179] * W[2556];
-    W[2560] = W[184] * W[2559];
-    W[2564] = W[164] * W[2563];
-    W[2566] = W[169] * W[2565];
-    W[2569] = W[174] * W[2568];
-    W[2572] = W[179] * W[2571];
-    W[2575] = W[184] * W[2574];
-    W[2581] = W[220] * W[2580];
-    W[2585] = W[224] * W[2584];
-    W[2590] = W[229] * W[2589];
-    W[2595] = W[234] * W[2594];
-    W[2600] = W[220] * W[2599];
-    W[2602] = W[224] * W[2601];
-    W[2605] = W[229] * W[2604];
-    W[2608] = W[234] * W[2607];
-    W[2613] = W[220] * W[2612];
-    W[2615] = W[224] * W[2614];
-    W[2618] = W[229] * W[2617];
-    W[2621] = W[234] * W[2620];
-    W[2628] = W[267] * W[2627];
-    W[2632] = W[271] * W[2631];
-    W[2637] = W[276] * W[2636];
-    W[2643] = W[267] * W[2642];
-    W[2645] = W[271] * W[2644];
-    W[2648] = W[276] * W[2647];
-    W[2654] = W[267] * W[2653];
-    W[2656] = W[271] * W[2655];
-    W[2659] = W[276] * W[2658];
-    W[2667] = W[306] * W[2666];
-    W[2671] = W[310] * W[2670];
-    W[2678] = W[306] * W[2677];
-    W[2680] = W[310] * W[2679];
-    W[2687] = W[306] * W[2686];
-    W[2689] = W[310] * W[2688];
-    W[2698] = W[337] * W[2697];
-    W[2705] = W[337] * W[2704];
-    W[2712] = W[337] * W[2711];
-    W[2531] = W[2526] + W[2530];
-    W[2552] = W[2549] + W[2551];
-    W[2567] = W[2564] + W[2566];
-    W[2586] = W[2581] + W[2585];
-    W[2603] = W[2600] + W[2602];
-    W[2616] = W[2613] + W[2615];
-    W[2633] = W[2628] + W[2632];
-    W[2646] = W[2643] + W[2645];
-    W[2657] = W[2654] + W[2656];
-    W[2672] = W[2667] + W[2671];
-    W[2681] = W[2678] + W[2680];
-    W[2690] = W[2687] + W[2689];
-    W[2699] = W[2698] - W[2671];
-    W[2706] = W[2705] - W[2680];
-    W[2713] = W[2712] - W[2689];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_123(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2718] = W[2667] + W[2698];
     W[2723] = W[2678] + W[2705];
     W[2728] = W[2687] + W[2712];
@@ -6645,26 +5368,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[2714] = W[2713] - W[2656];
     W[2719] = W[2628] + W[2718];
     W[2724] = W[2643] + W[2723];
-    W[2729] = W[2654] + W[2728];
-    W[2541] = W[2536] + W[2540];
-    W[2558] = W[2555] + W[2557];
-    W[2573] = W[2570] + W[2572];
-    W[2596] = W[2591] + W[2595];
-    W[2609] = W[2606] + W[2608];
-    W[2622] = W[2619] + W[2621];
-    W[2639] = W[2638] - W[2595];
-    W[2650] = W[2649] - W[2608];
-    W[2661] = W[2660] - W[2621];
-    W[2674] = W[2673] - W[2590];
-    W[2683] = W[2682] - W[2605];
-    W[2692] = W[2691] - W[2618];
-    W[2701] = W[2700] - W[2585];
-    W[2708] = W[2707] - W[2602];
-    W[2715] = W[2714] - W[2615];
-    W[2720] = W[2581] + W[2719];
-    W[2725] = W[2600] + W[2724];
-    W[2730] = W[2613] + W[2729];
-    W[2546] = W[2541] + W[2545];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_125(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2561] = W[2558] + W[2560];
     W[2576] = W[2573] + W[2575];
     W[2597] = W[2596] - W[2545];
@@ -6685,46 +5398,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[2547] = W[161] * W[2546];
     W[2562] = W[161] * W[2561];
     W[2577] = W[161] * W[2576];
-    W[2598] = W[161] * W[2597];
-    W[2611] = W[161] * W[2610];
-    W[2624] = W[161] * W[2623];
-    W[2641] = W[161] * W[2640];
-    W[2652] = W[161] * W[2651];
-    W[2663] = W[161] * W[2662];
-    W[2676] = W[161] * W[2675];
-    W[2685] = W[161] * W[2684];
-    W[2694] = W[161] * W[2693];
-    W[2703] = W[161] * W[2702];
-    W[2710] = W[161] * W[2709];
-    W[2717] = W[161] * W[2716];
-    W[2722] = W[163] * W[2721];
-    W[2727] = W[163] * W[2726];
-    W[2732] = W[163] * W[2731];
-    X[252] = X[234] / 7.0;
-    X[253] = X[235] / 7.0;
-    X[254] = X[236] / 7.0;
-    X[255] = X[237] / 7.0;
-    X[256] = X[238] / 7.0;
-    X[257] = X[239] / 7.0;
-    X[258] = X[240] / 7.0;
-    X[259] = X[241] / 7.0;
-    X[260] = X[242] / 7.0;
-    X[261] = X[243] / 7.0;
-    X[262] = X[244] / 7.0;
-    X[263] = X[245] / 7.0;
-    X[264] = X[246] / 7.0;
-    X[265] = X[247] / 7.0;
-    X[266] = X[248] / 7.0;
-    X[267] = X[249] / 7.0;
-    X[268] = X[250] / 7.0;
-    X[269] = X[251] / 7.0;
-    X[270] = -W[2547] / W[138] / 7.0;
-    X[271] = -W[2562] / W[138] / 7.0;
-    X[272] = -W[2577] / W[138] / 7.0;
-    X[273] = -W[2598] / W[140] / 7.0;
-    X[274] = -W[2611] / W[140] / 7.0;
-    X[275] = -W[2624] / W[140] / 7.0;
-    X[276] = -W[2641] / W[141] / 7.0;
+    return 0;
+}
+
+/* Lines 340 .. 350 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_128(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[277] = -W[2652] / W[141] / 7.0;
     X[278] = -W[2663] / W[141] / 7.0;
     X[279] = -W[2676] / W[142] / 7.0;
@@ -6736,9 +5419,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[285] = -W[2722] / W[144] / 7.0;
     X[286] = -W[2727] / W[144] / 7.0;
     X[287] = -W[2732] / W[144] / 7.0;
-    if (K == 7)
-        goto out;
-    /* order 7 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_129(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2753] = X[252] - X[255];
     W[2757] = X[253] - X[256];
     W[2762] = X[254] - X[257];
@@ -6759,26 +5449,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[2814] = X[257] - X[260];
     W[2817] = X[255] - X[261];
     W[2819] = X[256] - X[262];
-    W[2822] = X[257] - X[263];
-    W[2825] = X[255] - X[264];
-    W[2827] = X[256] - X[265];
-    W[2830] = X[257] - X[266];
-    W[2833] = X[255] - X[267];
-    W[2835] = X[256] - X[268];
-    W[2838] = X[257] - X[269];
-    W[2841] = X[258] - X[261];
-    W[2843] = X[259] - X[262];
-    W[2846] = X[260] - X[263];
-    W[2849] = X[258] - X[264];
-    W[2851] = X[259] - X[265];
-    W[2854] = X[260] - X[266];
-    W[2857] = X[258] - X[267];
-    W[2859] = X[259] - X[268];
-    W[2862] = X[260] - X[269];
-    W[2865] = X[261] - X[264];
-    W[2867] = X[262] - X[265];
-    W[2870] = X[263] - X[266];
-    W[2873] = X[261] - X[267];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_131(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2875] = X[262] - X[268];
     W[2878] = X[263] - X[269];
     W[2881] = X[264] - X[267];
@@ -6799,26 +5479,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[2800] = (W[48] * W[2799] + W[441] * W[2406] + W[834] * W[2013] + W[1227] * W[1620]) * 2.0;
     W[2803] = (W[51] * W[2802] + W[444] * W[2409] + W[837] * W[2016] + W[1230] * W[1623]) * 2.0;
     W[2807] = (W[55] * W[2806] + W[448] * W[2413] + W[841] * W[2020] + W[1234] * W[1627]) * 2.0;
-    W[2810] = (W[58] * W[2809] + W[451] * W[2416] + W[844] * W[2023] + W[1237] * W[1630]) * 2.0;
-    W[2812] = (W[60] * W[2811] + W[453] * W[2418] + W[846] * W[2025] + W[1239] * W[1632]) * 2.0;
-    W[2815] = (W[63] * W[2814] + W[456] * W[2421] + W[849] * W[2028] + W[1242] * W[1635]) * 2.0;
-    W[2818] = (W[66] * W[2817] + W[459] * W[2424] + W[852] * W[2031] + W[1245] * W[1638]) * 2.0;
-    W[2820] = (W[68] * W[2819] + W[461] * W[2426] + W[854] * W[2033] + W[1247] * W[1640]) * 2.0;
-    W[2823] = (W[71] * W[2822] + W[464] * W[2429] + W[857] * W[2036] + W[1250] * W[1643]) * 2.0;
-    W[2826] = (W[74] * W[2825] + W[467] * W[2432] + W[860] * W[2039] + W[1253] * W[1646]) * 2.0;
-    W[2828] = (W[76] * W[2827] + W[469] * W[2434] + W[862] * W[2041] + W[1255] * W[1648]) * 2.0;
-    W[2831] = (W[79] * W[2830] + W[472] * W[2437] + W[865] * W[2044] + W[1258] * W[1651]) * 2.0;
-    W[2834] = (W[82] * W[2833] + W[475] * W[2440] + W[868] * W[2047] + W[1261] * W[1654]) * 2.0;
-    W[2836] = (W[84] * W[2835] + W[477] * W[2442] + W[870] * W[2049] + W[1263] * W[1656]) * 2.0;
-    W[2839] = (W[87] * W[2838] + W[480] * W[2445] + W[873] * W[2052] + W[1266] * W[1659]) * 2.0;
-    W[2842] = (W[90] * W[2841] + W[483] * W[2448] + W[876] * W[2055] + W[1269] * W[1662]) * 2.0;
-    W[2844] = (W[92] * W[2843] + W[485] * W[2450] + W[878] * W[2057] + W[1271] * W[1664]) * 2.0;
-    W[2847] = (W[95] * W[2846] + W[488] * W[2453] + W[881] * W[2060] + W[1274] * W[1667]) * 2.0;
-    W[2850] = (W[98] * W[2849] + W[491] * W[2456] + W[884] * W[2063] + W[1277] * W[1670]) * 2.0;
-    W[2852] = (W[100] * W[2851] + W[493] * W[2458] + W[886] * W[2065] + W[1279] * W[1672]) * 2.0;
-    W[2855] = (W[103] * W[2854] + W[496] * W[2461] + W[889] * W[2068] + W[1282] * W[1675]) * 2.0;
-    W[2858] = (W[106] * W[2857] + W[499] * W[2464] + W[892] * W[2071] + W[1285] * W[1678]) * 2.0;
-    W[2860] = (W[108] * W[2859] + W[501] * W[2466] + W[894] * W[2073] + W[1287] * W[1680]) * 2.0;
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_133(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2863] = (W[111] * W[2862] + W[504] * W[2469] + W[897] * W[2076] + W[1290] * W[1683]) * 2.0;
     W[2866] = (W[114] * W[2865] + W[507] * W[2472] + W[900] * W[2079] + W[1293] * W[1686]) * 2.0;
     W[2868] = (W[116] * W[2867] + W[509] * W[2474] + W[902] * W[2081] + W[1295] * W[1688]) * 2.0;
@@ -6839,66 +5509,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[2829] = W[2826] + W[2828];
     W[2837] = W[2834] + W[2836];
     W[2845] = W[2842] + W[2844];
-    W[2853] = W[2850] + W[2852];
-    W[2861] = W[2858] + W[2860];
-    W[2869] = W[2866] + W[2868];
-    W[2877] = W[2874] + W[2876];
-    W[2885] = W[2882] + W[2884];
-    W[2764] = W[2759] + W[2763];
-    W[2775] = W[2771] + W[2774];
-    W[2786] = W[2782] + W[2785];
-    W[2797] = W[2793] + W[2796];
-    W[2808] = W[2804] + W[2807];
-    W[2816] = W[2813] + W[2815];
-    W[2824] = W[2821] + W[2823];
-    W[2832] = W[2829] + W[2831];
-    W[2840] = W[2837] + W[2839];
-    W[2848] = W[2845] + W[2847];
-    W[2856] = W[2853] + W[2855];
-    W[2864] = W[2861] + W[2863];
-    W[2872] = W[2869] + W[2871];
-    W[2880] = W[2877] + W[2879];
-    W[2888] = W[2885] + W[2887];
-    W[2917] = (-10.5 * W[2808] * W[166] - 10.0 * W[2415] * W[559] - 9.5 * W[2022] * W[952] - 9.0 * W[1629] * W[1345]
-            - 8.5 * W[1236] * W[1738] - 8.0 * W[843] * W[2131] - 7.5 * W[450] * W[2524]) / (7.0 * W[57]);
-    W[2921] = (-10.5 * W[2797] * W[170] - 10.0 * W[2404] * W[563] - 9.5 * W[2011] * W[956] - 9.0 * W[1618] * W[1349]
-            - 8.5 * W[1225] * W[1742] - 8.0 * W[832] * W[2135] - 7.5 * W[439] * W[2528]) / (7.0 * W[46]);
-    W[2926] = (-10.5 * W[2786] * W[175] - 10.0 * W[2393] * W[568] - 9.5 * W[2000] * W[961] - 9.0 * W[1607] * W[1354]
-            - 8.5 * W[1214] * W[1747] - 8.0 * W[821] * W[2140] - 7.5 * W[428] * W[2533]) / (7.0 * W[35]);
-    W[2931] = (-10.5 * W[2775] * W[180] - 10.0 * W[2382] * W[573] - 9.5 * W[1989] * W[966] - 9.0 * W[1596] * W[1359]
-            - 8.5 * W[1203] * W[1752] - 8.0 * W[810] * W[2145] - 7.5 * W[417] * W[2538]) / (7.0 * W[24]);
-    W[2936] = (-10.5 * W[2764] * W[185] - 10.0 * W[2371] * W[578] - 9.5 * W[1978] * W[971] - 9.0 * W[1585] * W[1364]
-            - 8.5 * W[1192] * W[1757] - 8.0 * W[799] * W[2150] - 7.5 * W[406] * W[2543]) / (7.0 * W[13]);
-    W[2972] = (-10.5 * W[2840] * W[221] - 10.0 * W[2447] * W[614] - 9.5 * W[2054] * W[1007] - 9.0 * W[1661] * W[1400]
-            - 8.5 * W[1268] * W[1793] - 8.0 * W[875] * W[2186] - 7.5 * W[482] * W[2579]) / (7.0 * W[89]);
-    W[2976] = (-10.5 * W[2832] * W[225] - 10.0 * W[2439] * W[618] - 9.5 * W[2046] * W[1011] - 9.0 * W[1653] * W[1404]
-            - 8.5 * W[1260] * W[1797] - 8.0 * W[867] * W[2190] - 7.5 * W[474] * W[2583]) / (7.0 * W[81]);
-    W[2981] = (-10.5 * W[2824] * W[230] - 10.0 * W[2431] * W[623] - 9.5 * W[2038] * W[1016] - 9.0 * W[1645] * W[1409]
-            - 8.5 * W[1252] * W[1802] - 8.0 * W[859] * W[2195] - 7.5 * W[466] * W[2588]) / (7.0 * W[73]);
-    W[2986] = (-10.5 * W[2816] * W[235] - 10.0 * W[2423] * W[628] - 9.5 * W[2030] * W[1021] - 9.0 * W[1637] * W[1414]
-            - 8.5 * W[1244] * W[1807] - 8.0 * W[851] * W[2200] - 7.5 * W[458] * W[2593]) / (7.0 * W[65]);
-    W[3019] = (-10.5 * W[2864] * W[268] - 10.0 * W[2471] * W[661] - 9.5 * W[2078] * W[1054] - 9.0 * W[1685] * W[1447]
-            - 8.5 * W[1292] * W[1840] - 8.0 * W[899] * W[2233] - 7.5 * W[506] * W[2626]) / (7.0 * W[113]);
-    W[3023] = (-10.5 * W[2856] * W[272] - 10.0 * W[2463] * W[665] - 9.5 * W[2070] * W[1058] - 9.0 * W[1677] * W[1451]
-            - 8.5 * W[1284] * W[1844] - 8.0 * W[891] * W[2237] - 7.5 * W[498] * W[2630]) / (7.0 * W[105]);
-    W[3028] = (-10.5 * W[2848] * W[277] - 10.0 * W[2455] * W[670] - 9.5 * W[2062] * W[1063] - 9.0 * W[1669] * W[1456]
-            - 8.5 * W[1276] * W[1849] - 8.0 * W[883] * W[2242] - 7.5 * W[490] * W[2635]) / (7.0 * W[97]);
-    W[3058] = (-10.5 * W[2880] * W[307] - 10.0 * W[2487] * W[700] - 9.5 * W[2094] * W[1093] - 9.0 * W[1701] * W[1486]
-            - 8.5 * W[1308] * W[1879] - 8.0 * W[915] * W[2272] - 7.5 * W[522] * W[2665]) / (7.0 * W[129]);
-    W[3062] = (-10.5 * W[2872] * W[311] - 10.0 * W[2479] * W[704] - 9.5 * W[2086] * W[1097] - 9.0 * W[1693] * W[1490]
-            - 8.5 * W[1300] * W[1883] - 8.0 * W[907] * W[2276] - 7.5 * W[514] * W[2669]) / (7.0 * W[121]);
-    W[3089] = (-10.5 * W[2888] * W[338] - 10.0 * W[2495] * W[731] - 9.5 * W[2102] * W[1124] - 9.0 * W[1709] * W[1517]
-            - 8.5 * W[1316] * W[1910] - 8.0 * W[923] * W[2303] - 7.5 * W[530] * W[2696]) / (7.0 * W[137]);
-    W[2918] = W[48] * W[2917] + W[441] * W[2524] + W[834] * W[2131] + W[1227] * W[1738] + W[1620] * W[1345]
-            + W[2013] * W[952] + W[2406] * W[559] + W[2799] * W[166];
-    W[2922] = W[37] * W[2921] + W[430] * W[2528] + W[823] * W[2135] + W[1216] * W[1742] + W[1609] * W[1349]
-            + W[2002] * W[956] + W[2395] * W[563] + W[2788] * W[170];
-    W[2927] = W[26] * W[2926] + W[419] * W[2533] + W[812] * W[2140] + W[1205] * W[1747] + W[1598] * W[1354]
-            + W[1991] * W[961] + W[2384] * W[568] + W[2777] * W[175];
-    W[2932] = W[15] * W[2931] + W[408] * W[2538] + W[801] * W[2145] + W[1194] * W[1752] + W[1587] * W[1359]
-            + W[1980] * W[966] + W[2373] * W[573] + W[2766] * W[180];
-    W[2937] = W[2] * W[2936] + W[395] * W[2543] + W[788] * W[2150] + W[1181] * W[1757] + W[1574] * W[1364]
-            + W[1967] * W[971] + W[2360] * W[578] + W[2753] * W[185];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_136(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2941] = W[51] * W[2917] + W[444] * W[2524] + W[837] * W[2131] + W[1230] * W[1738] + W[1623] * W[1345]
             + W[2016] * W[952] + W[2409] * W[559] + W[2802] * W[166];
     W[2943] = W[40] * W[2921] + W[433] * W[2528] + W[826] * W[2135] + W[1219] * W[1742] + W[1612] * W[1349]
@@ -6939,46 +5559,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[2052] * W[1007] + W[2445] * W[614] + W[2838] * W[221];
     W[3007] = W[79] * W[2976] + W[472] * W[2583] + W[865] * W[2190] + W[1258] * W[1797] + W[1651] * W[1404]
             + W[2044] * W[1011] + W[2437] * W[618] + W[2830] * W[225];
-    W[3010] = W[71] * W[2981] + W[464] * W[2588] + W[857] * W[2195] + W[1250] * W[1802] + W[1643] * W[1409]
-            + W[2036] * W[1016] + W[2429] * W[623] + W[2822] * W[230];
-    W[3013] = W[63] * W[2986] + W[456] * W[2593] + W[849] * W[2200] + W[1242] * W[1807] + W[1635] * W[1414]
-            + W[2028] * W[1021] + W[2421] * W[628] + W[2814] * W[235];
-    W[3020] = W[106] * W[3019] + W[499] * W[2626] + W[892] * W[2233] + W[1285] * W[1840] + W[1678] * W[1447]
-            + W[2071] * W[1054] + W[2464] * W[661] + W[2857] * W[268];
-    W[3024] = W[98] * W[3023] + W[491] * W[2630] + W[884] * W[2237] + W[1277] * W[1844] + W[1670] * W[1451]
-            + W[2063] * W[1058] + W[2456] * W[665] + W[2849] * W[272];
-    W[3029] = W[90] * W[3028] + W[483] * W[2635] + W[876] * W[2242] + W[1269] * W[1849] + W[1662] * W[1456]
-            + W[2055] * W[1063] + W[2448] * W[670] + W[2841] * W[277];
-    W[3035] = W[108] * W[3019] + W[501] * W[2626] + W[894] * W[2233] + W[1287] * W[1840] + W[1680] * W[1447]
-            + W[2073] * W[1054] + W[2466] * W[661] + W[2859] * W[268];
-    W[3037] = W[100] * W[3023] + W[493] * W[2630] + W[886] * W[2237] + W[1279] * W[1844] + W[1672] * W[1451]
-            + W[2065] * W[1058] + W[2458] * W[665] + W[2851] * W[272];
-    W[3040] = W[92] * W[3028] + W[485] * W[2635] + W[878] * W[2242] + W[1271] * W[1849] + W[1664] * W[1456]
-            + W[2057] * W[1063] + W[2450] * W[670] + W[2843] * W[277];
-    W[3046] = W[111] * W[3019] + W[504] * W[2626] + W[897] * W[2233] + W[1290] * W[1840] + W[1683] * W[1447]
-            + W[2076] * W[1054] + W[2469] * W[661] + W[2862] * W[268];
-    W[3048] = W[103] * W[3023] + W[496] * W[2630] + W[889] * W[2237] + W[1282] * W[1844] + W[1675] * W[1451]
-            + W[2068] * W[1058] + W[2461] * W[665] + W[2854] * W[272];
-    W[3051] = W[95] * W[3028] + W[488] * W[2635] + W[881] * W[2242] + W[1274] * W[1849] + W[1667] * W[1456]
-            + W[2060] * W[1063] + W[2453] * W[670] + W[2846] * W[277];
-    W[3059] = W[122] * W[3058] + W[515] * W[2665] + W[908] * W[2272] + W[1301] * W[1879] + W[1694] * W[1486]
-            + W[2087] * W[1093] + W[2480] * W[700] + W[2873] * W[307];
-    W[3063] = W[114] * W[3062] + W[507] * W[2669] + W[900] * W[2276] + W[1293] * W[1883] + W[1686] * W[1490]
-            + W[2079] * W[1097] + W[2472] * W[704] + W[2865] * W[311];
-    W[3070] = W[124] * W[3058] + W[517] * W[2665] + W[910] * W[2272] + W[1303] * W[1879] + W[1696] * W[1486]
-            + W[2089] * W[1093] + W[2482] * W[700] + W[2875] * W[307];
-    W[3072] = W[116] * W[3062] + W[509] * W[2669] + W[902] * W[2276] + W[1295] * W[1883] + W[1688] * W[1490]
-            + W[2081] * W[1097] + W[2474] * W[704] + W[2867] * W[311];
-    W[3079] = W[127] * W[3058] + W[520] * W[2665] + W[913] * W[2272] + W[1306] * W[1879] + W[1699] * W[1486]
-            + W[2092] * W[1093] + W[2485] * W[700] + W[2878] * W[307];
-    W[3081] = W[119] * W[3062] + W[512] * W[2669] + W[905] * W[2276] + W[1298] * W[1883] + W[1691] * W[1490]
-            + W[2084] * W[1097] + W[2477] * W[704] + W[2870] * W[311];
-    W[3090] = W[130] * W[3089] + W[523] * W[2696] + W[916] * W[2303] + W[1309] * W[1910] + W[1702] * W[1517]
-            + W[2095] * W[1124] + W[2488] * W[731] + W[2881] * W[338];
-    W[3097] = W[132] * W[3089] + W[525] * W[2696] + W[918] * W[2303] + W[1311] * W[1910] + W[1704] * W[1517]
-            + W[2097] * W[1124] + W[2490] * W[731] + W[2883] * W[338];
-    W[3104] = W[135] * W[3089] + W[528] * W[2696] + W[921] * W[2303] + W[1314] * W[1910] + W[1707] * W[1517]
-            + W[2100] * W[1124] + W[2493] * W[731] + W[2886] * W[338];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_138(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2919] = W[164] * W[2918];
     W[2923] = W[169] * W[2922];
     W[2928] = W[174] * W[2927];
@@ -6999,6 +5589,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[2983] = W[229] * W[2982];
     W[2988] = W[234] * W[2987];
     W[2993] = W[220] * W[2992];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_139(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2995] = W[224] * W[2994];
     W[2998] = W[229] * W[2997];
     W[3001] = W[234] * W[3000];
@@ -7019,6 +5619,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[3064] = W[310] * W[3063];
     W[3071] = W[306] * W[3070];
     W[3073] = W[310] * W[3072];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_140(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3080] = W[306] * W[3079];
     W[3082] = W[310] * W[3081];
     W[3091] = W[337] * W[3090];
@@ -7039,6 +5649,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[3092] = W[3091] - W[3064];
     W[3099] = W[3098] - W[3073];
     W[3106] = W[3105] - W[3082];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_141(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3111] = W[3060] + W[3091];
     W[3116] = W[3071] + W[3098];
     W[3121] = W[3080] + W[3105];
@@ -7059,26 +5679,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[3107] = W[3106] - W[3049];
     W[3112] = W[3021] + W[3111];
     W[3117] = W[3036] + W[3116];
-    W[3122] = W[3047] + W[3121];
-    W[2934] = W[2929] + W[2933];
-    W[2951] = W[2948] + W[2950];
-    W[2966] = W[2963] + W[2965];
-    W[2989] = W[2984] + W[2988];
-    W[3002] = W[2999] + W[3001];
-    W[3015] = W[3012] + W[3014];
-    W[3032] = W[3031] - W[2988];
-    W[3043] = W[3042] - W[3001];
-    W[3054] = W[3053] - W[3014];
-    W[3067] = W[3066] - W[2983];
-    W[3076] = W[3075] - W[2998];
-    W[3085] = W[3084] - W[3011];
-    W[3094] = W[3093] - W[2978];
-    W[3101] = W[3100] - W[2995];
-    W[3108] = W[3107] - W[3008];
-    W[3113] = W[2974] + W[3112];
-    W[3118] = W[2993] + W[3117];
-    W[3123] = W[3006] + W[3122];
-    W[2939] = W[2934] + W[2938];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_143(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2954] = W[2951] + W[2953];
     W[2969] = W[2966] + W[2968];
     W[2990] = W[2989] - W[2938];
@@ -7099,26 +5709,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[2940] = W[161] * W[2939];
     W[2955] = W[161] * W[2954];
     W[2970] = W[161] * W[2969];
-    W[2991] = W[161] * W[2990];
-    W[3004] = W[161] * W[3003];
-    W[3017] = W[161] * W[3016];
-    W[3034] = W[161] * W[3033];
-    W[3045] = W[161] * W[3044];
-    W[3056] = W[161] * W[3055];
-    W[3069] = W[161] * W[3068];
-    W[3078] = W[161] * W[3077];
-    W[3087] = W[161] * W[3086];
-    W[3096] = W[161] * W[3095];
-    W[3103] = W[161] * W[3102];
-    W[3110] = W[161] * W[3109];
-    W[3115] = W[163] * W[3114];
-    W[3120] = W[163] * W[3119];
-    W[3125] = W[163] * W[3124];
-    X[288] = X[270] / 8.0;
-    X[289] = X[271] / 8.0;
-    X[290] = X[272] / 8.0;
-    X[291] = X[273] / 8.0;
-    X[292] = X[274] / 8.0;
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_145(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[293] = X[275] / 8.0;
     X[294] = X[276] / 8.0;
     X[295] = X[277] / 8.0;
@@ -7139,40 +5739,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[310] = -W[3004] / W[140] / 8.0;
     X[311] = -W[3017] / W[140] / 8.0;
     X[312] = -W[3034] / W[141] / 8.0;
-    X[313] = -W[3045] / W[141] / 8.0;
-    X[314] = -W[3056] / W[141] / 8.0;
-    X[315] = -W[3069] / W[142] / 8.0;
-    X[316] = -W[3078] / W[142] / 8.0;
-    X[317] = -W[3087] / W[142] / 8.0;
-    X[318] = -W[3096] / W[143] / 8.0;
-    X[319] = -W[3103] / W[143] / 8.0;
-    X[320] = -W[3110] / W[143] / 8.0;
-    X[321] = -W[3115] / W[144] / 8.0;
-    X[322] = -W[3120] / W[144] / 8.0;
-    X[323] = -W[3125] / W[144] / 8.0;
-    if (K == 8)
-        goto out;
-    /* order 8 */
-    W[3146] = X[288] - X[291];
-    W[3150] = X[289] - X[292];
-    W[3155] = X[290] - X[293];
-    W[3159] = X[288] - X[294];
-    W[3162] = X[289] - X[295];
-    W[3166] = X[290] - X[296];
-    W[3170] = X[288] - X[297];
-    W[3173] = X[289] - X[298];
-    W[3177] = X[290] - X[299];
-    W[3181] = X[288] - X[300];
-    W[3184] = X[289] - X[301];
-    W[3188] = X[290] - X[302];
-    W[3192] = X[288] - X[303];
-    W[3195] = X[289] - X[304];
-    W[3199] = X[290] - X[305];
-    W[3202] = X[291] - X[294];
-    W[3204] = X[292] - X[295];
-    W[3207] = X[293] - X[296];
-    W[3210] = X[291] - X[297];
-    W[3212] = X[292] - X[298];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_148(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3215] = X[293] - X[299];
     W[3218] = X[291] - X[300];
     W[3220] = X[292] - X[301];
@@ -7193,41 +5769,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[3260] = X[298] - X[301];
     W[3263] = X[299] - X[302];
     W[3266] = X[297] - X[303];
-    W[3268] = X[298] - X[304];
-    W[3271] = X[299] - X[305];
-    W[3274] = X[300] - X[303];
-    W[3276] = X[301] - X[304];
-    W[3279] = X[302] - X[305];
-    W[3147] = (W[2] * W[3146] + W[395] * W[2753] + W[788] * W[2360] + W[1181] * W[1967]) * 2.0
-            + W[1574] * W[1574];
-    W[3151] = (W[6] * W[3150] + W[399] * W[2757] + W[792] * W[2364] + W[1185] * W[1971]) * 2.0
-            + W[1578] * W[1578];
-    W[3156] = (W[11] * W[3155] + W[404] * W[2762] + W[797] * W[2369] + W[1190] * W[1976]) * 2.0
-            + W[1583] * W[1583];
-    W[3160] = (W[15] * W[3159] + W[408] * W[2766] + W[801] * W[2373] + W[1194] * W[1980]) * 2.0
-            + W[1587] * W[1587];
-    W[3163] = (W[18] * W[3162] + W[411] * W[2769] + W[804] * W[2376] + W[1197] * W[1983]) * 2.0
-            + W[1590] * W[1590];
-    W[3167] = (W[22] * W[3166] + W[415] * W[2773] + W[808] * W[2380] + W[1201] * W[1987]) * 2.0
-            + W[1594] * W[1594];
-    W[3171] = (W[26] * W[3170] + W[419] * W[2777] + W[812] * W[2384] + W[1205] * W[1991]) * 2.0
-            + W[1598] * W[1598];
-    W[3174] = (W[29] * W[3173] + W[422] * W[2780] + W[815] * W[2387] + W[1208] * W[1994]) * 2.0
-            + W[1601] * W[1601];
-    W[3178] = (W[33] * W[3177] + W[426] * W[2784] + W[819] * W[2391] + W[1212] * W[1998]) * 2.0
-            + W[1605] * W[1605];
-    W[3182] = (W[37] * W[3181] + W[430] * W[2788] + W[823] * W[2395] + W[1216] * W[2002]) * 2.0
-            + W[1609] * W[1609];
-    W[3185] = (W[40] * W[3184] + W[433] * W[2791] + W[826] * W[2398] + W[1219] * W[2005]) * 2.0
-            + W[1612] * W[1612];
-    W[3189] = (W[44] * W[3188] + W[437] * W[2795] + W[830] * W[2402] + W[1223] * W[2009]) * 2.0
-            + W[1616] * W[1616];
-    W[3193] = (W[48] * W[3192] + W[441] * W[2799] + W[834] * W[2406] + W[1227] * W[2013]) * 2.0
-            + W[1620] * W[1620];
-    W[3196] = (W[51] * W[3195] + W[444] * W[2802] + W[837] * W[2409] + W[1230] * W[2016]) * 2.0
-            + W[1623] * W[1623];
-    W[3200] = (W[55] * W[3199] + W[448] * W[2806] + W[841] * W[2413] + W[1234] * W[2020]) * 2.0
-            + W[1627] * W[1627];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_150(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3203] = (W[58] * W[3202] + W[451] * W[2809] + W[844] * W[2416] + W[1237] * W[2023]) * 2.0
             + W[1630] * W[1630];
     W[3205] = (W[60] * W[3204] + W[453] * W[2811] + W[846] * W[2418] + W[1239] * W[2025]) * 2.0
@@ -7268,36 +5819,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[1678] * W[1678];
     W[3253] = (W[108] * W[3252] + W[501] * W[2859] + W[894] * W[2466] + W[1287] * W[2073]) * 2.0
             + W[1680] * W[1680];
-    W[3256] = (W[111] * W[3255] + W[504] * W[2862] + W[897] * W[2469] + W[1290] * W[2076]) * 2.0
-            + W[1683] * W[1683];
-    W[3259] = (W[114] * W[3258] + W[507] * W[2865] + W[900] * W[2472] + W[1293] * W[2079]) * 2.0
-            + W[1686] * W[1686];
-    W[3261] = (W[116] * W[3260] + W[509] * W[2867] + W[902] * W[2474] + W[1295] * W[2081]) * 2.0
-            + W[1688] * W[1688];
-    W[3264] = (W[119] * W[3263] + W[512] * W[2870] + W[905] * W[2477] + W[1298] * W[2084]) * 2.0
-            + W[1691] * W[1691];
-    W[3267] = (W[122] * W[3266] + W[515] * W[2873] + W[908] * W[2480] + W[1301] * W[2087]) * 2.0
-            + W[1694] * W[1694];
-    W[3269] = (W[124] * W[3268] + W[517] * W[2875] + W[910] * W[2482] + W[1303] * W[2089]) * 2.0
-            + W[1696] * W[1696];
-    W[3272] = (W[127] * W[3271] + W[520] * W[2878] + W[913] * W[2485] + W[1306] * W[2092]) * 2.0
-            + W[1699] * W[1699];
-    W[3275] = (W[130] * W[3274] + W[523] * W[2881] + W[916] * W[2488] + W[1309] * W[2095]) * 2.0
-            + W[1702] * W[1702];
-    W[3277] = (W[132] * W[3276] + W[525] * W[2883] + W[918] * W[2490] + W[1311] * W[2097]) * 2.0
-            + W[1704] * W[1704];
-    W[3280] = (W[135] * W[3279] + W[528] * W[2886] + W[921] * W[2493] + W[1314] * W[2100]) * 2.0
-            + W[1707] * W[1707];
-    W[3152] = W[3147] + W[3151];
-    W[3164] = W[3160] + W[3163];
-    W[3175] = W[3171] + W[3174];
-    W[3186] = W[3182] + W[3185];
-    W[3197] = W[3193] + W[3196];
-    W[3206] = W[3203] + W[3205];
-    W[3214] = W[3211] + W[3213];
-    W[3222] = W[3219] + W[3221];
-    W[3230] = W[3227] + W[3229];
-    W[3238] = W[3235] + W[3237];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_152(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3246] = W[3243] + W[3245];
     W[3254] = W[3251] + W[3253];
     W[3262] = W[3259] + W[3261];
@@ -7318,46 +5849,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[3265] = W[3262] + W[3264];
     W[3273] = W[3270] + W[3272];
     W[3281] = W[3278] + W[3280];
-    W[3310] = (-12.0 * W[3201] * W[166] - 11.5 * W[2808] * W[559] - 11.0 * W[2415] * W[952] - 10.5 * W[2022] * W[1345]
-            - 10.0 * W[1629] * W[1738] - 9.5 * W[1236] * W[2131] - 9.0 * W[843] * W[2524] - 8.5 * W[450] * W[2917]) / (8.0 * W[57]);
-    W[3314] = (-12.0 * W[3190] * W[170] - 11.5 * W[2797] * W[563] - 11.0 * W[2404] * W[956] - 10.5 * W[2011] * W[1349]
-            - 10.0 * W[1618] * W[1742] - 9.5 * W[1225] * W[2135] - 9.0 * W[832] * W[2528] - 8.5 * W[439] * W[2921]) / (8.0 * W[46]);
-    W[3319] = (-12.0 * W[3179] * W[175] - 11.5 * W[2786] * W[568] - 11.0 * W[2393] * W[961] - 10.5 * W[2000] * W[1354]
-            - 10.0 * W[1607] * W[1747] - 9.5 * W[1214] * W[2140] - 9.0 * W[821] * W[2533] - 8.5 * W[428] * W[2926]) / (8.0 * W[35]);
-    W[3324] = (-12.0 * W[3168] * W[180] - 11.5 * W[2775] * W[573] - 11.0 * W[2382] * W[966] - 10.5 * W[1989] * W[1359]
-            - 10.0 * W[1596] * W[1752] - 9.5 * W[1203] * W[2145] - 9.0 * W[810] * W[2538] - 8.5 * W[417] * W[2931]) / (8.0 * W[24]);
-    W[3329] = (-12.0 * W[3157] * W[185] - 11.5 * W[2764] * W[578] - 11.0 * W[2371] * W[971] - 10.5 * W[1978] * W[1364]
-            - 10.0 * W[1585] * W[1757] - 9.5 * W[1192] * W[2150] - 9.0 * W[799] * W[2543] - 8.5 * W[406] * W[2936]) / (8.0 * W[13]);
-    W[3365] = (-12.0 * W[3233] * W[221] - 11.5 * W[2840] * W[614] - 11.0 * W[2447] * W[1007] - 10.5 * W[2054] * W[1400]
-            - 10.0 * W[1661] * W[1793] - 9.5 * W[1268] * W[2186] - 9.0 * W[875] * W[2579] - 8.5 * W[482] * W[2972]) / (8.0 * W[89]);
-    W[3369] = (-12.0 * W[3225] * W[225] - 11.5 * W[2832] * W[618] - 11.0 * W[2439] * W[1011] - 10.5 * W[2046] * W[1404]
-            - 10.0 * W[1653] * W[1797] - 9.5 * W[1260] * W[2190] - 9.0 * W[867] * W[2583] - 8.5 * W[474] * W[2976]) / (8.0 * W[81]);
-    W[3374] = (-12.0 * W[3217] * W[230] - 11.5 * W[2824] * W[623] - 11.0 * W[2431] * W[1016] - 10.5 * W[2038] * W[1409]
-            - 10.0 * W[1645] * W[1802] - 9.5 * W[1252] * W[2195] - 9.0 * W[859] * W[2588] - 8.5 * W[466] * W[2981]) / (8.0 * W[73]);
-    W[3379] = (-12.0 * W[3209] * W[235] - 11.5 * W[2816] * W[628] - 11.0 * W[2423] * W[1021] - 10.5 * W[2030] * W[1414]
-            - 10.0 * W[1637] * W[1807] - 9.5 * W[1244] * W[2200] - 9.0 * W[851] * W[2593] - 8.5 * W[458] * W[2986]) / (8.0 * W[65]);
-    W[3412] = (-12.0 * W[3257] * W[268] - 11.5 * W[2864] * W[661] - 11.0 * W[2471] * W[1054] - 10.5 * W[2078] * W[1447]
-            - 10.0 * W[1685] * W[1840] - 9.5 * W[1292] * W[2233] - 9.0 * W[899] * W[2626] - 8.5 * W[506] * W[3019]) / (8.0 * W[113]);
-    W[3416] = (-12.0 * W[3249] * W[272] - 11.5 * W[2856] * W[665] - 11.0 * W[2463] * W[1058] - 10.5 * W[2070] * W[1451]
-            - 10.0 * W[1677] * W[1844] - 9.5 * W[1284] * W[2237] - 9.0 * W[891] * W[2630] - 8.5 * W[498] * W[3023]) / (8.0 * W[105]);
-    W[3421] = (-12.0 * W[3241] * W[277] - 11.5 * W[2848] * W[670] - 11.0 * W[2455] * W[1063] - 10.5 * W[2062] * W[1456]
-            - 10.0 * W[1669] * W[1849] - 9.5 * W[1276] * W[2242] - 9.0 * W[883] * W[2635] - 8.5 * W[490] * W[3028]) / (8.0 * W[97]);
-    W[3451] = (-12.0 * W[3273] * W[307] - 11.5 * W[2880] * W[700] - 11.0 * W[2487] * W[1093] - 10.5 * W[2094] * W[1486]
-            - 10.0 * W[1701] * W[1879] - 9.5 * W[1308] * W[2272] - 9.0 * W[915] * W[2665] - 8.5 * W[522] * W[3058]) / (8.0 * W[129]);
-    W[3455] = (-12.0 * W[3265] * W[311] - 11.5 * W[2872] * W[704] - 11.0 * W[2479] * W[1097] - 10.5 * W[2086] * W[1490]
-            - 10.0 * W[1693] * W[1883] - 9.5 * W[1300] * W[2276] - 9.0 * W[907] * W[2669] - 8.5 * W[514] * W[3062]) / (8.0 * W[121]);
-    W[3482] = (-12.0 * W[3281] * W[338] - 11.5 * W[2888] * W[731] - 11.0 * W[2495] * W[1124] - 10.5 * W[2102] * W[1517]
-            - 10.0 * W[1709] * W[1910] - 9.5 * W[1316] * W[2303] - 9.0 * W[923] * W[2696] - 8.5 * W[530] * W[3089]) / (8.0 * W[137]);
-    W[3311] = W[48] * W[3310] + W[441] * W[2917] + W[834] * W[2524] + W[1227] * W[2131] + W[1620] * W[1738]
-            + W[2013] * W[1345] + W[2406] * W[952] + W[2799] * W[559] + W[3192] * W[166];
-    W[3315] = W[37] * W[3314] + W[430] * W[2921] + W[823] * W[2528] + W[1216] * W[2135] + W[1609] * W[1742]
-            + W[2002] * W[1349] + W[2395] * W[956] + W[2788] * W[563] + W[3181] * W[170];
-    W[3320] = W[26] * W[3319] + W[419] * W[2926] + W[812] * W[2533] + W[1205] * W[2140] + W[1598] * W[1747]
-            + W[1991] * W[1354] + W[2384] * W[961] + W[2777] * W[568] + W[3170] * W[175];
-    W[3325] = W[15] * W[3324] + W[408] * W[2931] + W[801] * W[2538] + W[1194] * W[2145] + W[1587] * W[1752]
-            + W[1980] * W[1359] + W[2373] * W[966] + W[2766] * W[573] + W[3159] * W[180];
-    W[3330] = W[2] * W[3329] + W[395] * W[2936] + W[788] * W[2543] + W[1181] * W[2150] + W[1574] * W[1757]
-            + W[1967] * W[1364] + W[2360] * W[971] + W[2753] * W[578] + W[3146] * W[185];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_154(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3334] = W[51] * W[3310] + W[444] * W[2917] + W[837] * W[2524] + W[1230] * W[2131] + W[1623] * W[1738]
             + W[2016] * W[1345] + W[2409] * W[952] + W[2802] * W[559] + W[3195] * W[166];
     W[3336] = W[40] * W[3314] + W[433] * W[2921] + W[826] * W[2528] + W[1219] * W[2135] + W[1612] * W[1742]
@@ -7398,46 +5899,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[2052] * W[1400] + W[2445] * W[1007] + W[2838] * W[614] + W[3231] * W[221];
     W[3400] = W[79] * W[3369] + W[472] * W[2976] + W[865] * W[2583] + W[1258] * W[2190] + W[1651] * W[1797]
             + W[2044] * W[1404] + W[2437] * W[1011] + W[2830] * W[618] + W[3223] * W[225];
-    W[3403] = W[71] * W[3374] + W[464] * W[2981] + W[857] * W[2588] + W[1250] * W[2195] + W[1643] * W[1802]
-            + W[2036] * W[1409] + W[2429] * W[1016] + W[2822] * W[623] + W[3215] * W[230];
-    W[3406] = W[63] * W[3379] + W[456] * W[2986] + W[849] * W[2593] + W[1242] * W[2200] + W[1635] * W[1807]
-            + W[2028] * W[1414] + W[2421] * W[1021] + W[2814] * W[628] + W[3207] * W[235];
-    W[3413] = W[106] * W[3412] + W[499] * W[3019] + W[892] * W[2626] + W[1285] * W[2233] + W[1678] * W[1840]
-            + W[2071] * W[1447] + W[2464] * W[1054] + W[2857] * W[661] + W[3250] * W[268];
-    W[3417] = W[98] * W[3416] + W[491] * W[3023] + W[884] * W[2630] + W[1277] * W[2237] + W[1670] * W[1844]
-            + W[2063] * W[1451] + W[2456] * W[1058] + W[2849] * W[665] + W[3242] * W[272];
-    W[3422] = W[90] * W[3421] + W[483] * W[3028] + W[876] * W[2635] + W[1269] * W[2242] + W[1662] * W[1849]
-            + W[2055] * W[1456] + W[2448] * W[1063] + W[2841] * W[670] + W[3234] * W[277];
-    W[3428] = W[108] * W[3412] + W[501] * W[3019] + W[894] * W[2626] + W[1287] * W[2233] + W[1680] * W[1840]
-            + W[2073] * W[1447] + W[2466] * W[1054] + W[2859] * W[661] + W[3252] * W[268];
-    W[3430] = W[100] * W[3416] + W[493] * W[3023] + W[886] * W[2630] + W[1279] * W[2237] + W[1672] * W[1844]
-            + W[2065] * W[1451] + W[2458] * W[1058] + W[2851] * W[665] + W[3244] * W[272];
-    W[3433] = W[92] * W[3421] + W[485] * W[3028] + W[878] * W[2635] + W[1271] * W[2242] + W[1664] * W[1849]
-            + W[2057] * W[1456] + W[2450] * W[1063] + W[2843] * W[670] + W[3236] * W[277];
-    W[3439] = W[111] * W[3412] + W[504] * W[3019] + W[897] * W[2626] + W[1290] * W[2233] + W[1683] * W[1840]
-            + W[2076] * W[1447] + W[2469] * W[1054] + W[2862] * W[661] + W[3255] * W[268];
-    W[3441] = W[103] * W[3416] + W[496] * W[3023] + W[889] * W[2630] + W[1282] * W[2237] + W[1675] * W[1844]
-            + W[2068] * W[1451] + W[2461] * W[1058] + W[2854] * W[665] + W[3247] * W[272];
-    W[3444] = W[95] * W[3421] + W[488] * W[3028] + W[881] * W[2635] + W[1274] * W[2242] + W[1667] * W[1849]
-            + W[2060] * W[1456] + W[2453] * W[1063] + W[2846] * W[670] + W[3239] * W[277];
-    W[3452] = W[122] * W[3451] + W[515] * W[3058] + W[908] * W[2665] + W[1301] * W[2272] + W[1694] * W[1879]
-            + W[2087] * W[1486] + W[2480] * W[1093] + W[2873] * W[700] + W[3266] * W[307];
-    W[3456] = W[114] * W[3455] + W[507] * W[3062] + W[900] * W[2669] + W[1293] * W[2276] + W[1686] * W[1883]
-            + W[2079] * W[1490] + W[2472] * W[1097] + W[2865] * W[704] + W[3258] * W[311];
-    W[3463] = W[124] * W[3451] + W[517] * W[3058] + W[910] * W[2665] + W[1303] * W[2272] + W[1696] * W[1879]
-            + W[2089] * W[1486] + W[2482] * W[1093] + W[2875] * W[700] + W[3268] * W[307];
-    W[3465] = W[116] * W[3455] + W[509] * W[3062] + W[902] * W[2669] + W[1295] * W[2276] + W[1688] * W[1883]
-            + W[2081] * W[1490] + W[2474] * W[1097] + W[2867] * W[704] + W[3260] * W[311];
-    W[3472] = W[127] * W[3451] + W[520] * W[3058] + W[913] * W[2665] + W[1306] * W[2272] + W[1699] * W[1879]
-            + W[2092] * W[1486] + W[2485] * W[1093] + W[2878] * W[700] + W[3271] * W[307];
-    W[3474] = W[119] * W[3455] + W[512] * W[3062] + W[905] * W[2669] + W[1298] * W[2276] + W[1691] * W[1883]
-            + W[2084] * W[1490] + W[2477] * W[1097] + W[2870] * W[704] + W[3263] * W[311];
-    W[3483] = W[130] * W[3482] + W[523] * W[3089] + W[916] * W[2696] + W[1309] * W[2303] + W[1702] * W[1910]
-            + W[2095] * W[1517] + W[2488] * W[1124] + W[2881] * W[731] + W[3274] * W[338];
-    W[3490] = W[132] * W[3482] + W[525] * W[3089] + W[918] * W[2696] + W[1311] * W[2303] + W[1704] * W[1910]
-            + W[2097] * W[1517] + W[2490] * W[1124] + W[2883] * W[731] + W[3276] * W[338];
-    W[3497] = W[135] * W[3482] + W[528] * W[3089] + W[921] * W[2696] + W[1314] * W[2303] + W[1707] * W[1910]
-            + W[2100] * W[1517] + W[2493] * W[1124] + W[2886] * W[731] + W[3279] * W[338];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_156(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3312] = W[164] * W[3311];
     W[3316] = W[169] * W[3315];
     W[3321] = W[174] * W[3320];
@@ -7458,6 +5929,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[3376] = W[229] * W[3375];
     W[3381] = W[234] * W[3380];
     W[3386] = W[220] * W[3385];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_157(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3388] = W[224] * W[3387];
     W[3391] = W[229] * W[3390];
     W[3394] = W[234] * W[3393];
@@ -7478,6 +5959,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[3457] = W[310] * W[3456];
     W[3464] = W[306] * W[3463];
     W[3466] = W[310] * W[3465];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_158(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3473] = W[306] * W[3472];
     W[3475] = W[310] * W[3474];
     W[3484] = W[337] * W[3483];
@@ -7498,6 +5989,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[3485] = W[3484] - W[3457];
     W[3492] = W[3491] - W[3466];
     W[3499] = W[3498] - W[3475];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_159(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3504] = W[3453] + W[3484];
     W[3509] = W[3464] + W[3491];
     W[3514] = W[3473] + W[3498];
@@ -7518,26 +6019,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[3500] = W[3499] - W[3442];
     W[3505] = W[3414] + W[3504];
     W[3510] = W[3429] + W[3509];
-    W[3515] = W[3440] + W[3514];
-    W[3327] = W[3322] + W[3326];
-    W[3344] = W[3341] + W[3343];
-    W[3359] = W[3356] + W[3358];
-    W[3382] = W[3377] + W[3381];
-    W[3395] = W[3392] + W[3394];
-    W[3408] = W[3405] + W[3407];
-    W[3425] = W[3424] - W[3381];
-    W[3436] = W[3435] - W[3394];
-    W[3447] = W[3446] - W[3407];
-    W[3460] = W[3459] - W[3376];
-    W[3469] = W[3468] - W[3391];
-    W[3478] = W[3477] - W[3404];
-    W[3487] = W[3486] - W[3371];
-    W[3494] = W[3493] - W[3388];
-    W[3501] = W[3500] - W[3401];
-    W[3506] = W[3367] + W[3505];
-    W[3511] = W[3386] + W[3510];
-    W[3516] = W[3399] + W[3515];
-    W[3332] = W[3327] + W[3331];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_161(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3347] = W[3344] + W[3346];
     W[3362] = W[3359] + W[3361];
     W[3383] = W[3382] - W[3331];
@@ -7558,26 +6049,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[3333] = W[161] * W[3332];
     W[3348] = W[161] * W[3347];
     W[3363] = W[161] * W[3362];
-    W[3384] = W[161] * W[3383];
-    W[3397] = W[161] * W[3396];
-    W[3410] = W[161] * W[3409];
-    W[3427] = W[161] * W[3426];
-    W[3438] = W[161] * W[3437];
-    W[3449] = W[161] * W[3448];
-    W[3462] = W[161] * W[3461];
-    W[3471] = W[161] * W[3470];
-    W[3480] = W[161] * W[3479];
-    W[3489] = W[161] * W[3488];
-    W[3496] = W[161] * W[3495];
-    W[3503] = W[161] * W[3502];
-    W[3508] = W[163] * W[3507];
-    W[3513] = W[163] * W[3512];
-    W[3518] = W[163] * W[3517];
-    X[324] = X[306] / 9.0;
-    X[325] = X[307] / 9.0;
-    X[326] = X[308] / 9.0;
-    X[327] = X[309] / 9.0;
-    X[328] = X[310] / 9.0;
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_163(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[329] = X[311] / 9.0;
     X[330] = X[312] / 9.0;
     X[331] = X[313] / 9.0;
@@ -7598,20 +6079,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[346] = -W[3397] / W[140] / 9.0;
     X[347] = -W[3410] / W[140] / 9.0;
     X[348] = -W[3427] / W[141] / 9.0;
-    X[349] = -W[3438] / W[141] / 9.0;
-    X[350] = -W[3449] / W[141] / 9.0;
-    X[351] = -W[3462] / W[142] / 9.0;
-    X[352] = -W[3471] / W[142] / 9.0;
-    X[353] = -W[3480] / W[142] / 9.0;
-    X[354] = -W[3489] / W[143] / 9.0;
-    X[355] = -W[3496] / W[143] / 9.0;
-    X[356] = -W[3503] / W[143] / 9.0;
-    X[357] = -W[3508] / W[144] / 9.0;
-    X[358] = -W[3513] / W[144] / 9.0;
-    X[359] = -W[3518] / W[144] / 9.0;
-    if (K == 9)
-        goto out;
-    /* order 9 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_165(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3539] = X[324] - X[327];
     W[3543] = X[325] - X[328];
     W[3548] = X[326] - X[329];
@@ -7632,26 +6109,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[3600] = X[329] - X[332];
     W[3603] = X[327] - X[333];
     W[3605] = X[328] - X[334];
-    W[3608] = X[329] - X[335];
-    W[3611] = X[327] - X[336];
-    W[3613] = X[328] - X[337];
-    W[3616] = X[329] - X[338];
-    W[3619] = X[327] - X[339];
-    W[3621] = X[328] - X[340];
-    W[3624] = X[329] - X[341];
-    W[3627] = X[330] - X[333];
-    W[3629] = X[331] - X[334];
-    W[3632] = X[332] - X[335];
-    W[3635] = X[330] - X[336];
-    W[3637] = X[331] - X[337];
-    W[3640] = X[332] - X[338];
-    W[3643] = X[330] - X[339];
-    W[3645] = X[331] - X[340];
-    W[3648] = X[332] - X[341];
-    W[3651] = X[333] - X[336];
-    W[3653] = X[334] - X[337];
-    W[3656] = X[335] - X[338];
-    W[3659] = X[333] - X[339];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_167(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3661] = X[334] - X[340];
     W[3664] = X[335] - X[341];
     W[3667] = X[336] - X[339];
@@ -7672,26 +6139,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[3586] = (W[48] * W[3585] + W[441] * W[3192] + W[834] * W[2799] + W[1227] * W[2406] + W[1620] * W[2013]) * 2.0;
     W[3589] = (W[51] * W[3588] + W[444] * W[3195] + W[837] * W[2802] + W[1230] * W[2409] + W[1623] * W[2016]) * 2.0;
     W[3593] = (W[55] * W[3592] + W[448] * W[3199] + W[841] * W[2806] + W[1234] * W[2413] + W[1627] * W[2020]) * 2.0;
-    W[3596] = (W[58] * W[3595] + W[451] * W[3202] + W[844] * W[2809] + W[1237] * W[2416] + W[1630] * W[2023]) * 2.0;
-    W[3598] = (W[60] * W[3597] + W[453] * W[3204] + W[846] * W[2811] + W[1239] * W[2418] + W[1632] * W[2025]) * 2.0;
-    W[3601] = (W[63] * W[3600] + W[456] * W[3207] + W[849] * W[2814] + W[1242] * W[2421] + W[1635] * W[2028]) * 2.0;
-    W[3604] = (W[66] * W[3603] + W[459] * W[3210] + W[852] * W[2817] + W[1245] * W[2424] + W[1638] * W[2031]) * 2.0;
-    W[3606] = (W[68] * W[3605] + W[461] * W[3212] + W[854] * W[2819] + W[1247] * W[2426] + W[1640] * W[2033]) * 2.0;
-    W[3609] = (W[71] * W[3608] + W[464] * W[3215] + W[857] * W[2822] + W[1250] * W[2429] + W[1643] * W[2036]) * 2.0;
-    W[3612] = (W[74] * W[3611] + W[467] * W[3218] + W[860] * W[2825] + W[1253] * W[2432] + W[1646] * W[2039]) * 2.0;
-    W[3614] = (W[76] * W[3613] + W[469] * W[3220] + W[862] * W[2827] + W[1255] * W[2434] + W[1648] * W[2041]) * 2.0;
-    W[3617] = (W[79] * W[3616] + W[472] * W[3223] + W[865] * W[2830] + W[1258] * W[2437] + W[1651] * W[2044]) * 2.0;
-    W[3620] = (W[82] * W[3619] + W[475] * W[3226] + W[868] * W[2833] + W[1261] * W[2440] + W[1654] * W[2047]) * 2.0;
-    W[3622] = (W[84] * W[3621] + W[477] * W[3228] + W[870] * W[2835] + W[1263] * W[2442] + W[1656] * W[2049]) * 2.0;
-    W[3625] = (W[87] * W[3624] + W[480] * W[3231] + W[873] * W[2838] + W[1266] * W[2445] + W[1659] * W[2052]) * 2.0;
-    W[3628] = (W[90] * W[3627] + W[483] * W[3234] + W[876] * W[2841] + W[1269] * W[2448] + W[1662] * W[2055]) * 2.0;
-    W[3630] = (W[92] * W[3629] + W[485] * W[3236] + W[878] * W[2843] + W[1271] * W[2450] + W[1664] * W[2057]) * 2.0;
-    W[3633] = (W[95] * W[3632] + W[488] * W[3239] + W[881] * W[2846] + W[1274] * W[2453] + W[1667] * W[2060]) * 2.0;
-    W[3636] = (W[98] * W[3635] + W[491] * W[3242] + W[884] * W[2849] + W[1277] * W[2456] + W[1670] * W[2063]) * 2.0;
-    W[3638] = (W[100] * W[3637] + W[493] * W[3244] + W[886] * W[2851] + W[1279] * W[2458] + W[1672] * W[2065]) * 2.0;
-    W[3641] = (W[103] * W[3640] + W[496] * W[3247] + W[889] * W[2854] + W[1282] * W[2461] + W[1675] * W[2068]) * 2.0;
-    W[3644] = (W[106] * W[3643] + W[499] * W[3250] + W[892] * W[2857] + W[1285] * W[2464] + W[1678] * W[2071]) * 2.0;
-    W[3646] = (W[108] * W[3645] + W[501] * W[3252] + W[894] * W[2859] + W[1287] * W[2466] + W[1680] * W[2073]) * 2.0;
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_169(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3649] = (W[111] * W[3648] + W[504] * W[3255] + W[897] * W[2862] + W[1290] * W[2469] + W[1683] * W[2076]) * 2.0;
     W[3652] = (W[114] * W[3651] + W[507] * W[3258] + W[900] * W[2865] + W[1293] * W[2472] + W[1686] * W[2079]) * 2.0;
     W[3654] = (W[116] * W[3653] + W[509] * W[3260] + W[902] * W[2867] + W[1295] * W[2474] + W[1688] * W[2081]) * 2.0;
@@ -7712,81 +6169,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[3615] = W[3612] + W[3614];
     W[3623] = W[3620] + W[3622];
     W[3631] = W[3628] + W[3630];
-    W[3639] = W[3636] + W[3638];
-    W[3647] = W[3644] + W[3646];
-    W[3655] = W[3652] + W[3654];
-    W[3663] = W[3660] + W[3662];
-    W[3671] = W[3668] + W[3670];
-    W[3550] = W[3545] + W[3549];
-    W[3561] = W[3557] + W[3560];
-    W[3572] = W[3568] + W[3571];
-    W[3583] = W[3579] + W[3582];
-    W[3594] = W[3590] + W[3593];
-    W[3602] = W[3599] + W[3601];
-    W[3610] = W[3607] + W[3609];
-    W[3618] = W[3615] + W[3617];
-    W[3626] = W[3623] + W[3625];
-    W[3634] = W[3631] + W[3633];
-    W[3642] = W[3639] + W[3641];
-    W[3650] = W[3647] + W[3649];
-    W[3658] = W[3655] + W[3657];
-    W[3666] = W[3663] + W[3665];
-    W[3674] = W[3671] + W[3673];
-    W[3703] = (-13.5 * W[3594] * W[166] - 13.0 * W[3201] * W[559] - 12.5 * W[2808] * W[952] - 12.0 * W[2415] * W[1345]
-            - 11.5 * W[2022] * W[1738] - 11.0 * W[1629] * W[2131] - 10.5 * W[1236] * W[2524] - 10.0 * W[843] * W[2917]
-            - 9.5 * W[450] * W[3310]) / (9.0 * W[57]);
-    W[3707] = (-13.5 * W[3583] * W[170] - 13.0 * W[3190] * W[563] - 12.5 * W[2797] * W[956] - 12.0 * W[2404] * W[1349]
-            - 11.5 * W[2011] * W[1742] - 11.0 * W[1618] * W[2135] - 10.5 * W[1225] * W[2528] - 10.0 * W[832] * W[2921]
-            - 9.5 * W[439] * W[3314]) / (9.0 * W[46]);
-    W[3712] = (-13.5 * W[3572] * W[175] - 13.0 * W[3179] * W[568] - 12.5 * W[2786] * W[961] - 12.0 * W[2393] * W[1354]
-            - 11.5 * W[2000] * W[1747] - 11.0 * W[1607] * W[2140] - 10.5 * W[1214] * W[2533] - 10.0 * W[821] * W[2926]
-            - 9.5 * W[428] * W[3319]) / (9.0 * W[35]);
-    W[3717] = (-13.5 * W[3561] * W[180] - 13.0 * W[3168] * W[573] - 12.5 * W[2775] * W[966] - 12.0 * W[2382] * W[1359]
-            - 11.5 * W[1989] * W[1752] - 11.0 * W[1596] * W[2145] - 10.5 * W[1203] * W[2538] - 10.0 * W[810] * W[2931]
-            - 9.5 * W[417] * W[3324]) / (9.0 * W[24]);
-    W[3722] = (-13.5 * W[3550] * W[185] - 13.0 * W[3157] * W[578] - 12.5 * W[2764] * W[971] - 12.0 * W[2371] * W[1364]
-            - 11.5 * W[1978] * W[1757] - 11.0 * W[1585] * W[2150] - 10.5 * W[1192] * W[2543] - 10.0 * W[799] * W[2936]
-            - 9.5 * W[406] * W[3329]) / (9.0 * W[13]);
-    W[3758] = (-13.5 * W[3626] * W[221] - 13.0 * W[3233] * W[614] - 12.5 * W[2840] * W[1007] - 12.0 * W[2447] * W[1400]
-            - 11.5 * W[2054] * W[1793] - 11.0 * W[1661] * W[2186] - 10.5 * W[1268] * W[2579] - 10.0 * W[875] * W[2972]
-            - 9.5 * W[482] * W[3365]) / (9.0 * W[89]);
-    W[3762] = (-13.5 * W[3618] * W[225] - 13.0 * W[3225] * W[618] - 12.5 * W[2832] * W[1011] - 12.0 * W[2439] * W[1404]
-            - 11.5 * W[2046] * W[1797] - 11.0 * W[1653] * W[2190] - 10.5 * W[1260] * W[2583] - 10.0 * W[867] * W[2976]
-            - 9.5 * W[474] * W[3369]) / (9.0 * W[81]);
-    W[3767] = (-13.5 * W[3610] * W[230] - 13.0 * W[3217] * W[623] - 12.5 * W[2824] * W[1016] - 12.0 * W[2431] * W[1409]
-            - 11.5 * W[2038] * W[1802] - 11.0 * W[1645] * W[2195] - 10.5 * W[1252] * W[2588] - 10.0 * W[859] * W[2981]
-            - 9.5 * W[466] * W[3374]) / (9.0 * W[73]);
-    W[3772] = (-13.5 * W[3602] * W[235] - 13.0 * W[3209] * W[628] - 12.5 * W[2816] * W[1021] - 12.0 * W[2423] * W[1414]
-            - 11.5 * W[2030] * W[1807] - 11.0 * W[1637] * W[2200] - 10.5 * W[1244] * W[2593] - 10.0 * W[851] * W[2986]
-            - 9.5 * W[458] * W[3379]) / (9.0 * W[65]);
-    W[3805] = (-13.5 * W[3650] * W[268] - 13.0 * W[3257] * W[661] - 12.5 * W[2864] * W[1054] - 12.0 * W[2471] * W[1447]
-            - 11.5 * W[2078] * W[1840] - 11.0 * W[1685] * W[2233] - 10.5 * W[1292] * W[2626] - 10.0 * W[899] * W[3019]
-            - 9.5 * W[506] * W[3412]) / (9.0 * W[113]);
-    W[3809] = (-13.5 * W[3642] * W[272] - 13.0 * W[3249] * W[665] - 12.5 * W[2856] * W[1058] - 12.0 * W[2463] * W[1451]
-            - 11.5 * W[2070] * W[1844] - 11.0 * W[1677] * W[2237] - 10.5 * W[1284] * W[2630] - 10.0 * W[891] * W[3023]
-            - 9.5 * W[498] * W[3416]) / (9.0 * W[105]);
-    W[3814] = (-13.5 * W[3634] * W[277] - 13.0 * W[3241] * W[670] - 12.5 * W[2848] * W[1063] - 12.0 * W[2455] * W[1456]
-            - 11.5 * W[2062] * W[1849] - 11.0 * W[1669] * W[2242] - 10.5 * W[1276] * W[2635] - 10.0 * W[883] * W[3028]
-            - 9.5 * W[490] * W[3421]) / (9.0 * W[97]);
-    W[3844] = (-13.5 * W[3666] * W[307] - 13.0 * W[3273] * W[700] - 12.5 * W[2880] * W[1093] - 12.0 * W[2487] * W[1486]
-            - 11.5 * W[2094] * W[1879] - 11.0 * W[1701] * W[2272] - 10.5 * W[1308] * W[2665] - 10.0 * W[915] * W[3058]
-            - 9.5 * W[522] * W[3451]) / (9.0 * W[129]);
-    W[3848] = (-13.5 * W[3658] * W[311] - 13.0 * W[3265] * W[704] - 12.5 * W[2872] * W[1097] - 12.0 * W[2479] * W[1490]
-            - 11.5 * W[2086] * W[1883] - 11.0 * W[1693] * W[2276] - 10.5 * W[1300] * W[2669] - 10.0 * W[907] * W[3062]
-            - 9.5 * W[514] * W[3455]) / (9.0 * W[121]);
-    W[3875] = (-13.5 * W[3674] * W[338] - 13.0 * W[3281] * W[731] - 12.5 * W[2888] * W[1124] - 12.0 * W[2495] * W[1517]
-            - 11.5 * W[2102] * W[1910] - 11.0 * W[1709] * W[2303] - 10.5 * W[1316] * W[2696] - 10.0 * W[923] * W[3089]
-            - 9.5 * W[530] * W[3482]) / (9.0 * W[137]);
-    W[3704] = W[48] * W[3703] + W[441] * W[3310] + W[834] * W[2917] + W[1227] * W[2524] + W[1620] * W[2131]
-            + W[2013] * W[1738] + W[2406] * W[1345] + W[2799] * W[952] + W[3192] * W[559] + W[3585] * W[166];
-    W[3708] = W[37] * W[3707] + W[430] * W[3314] + W[823] * W[2921] + W[1216] * W[2528] + W[1609] * W[2135]
-            + W[2002] * W[1742] + W[2395] * W[1349] + W[2788] * W[956] + W[3181] * W[563] + W[3574] * W[170];
-    W[3713] = W[26] * W[3712] + W[419] * W[3319] + W[812] * W[2926] + W[1205] * W[2533] + W[1598] * W[2140]
-            + W[1991] * W[1747] + W[2384] * W[1354] + W[2777] * W[961] + W[3170] * W[568] + W[3563] * W[175];
-    W[3718] = W[15] * W[3717] + W[408] * W[3324] + W[801] * W[2931] + W[1194] * W[2538] + W[1587] * W[2145]
-            + W[1980] * W[1752] + W[2373] * W[1359] + W[2766] * W[966] + W[3159] * W[573] + W[3552] * W[180];
-    W[3723] = W[2] * W[3722] + W[395] * W[3329] + W[788] * W[2936] + W[1181] * W[2543] + W[1574] * W[2150]
-            + W[1967] * W[1757] + W[2360] * W[1364] + W[2753] * W[971] + W[3146] * W[578] + W[3539] * W[185];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_172(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3727] = W[51] * W[3703] + W[444] * W[3310] + W[837] * W[2917] + W[1230] * W[2524] + W[1623] * W[2131]
             + W[2016] * W[1738] + W[2409] * W[1345] + W[2802] * W[952] + W[3195] * W[559] + W[3588] * W[166];
     W[3729] = W[40] * W[3707] + W[433] * W[3314] + W[826] * W[2921] + W[1219] * W[2528] + W[1612] * W[2135]
@@ -7827,46 +6219,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[2052] * W[1793] + W[2445] * W[1400] + W[2838] * W[1007] + W[3231] * W[614] + W[3624] * W[221];
     W[3793] = W[79] * W[3762] + W[472] * W[3369] + W[865] * W[2976] + W[1258] * W[2583] + W[1651] * W[2190]
             + W[2044] * W[1797] + W[2437] * W[1404] + W[2830] * W[1011] + W[3223] * W[618] + W[3616] * W[225];
-    W[3796] = W[71] * W[3767] + W[464] * W[3374] + W[857] * W[2981] + W[1250] * W[2588] + W[1643] * W[2195]
-            + W[2036] * W[1802] + W[2429] * W[1409] + W[2822] * W[1016] + W[3215] * W[623] + W[3608] * W[230];
-    W[3799] = W[63] * W[3772] + W[456] * W[3379] + W[849] * W[2986] + W[1242] * W[2593] + W[1635] * W[2200]
-            + W[2028] * W[1807] + W[2421] * W[1414] + W[2814] * W[1021] + W[3207] * W[628] + W[3600] * W[235];
-    W[3806] = W[106] * W[3805] + W[499] * W[3412] + W[892] * W[3019] + W[1285] * W[2626] + W[1678] * W[2233]
-            + W[2071] * W[1840] + W[2464] * W[1447] + W[2857] * W[1054] + W[3250] * W[661] + W[3643] * W[268];
-    W[3810] = W[98] * W[3809] + W[491] * W[3416] + W[884] * W[3023] + W[1277] * W[2630] + W[1670] * W[2237]
-            + W[2063] * W[1844] + W[2456] * W[1451] + W[2849] * W[1058] + W[3242] * W[665] + W[3635] * W[272];
-    W[3815] = W[90] * W[3814] + W[483] * W[3421] + W[876] * W[3028] + W[1269] * W[2635] + W[1662] * W[2242]
-            + W[2055] * W[1849] + W[2448] * W[1456] + W[2841] * W[1063] + W[3234] * W[670] + W[3627] * W[277];
-    W[3821] = W[108] * W[3805] + W[501] * W[3412] + W[894] * W[3019] + W[1287] * W[2626] + W[1680] * W[2233]
-            + W[2073] * W[1840] + W[2466] * W[1447] + W[2859] * W[1054] + W[3252] * W[661] + W[3645] * W[268];
-    W[3823] = W[100] * W[3809] + W[493] * W[3416] + W[886] * W[3023] + W[1279] * W[2630] + W[1672] * W[2237]
-            + W[2065] * W[1844] + W[2458] * W[1451] + W[2851] * W[1058] + W[3244] * W[665] + W[3637] * W[272];
-    W[3826] = W[92] * W[3814] + W[485] * W[3421] + W[878] * W[3028] + W[1271] * W[2635] + W[1664] * W[2242]
-            + W[2057] * W[1849] + W[2450] * W[1456] + W[2843] * W[1063] + W[3236] * W[670] + W[3629] * W[277];
-    W[3832] = W[111] * W[3805] + W[504] * W[3412] + W[897] * W[3019] + W[1290] * W[2626] + W[1683] * W[2233]
-            + W[2076] * W[1840] + W[2469] * W[1447] + W[2862] * W[1054] + W[3255] * W[661] + W[3648] * W[268];
-    W[3834] = W[103] * W[3809] + W[496] * W[3416] + W[889] * W[3023] + W[1282] * W[2630] + W[1675] * W[2237]
-            + W[2068] * W[1844] + W[2461] * W[1451] + W[2854] * W[1058] + W[3247] * W[665] + W[3640] * W[272];
-    W[3837] = W[95] * W[3814] + W[488] * W[3421] + W[881] * W[3028] + W[1274] * W[2635] + W[1667] * W[2242]
-            + W[2060] * W[1849] + W[2453] * W[1456] + W[2846] * W[1063] + W[3239] * W[670] + W[3632] * W[277];
-    W[3845] = W[122] * W[3844] + W[515] * W[3451] + W[908] * W[3058] + W[1301] * W[2665] + W[1694] * W[2272]
-            + W[2087] * W[1879] + W[2480] * W[1486] + W[2873] * W[1093] + W[3266] * W[700] + W[3659] * W[307];
-    W[3849] = W[114] * W[3848] + W[507] * W[3455] + W[900] * W[3062] + W[1293] * W[2669] + W[1686] * W[2276]
-            + W[2079] * W[1883] + W[2472] * W[1490] + W[2865] * W[1097] + W[3258] * W[704] + W[3651] * W[311];
-    W[3856] = W[124] * W[3844] + W[517] * W[3451] + W[910] * W[3058] + W[1303] * W[2665] + W[1696] * W[2272]
-            + W[2089] * W[1879] + W[2482] * W[1486] + W[2875] * W[1093] + W[3268] * W[700] + W[3661] * W[307];
-    W[3858] = W[116] * W[3848] + W[509] * W[3455] + W[902] * W[3062] + W[1295] * W[2669] + W[1688] * W[2276]
-            + W[2081] * W[1883] + W[2474] * W[1490] + W[2867] * W[1097] + W[3260] * W[704] + W[3653] * W[311];
-    W[3865] = W[127] * W[3844] + W[520] * W[3451] + W[913] * W[3058] + W[1306] * W[2665] + W[1699] * W[2272]
-            + W[2092] * W[1879] + W[2485] * W[1486] + W[2878] * W[1093] + W[3271] * W[700] + W[3664] * W[307];
-    W[3867] = W[119] * W[3848] + W[512] * W[3455] + W[905] * W[3062] + W[1298] * W[2669] + W[1691] * W[2276]
-            + W[2084] * W[1883] + W[2477] * W[1490] + W[2870] * W[1097] + W[3263] * W[704] + W[3656] * W[311];
-    W[3876] = W[130] * W[3875] + W[523] * W[3482] + W[916] * W[3089] + W[1309] * W[2696] + W[1702] * W[2303]
-            + W[2095] * W[1910] + W[2488] * W[1517] + W[2881] * W[1124] + W[3274] * W[731] + W[3667] * W[338];
-    W[3883] = W[132] * W[3875] + W[525] * W[3482] + W[918] * W[3089] + W[1311] * W[2696] + W[1704] * W[2303]
-            + W[2097] * W[1910] + W[2490] * W[1517] + W[2883] * W[1124] + W[3276] * W[731] + W[3669] * W[338];
-    W[3890] = W[135] * W[3875] + W[528] * W[3482] + W[921] * W[3089] + W[1314] * W[2696] + W[1707] * W[2303]
-            + W[2100] * W[1910] + W[2493] * W[1517] + W[2886] * W[1124] + W[3279] * W[731] + W[3672] * W[338];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_174(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3705] = W[164] * W[3704];
     W[3709] = W[169] * W[3708];
     W[3714] = W[174] * W[3713];
@@ -7887,6 +6249,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[3769] = W[229] * W[3768];
     W[3774] = W[234] * W[3773];
     W[3779] = W[220] * W[3778];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_175(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3781] = W[224] * W[3780];
     W[3784] = W[229] * W[3783];
     W[3787] = W[234] * W[3786];
@@ -7907,6 +6279,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[3850] = W[310] * W[3849];
     W[3857] = W[306] * W[3856];
     W[3859] = W[310] * W[3858];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_176(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3866] = W[306] * W[3865];
     W[3868] = W[310] * W[3867];
     W[3877] = W[337] * W[3876];
@@ -7927,6 +6309,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[3878] = W[3877] - W[3850];
     W[3885] = W[3884] - W[3859];
     W[3892] = W[3891] - W[3868];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_177(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3897] = W[3846] + W[3877];
     W[3902] = W[3857] + W[3884];
     W[3907] = W[3866] + W[3891];
@@ -7947,6 +6339,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[3893] = W[3892] - W[3835];
     W[3898] = W[3807] + W[3897];
     W[3903] = W[3822] + W[3902];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_178(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3908] = W[3833] + W[3907];
     W[3720] = W[3715] + W[3719];
     W[3737] = W[3734] + W[3736];
@@ -7967,26 +6369,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[3904] = W[3779] + W[3903];
     W[3909] = W[3792] + W[3908];
     W[3725] = W[3720] + W[3724];
-    W[3740] = W[3737] + W[3739];
-    W[3755] = W[3752] + W[3754];
-    W[3776] = W[3775] - W[3724];
-    W[3789] = W[3788] - W[3739];
-    W[3802] = W[3801] - W[3754];
-    W[3819] = W[3818] - W[3719];
-    W[3830] = W[3829] - W[3736];
-    W[3841] = W[3840] - W[3751];
-    W[3854] = W[3853] - W[3714];
-    W[3863] = W[3862] - W[3733];
-    W[3872] = W[3871] - W[3748];
-    W[3881] = W[3880] - W[3709];
-    W[3888] = W[3887] - W[3730];
-    W[3895] = W[3894] - W[3745];
-    W[3900] = W[3705] + W[3899];
-    W[3905] = W[3728] + W[3904];
-    W[3910] = W[3743] + W[3909];
-    W[3726] = W[161] * W[3725];
-    W[3741] = W[161] * W[3740];
-    W[3756] = W[161] * W[3755];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_180(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3777] = W[161] * W[3776];
     W[3790] = W[161] * W[3789];
     W[3803] = W[161] * W[3802];
@@ -8007,26 +6399,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[362] = X[344] / 10.0;
     X[363] = X[345] / 10.0;
     X[364] = X[346] / 10.0;
-    X[365] = X[347] / 10.0;
-    X[366] = X[348] / 10.0;
-    X[367] = X[349] / 10.0;
-    X[368] = X[350] / 10.0;
-    X[369] = X[351] / 10.0;
-    X[370] = X[352] / 10.0;
-    X[371] = X[353] / 10.0;
-    X[372] = X[354] / 10.0;
-    X[373] = X[355] / 10.0;
-    X[374] = X[356] / 10.0;
-    X[375] = X[357] / 10.0;
-    X[376] = X[358] / 10.0;
-    X[377] = X[359] / 10.0;
-    X[378] = -W[3726] / W[138] / 10.0;
-    X[379] = -W[3741] / W[138] / 10.0;
-    X[380] = -W[3756] / W[138] / 10.0;
-    X[381] = -W[3777] / W[140] / 10.0;
-    X[382] = -W[3790] / W[140] / 10.0;
-    X[383] = -W[3803] / W[140] / 10.0;
-    X[384] = -W[3820] / W[141] / 10.0;
+    return 0;
+}
+
+/* Lines 340 .. 350 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_182(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[385] = -W[3831] / W[141] / 10.0;
     X[386] = -W[3842] / W[141] / 10.0;
     X[387] = -W[3855] / W[142] / 10.0;
@@ -8038,29 +6420,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[393] = -W[3901] / W[144] / 10.0;
     X[394] = -W[3906] / W[144] / 10.0;
     X[395] = -W[3911] / W[144] / 10.0;
-    if (K == 10)
-        goto out;
-    /* order 10 */
-    W[3932] = X[360] - X[363];
-    W[3936] = X[361] - X[364];
-    W[3941] = X[362] - X[365];
-    W[3945] = X[360] - X[366];
-    W[3948] = X[361] - X[367];
-    W[3952] = X[362] - X[368];
-    W[3956] = X[360] - X[369];
-    W[3959] = X[361] - X[370];
-    W[3963] = X[362] - X[371];
-    W[3967] = X[360] - X[372];
-    W[3970] = X[361] - X[373];
-    W[3974] = X[362] - X[374];
-    W[3978] = X[360] - X[375];
-    W[3981] = X[361] - X[376];
-    W[3985] = X[362] - X[377];
-    W[3988] = X[363] - X[366];
-    W[3990] = X[364] - X[367];
-    W[3993] = X[365] - X[368];
-    W[3996] = X[363] - X[369];
-    W[3998] = X[364] - X[370];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_184(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4001] = X[365] - X[371];
     W[4004] = X[363] - X[372];
     W[4006] = X[364] - X[373];
@@ -8081,41 +6450,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[4046] = X[370] - X[373];
     W[4049] = X[371] - X[374];
     W[4052] = X[369] - X[375];
-    W[4054] = X[370] - X[376];
-    W[4057] = X[371] - X[377];
-    W[4060] = X[372] - X[375];
-    W[4062] = X[373] - X[376];
-    W[4065] = X[374] - X[377];
-    W[3933] = (W[2] * W[3932] + W[395] * W[3539] + W[788] * W[3146] + W[1181] * W[2753] + W[1574] * W[2360]) * 2.0
-            + W[1967] * W[1967];
-    W[3937] = (W[6] * W[3936] + W[399] * W[3543] + W[792] * W[3150] + W[1185] * W[2757] + W[1578] * W[2364]) * 2.0
-            + W[1971] * W[1971];
-    W[3942] = (W[11] * W[3941] + W[404] * W[3548] + W[797] * W[3155] + W[1190] * W[2762] + W[1583] * W[2369]) * 2.0
-            + W[1976] * W[1976];
-    W[3946] = (W[15] * W[3945] + W[408] * W[3552] + W[801] * W[3159] + W[1194] * W[2766] + W[1587] * W[2373]) * 2.0
-            + W[1980] * W[1980];
-    W[3949] = (W[18] * W[3948] + W[411] * W[3555] + W[804] * W[3162] + W[1197] * W[2769] + W[1590] * W[2376]) * 2.0
-            + W[1983] * W[1983];
-    W[3953] = (W[22] * W[3952] + W[415] * W[3559] + W[808] * W[3166] + W[1201] * W[2773] + W[1594] * W[2380]) * 2.0
-            + W[1987] * W[1987];
-    W[3957] = (W[26] * W[3956] + W[419] * W[3563] + W[812] * W[3170] + W[1205] * W[2777] + W[1598] * W[2384]) * 2.0
-            + W[1991] * W[1991];
-    W[3960] = (W[29] * W[3959] + W[422] * W[3566] + W[815] * W[3173] + W[1208] * W[2780] + W[1601] * W[2387]) * 2.0
-            + W[1994] * W[1994];
-    W[3964] = (W[33] * W[3963] + W[426] * W[3570] + W[819] * W[3177] + W[1212] * W[2784] + W[1605] * W[2391]) * 2.0
-            + W[1998] * W[1998];
-    W[3968] = (W[37] * W[3967] + W[430] * W[3574] + W[823] * W[3181] + W[1216] * W[2788] + W[1609] * W[2395]) * 2.0
-            + W[2002] * W[2002];
-    W[3971] = (W[40] * W[3970] + W[433] * W[3577] + W[826] * W[3184] + W[1219] * W[2791] + W[1612] * W[2398]) * 2.0
-            + W[2005] * W[2005];
-    W[3975] = (W[44] * W[3974] + W[437] * W[3581] + W[830] * W[3188] + W[1223] * W[2795] + W[1616] * W[2402]) * 2.0
-            + W[2009] * W[2009];
-    W[3979] = (W[48] * W[3978] + W[441] * W[3585] + W[834] * W[3192] + W[1227] * W[2799] + W[1620] * W[2406]) * 2.0
-            + W[2013] * W[2013];
-    W[3982] = (W[51] * W[3981] + W[444] * W[3588] + W[837] * W[3195] + W[1230] * W[2802] + W[1623] * W[2409]) * 2.0
-            + W[2016] * W[2016];
-    W[3986] = (W[55] * W[3985] + W[448] * W[3592] + W[841] * W[3199] + W[1234] * W[2806] + W[1627] * W[2413]) * 2.0
-            + W[2020] * W[2020];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_186(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3989] = (W[58] * W[3988] + W[451] * W[3595] + W[844] * W[3202] + W[1237] * W[2809] + W[1630] * W[2416]) * 2.0
             + W[2023] * W[2023];
     W[3991] = (W[60] * W[3990] + W[453] * W[3597] + W[846] * W[3204] + W[1239] * W[2811] + W[1632] * W[2418]) * 2.0
@@ -8156,36 +6500,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[2071] * W[2071];
     W[4039] = (W[108] * W[4038] + W[501] * W[3645] + W[894] * W[3252] + W[1287] * W[2859] + W[1680] * W[2466]) * 2.0
             + W[2073] * W[2073];
-    W[4042] = (W[111] * W[4041] + W[504] * W[3648] + W[897] * W[3255] + W[1290] * W[2862] + W[1683] * W[2469]) * 2.0
-            + W[2076] * W[2076];
-    W[4045] = (W[114] * W[4044] + W[507] * W[3651] + W[900] * W[3258] + W[1293] * W[2865] + W[1686] * W[2472]) * 2.0
-            + W[2079] * W[2079];
-    W[4047] = (W[116] * W[4046] + W[509] * W[3653] + W[902] * W[3260] + W[1295] * W[2867] + W[1688] * W[2474]) * 2.0
-            + W[2081] * W[2081];
-    W[4050] = (W[119] * W[4049] + W[512] * W[3656] + W[905] * W[3263] + W[1298] * W[2870] + W[1691] * W[2477]) * 2.0
-            + W[2084] * W[2084];
-    W[4053] = (W[122] * W[4052] + W[515] * W[3659] + W[908] * W[3266] + W[1301] * W[2873] + W[1694] * W[2480]) * 2.0
-            + W[2087] * W[2087];
-    W[4055] = (W[124] * W[4054] + W[517] * W[3661] + W[910] * W[3268] + W[1303] * W[2875] + W[1696] * W[2482]) * 2.0
-            + W[2089] * W[2089];
-    W[4058] = (W[127] * W[4057] + W[520] * W[3664] + W[913] * W[3271] + W[1306] * W[2878] + W[1699] * W[2485]) * 2.0
-            + W[2092] * W[2092];
-    W[4061] = (W[130] * W[4060] + W[523] * W[3667] + W[916] * W[3274] + W[1309] * W[2881] + W[1702] * W[2488]) * 2.0
-            + W[2095] * W[2095];
-    W[4063] = (W[132] * W[4062] + W[525] * W[3669] + W[918] * W[3276] + W[1311] * W[2883] + W[1704] * W[2490]) * 2.0
-            + W[2097] * W[2097];
-    W[4066] = (W[135] * W[4065] + W[528] * W[3672] + W[921] * W[3279] + W[1314] * W[2886] + W[1707] * W[2493]) * 2.0
-            + W[2100] * W[2100];
-    W[3938] = W[3933] + W[3937];
-    W[3950] = W[3946] + W[3949];
-    W[3961] = W[3957] + W[3960];
-    W[3972] = W[3968] + W[3971];
-    W[3983] = W[3979] + W[3982];
-    W[3992] = W[3989] + W[3991];
-    W[4000] = W[3997] + W[3999];
-    W[4008] = W[4005] + W[4007];
-    W[4016] = W[4013] + W[4015];
-    W[4024] = W[4021] + W[4023];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_188(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4032] = W[4029] + W[4031];
     W[4040] = W[4037] + W[4039];
     W[4048] = W[4045] + W[4047];
@@ -8206,66 +6530,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[4051] = W[4048] + W[4050];
     W[4059] = W[4056] + W[4058];
     W[4067] = W[4064] + W[4066];
-    W[4096] = (-15.0 * W[3987] * W[166] - 14.5 * W[3594] * W[559] - 14.0 * W[3201] * W[952] - 13.5 * W[2808] * W[1345]
-            - 13.0 * W[2415] * W[1738] - 12.5 * W[2022] * W[2131] - 12.0 * W[1629] * W[2524] - 11.5 * W[1236] * W[2917]
-            - 11.0 * W[843] * W[3310] - 10.5 * W[450] * W[3703]) / (10.0 * W[57]);
-    W[4100] = (-15.0 * W[3976] * W[170] - 14.5 * W[3583] * W[563] - 14.0 * W[3190] * W[956] - 13.5 * W[2797] * W[1349]
-            - 13.0 * W[2404] * W[1742] - 12.5 * W[2011] * W[2135] - 12.0 * W[1618] * W[2528] - 11.5 * W[1225] * W[2921]
-            - 11.0 * W[832] * W[3314] - 10.5 * W[439] * W[3707]) / (10.0 * W[46]);
-    W[4105] = (-15.0 * W[3965] * W[175] - 14.5 * W[3572] * W[568] - 14.0 * W[3179] * W[961] - 13.5 * W[2786] * W[1354]
-            - 13.0 * W[2393] * W[1747] - 12.5 * W[2000] * W[2140] - 12.0 * W[1607] * W[2533] - 11.5 * W[1214] * W[2926]
-            - 11.0 * W[821] * W[3319] - 10.5 * W[428] * W[3712]) / (10.0 * W[35]);
-    W[4110] = (-15.0 * W[3954] * W[180] - 14.5 * W[3561] * W[573] - 14.0 * W[3168] * W[966] - 13.5 * W[2775] * W[1359]
-            - 13.0 * W[2382] * W[1752] - 12.5 * W[1989] * W[2145] - 12.0 * W[1596] * W[2538] - 11.5 * W[1203] * W[2931]
-            - 11.0 * W[810] * W[3324] - 10.5 * W[417] * W[3717]) / (10.0 * W[24]);
-    W[4115] = (-15.0 * W[3943] * W[185] - 14.5 * W[3550] * W[578] - 14.0 * W[3157] * W[971] - 13.5 * W[2764] * W[1364]
-            - 13.0 * W[2371] * W[1757] - 12.5 * W[1978] * W[2150] - 12.0 * W[1585] * W[2543] - 11.5 * W[1192] * W[2936]
-            - 11.0 * W[799] * W[3329] - 10.5 * W[406] * W[3722]) / (10.0 * W[13]);
-    W[4151] = (-15.0 * W[4019] * W[221] - 14.5 * W[3626] * W[614] - 14.0 * W[3233] * W[1007] - 13.5 * W[2840] * W[1400]
-            - 13.0 * W[2447] * W[1793] - 12.5 * W[2054] * W[2186] - 12.0 * W[1661] * W[2579] - 11.5 * W[1268] * W[2972]
-            - 11.0 * W[875] * W[3365] - 10.5 * W[482] * W[3758]) / (10.0 * W[89]);
-    W[4155] = (-15.0 * W[4011] * W[225] - 14.5 * W[3618] * W[618] - 14.0 * W[3225] * W[1011] - 13.5 * W[2832] * W[1404]
-            - 13.0 * W[2439] * W[1797] - 12.5 * W[2046] * W[2190] - 12.0 * W[1653] * W[2583] - 11.5 * W[1260] * W[2976]
-            - 11.0 * W[867] * W[3369] - 10.5 * W[474] * W[3762]) / (10.0 * W[81]);
-    W[4160] = (-15.0 * W[4003] * W[230] - 14.5 * W[3610] * W[623] - 14.0 * W[3217] * W[1016] - 13.5 * W[2824] * W[1409]
-            - 13.0 * W[2431] * W[1802] - 12.5 * W[2038] * W[2195] - 12.0 * W[1645] * W[2588] - 11.5 * W[1252] * W[2981]
-            - 11.0 * W[859] * W[3374] - 10.5 * W[466] * W[3767]) / (10.0 * W[73]);
-    W[4165] = (-15.0 * W[3995] * W[235] - 14.5 * W[3602] * W[628] - 14.0 * W[3209] * W[1021] - 13.5 * W[2816] * W[1414]
-            - 13.0 * W[2423] * W[1807] - 12.5 * W[2030] * W[2200] - 12.0 * W[1637] * W[2593] - 11.5 * W[1244] * W[2986]
-            - 11.0 * W[851] * W[3379] - 10.5 * W[458] * W[3772]) / (10.0 * W[65]);
-    W[4198] = (-15.0 * W[4043] * W[268] - 14.5 * W[3650] * W[661] - 14.0 * W[3257] * W[1054] - 13.5 * W[2864] * W[1447]
-            - 13.0 * W[2471] * W[1840] - 12.5 * W[2078] * W[2233] - 12.0 * W[1685] * W[2626] - 11.5 * W[1292] * W[3019]
-            - 11.0 * W[899] * W[3412] - 10.5 * W[506] * W[3805]) / (10.0 * W[113]);
-    W[4202] = (-15.0 * W[4035] * W[272] - 14.5 * W[3642] * W[665] - 14.0 * W[3249] * W[1058] - 13.5 * W[2856] * W[1451]
-            - 13.0 * W[2463] * W[1844] - 12.5 * W[2070] * W[2237] - 12.0 * W[1677] * W[2630] - 11.5 * W[1284] * W[3023]
-            - 11.0 * W[891] * W[3416] - 10.5 * W[498] * W[3809]) / (10.0 * W[105]);
-    W[4207] = (-15.0 * W[4027] * W[277] - 14.5 * W[3634] * W[670] - 14.0 * W[3241] * W[1063] - 13.5 * W[2848] * W[1456]
-            - 13.0 * W[2455] * W[1849] - 12.5 * W[2062] * W[2242] - 12.0 * W[1669] * W[2635] - 11.5 * W[1276] * W[3028]
-            - 11.0 * W[883] * W[3421] - 10.5 * W[490] * W[3814]) / (10.0 * W[97]);
-    W[4237] = (-15.0 * W[4059] * W[307] - 14.5 * W[3666] * W[700] - 14.0 * W[3273] * W[1093] - 13.5 * W[2880] * W[1486]
-            - 13.0 * W[2487] * W[1879] - 12.5 * W[2094] * W[2272] - 12.0 * W[1701] * W[2665] - 11.5 * W[1308] * W[3058]
-            - 11.0 * W[915] * W[3451] - 10.5 * W[522] * W[3844]) / (10.0 * W[129]);
-    W[4241] = (-15.0 * W[4051] * W[311] - 14.5 * W[3658] * W[704] - 14.0 * W[3265] * W[1097] - 13.5 * W[2872] * W[1490]
-            - 13.0 * W[2479] * W[1883] - 12.5 * W[2086] * W[2276] - 12.0 * W[1693] * W[2669] - 11.5 * W[1300] * W[3062]
-            - 11.0 * W[907] * W[3455] - 10.5 * W[514] * W[3848]) / (10.0 * W[121]);
-    W[4268] = (-15.0 * W[4067] * W[338] - 14.5 * W[3674] * W[731] - 14.0 * W[3281] * W[1124] - 13.5 * W[2888] * W[1517]
-            - 13.0 * W[2495] * W[1910] - 12.5 * W[2102] * W[2303] - 12.0 * W[1709] * W[2696] - 11.5 * W[1316] * W[3089]
-            - 11.0 * W[923] * W[3482] - 10.5 * W[530] * W[3875]) / (10.0 * W[137]);
-    W[4097] = W[48] * W[4096] + W[441] * W[3703] + W[834] * W[3310] + W[1227] * W[2917] + W[1620] * W[2524]
-            + W[2013] * W[2131] + W[2406] * W[1738] + W[2799] * W[1345] + W[3192] * W[952] + W[3585] * W[559]
-            + W[3978] * W[166];
-    W[4101] = W[37] * W[4100] + W[430] * W[3707] + W[823] * W[3314] + W[1216] * W[2921] + W[1609] * W[2528]
-            + W[2002] * W[2135] + W[2395] * W[1742] + W[2788] * W[1349] + W[3181] * W[956] + W[3574] * W[563]
-            + W[3967] * W[170];
-    W[4106] = W[26] * W[4105] + W[419] * W[3712] + W[812] * W[3319] + W[1205] * W[2926] + W[1598] * W[2533]
-            + W[1991] * W[2140] + W[2384] * W[1747] + W[2777] * W[1354] + W[3170] * W[961] + W[3563] * W[568]
-            + W[3956] * W[175];
-    W[4111] = W[15] * W[4110] + W[408] * W[3717] + W[801] * W[3324] + W[1194] * W[2931] + W[1587] * W[2538]
-            + W[1980] * W[2145] + W[2373] * W[1752] + W[2766] * W[1359] + W[3159] * W[966] + W[3552] * W[573]
-            + W[3945] * W[180];
-    W[4116] = W[2] * W[4115] + W[395] * W[3722] + W[788] * W[3329] + W[1181] * W[2936] + W[1574] * W[2543]
-            + W[1967] * W[2150] + W[2360] * W[1757] + W[2753] * W[1364] + W[3146] * W[971] + W[3539] * W[578]
-            + W[3932] * W[185];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_190(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4120] = W[51] * W[4096] + W[444] * W[3703] + W[837] * W[3310] + W[1230] * W[2917] + W[1623] * W[2524]
             + W[2016] * W[2131] + W[2409] * W[1738] + W[2802] * W[1345] + W[3195] * W[952] + W[3588] * W[559]
             + W[3981] * W[166];
@@ -8326,66 +6600,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[4186] = W[79] * W[4155] + W[472] * W[3762] + W[865] * W[3369] + W[1258] * W[2976] + W[1651] * W[2583]
             + W[2044] * W[2190] + W[2437] * W[1797] + W[2830] * W[1404] + W[3223] * W[1011] + W[3616] * W[618]
             + W[4009] * W[225];
-    W[4189] = W[71] * W[4160] + W[464] * W[3767] + W[857] * W[3374] + W[1250] * W[2981] + W[1643] * W[2588]
-            + W[2036] * W[2195] + W[2429] * W[1802] + W[2822] * W[1409] + W[3215] * W[1016] + W[3608] * W[623]
-            + W[4001] * W[230];
-    W[4192] = W[63] * W[4165] + W[456] * W[3772] + W[849] * W[3379] + W[1242] * W[2986] + W[1635] * W[2593]
-            + W[2028] * W[2200] + W[2421] * W[1807] + W[2814] * W[1414] + W[3207] * W[1021] + W[3600] * W[628]
-            + W[3993] * W[235];
-    W[4199] = W[106] * W[4198] + W[499] * W[3805] + W[892] * W[3412] + W[1285] * W[3019] + W[1678] * W[2626]
-            + W[2071] * W[2233] + W[2464] * W[1840] + W[2857] * W[1447] + W[3250] * W[1054] + W[3643] * W[661]
-            + W[4036] * W[268];
-    W[4203] = W[98] * W[4202] + W[491] * W[3809] + W[884] * W[3416] + W[1277] * W[3023] + W[1670] * W[2630]
-            + W[2063] * W[2237] + W[2456] * W[1844] + W[2849] * W[1451] + W[3242] * W[1058] + W[3635] * W[665]
-            + W[4028] * W[272];
-    W[4208] = W[90] * W[4207] + W[483] * W[3814] + W[876] * W[3421] + W[1269] * W[3028] + W[1662] * W[2635]
-            + W[2055] * W[2242] + W[2448] * W[1849] + W[2841] * W[1456] + W[3234] * W[1063] + W[3627] * W[670]
-            + W[4020] * W[277];
-    W[4214] = W[108] * W[4198] + W[501] * W[3805] + W[894] * W[3412] + W[1287] * W[3019] + W[1680] * W[2626]
-            + W[2073] * W[2233] + W[2466] * W[1840] + W[2859] * W[1447] + W[3252] * W[1054] + W[3645] * W[661]
-            + W[4038] * W[268];
-    W[4216] = W[100] * W[4202] + W[493] * W[3809] + W[886] * W[3416] + W[1279] * W[3023] + W[1672] * W[2630]
-            + W[2065] * W[2237] + W[2458] * W[1844] + W[2851] * W[1451] + W[3244] * W[1058] + W[3637] * W[665]
-            + W[4030] * W[272];
-    W[4219] = W[92] * W[4207] + W[485] * W[3814] + W[878] * W[3421] + W[1271] * W[3028] + W[1664] * W[2635]
-            + W[2057] * W[2242] + W[2450] * W[1849] + W[2843] * W[1456] + W[3236] * W[1063] + W[3629] * W[670]
-            + W[4022] * W[277];
-    W[4225] = W[111] * W[4198] + W[504] * W[3805] + W[897] * W[3412] + W[1290] * W[3019] + W[1683] * W[2626]
-            + W[2076] * W[2233] + W[2469] * W[1840] + W[2862] * W[1447] + W[3255] * W[1054] + W[3648] * W[661]
-            + W[4041] * W[268];
-    W[4227] = W[103] * W[4202] + W[496] * W[3809] + W[889] * W[3416] + W[1282] * W[3023] + W[1675] * W[2630]
-            + W[2068] * W[2237] + W[2461] * W[1844] + W[2854] * W[1451] + W[3247] * W[1058] + W[3640] * W[665]
-            + W[4033] * W[272];
-    W[4230] = W[95] * W[4207] + W[488] * W[3814] + W[881] * W[3421] + W[1274] * W[3028] + W[1667] * W[2635]
-            + W[2060] * W[2242] + W[2453] * W[1849] + W[2846] * W[1456] + W[3239] * W[1063] + W[3632] * W[670]
-            + W[4025] * W[277];
-    W[4238] = W[122] * W[4237] + W[515] * W[3844] + W[908] * W[3451] + W[1301] * W[3058] + W[1694] * W[2665]
-            + W[2087] * W[2272] + W[2480] * W[1879] + W[2873] * W[1486] + W[3266] * W[1093] + W[3659] * W[700]
-            + W[4052] * W[307];
-    W[4242] = W[114] * W[4241] + W[507] * W[3848] + W[900] * W[3455] + W[1293] * W[3062] + W[1686] * W[2669]
-            + W[2079] * W[2276] + W[2472] * W[1883] + W[2865] * W[1490] + W[3258] * W[1097] + W[3651] * W[704]
-            + W[4044] * W[311];
-    W[4249] = W[124] * W[4237] + W[517] * W[3844] + W[910] * W[3451] + W[1303] * W[3058] + W[1696] * W[2665]
-            + W[2089] * W[2272] + W[2482] * W[1879] + W[2875] * W[1486] + W[3268] * W[1093] + W[3661] * W[700]
-            + W[4054] * W[307];
-    W[4251] = W[116] * W[4241] + W[509] * W[3848] + W[902] * W[3455] + W[1295] * W[3062] + W[1688] * W[2669]
-            + W[2081] * W[2276] + W[2474] * W[1883] + W[2867] * W[1490] + W[3260] * W[1097] + W[3653] * W[704]
-            + W[4046] * W[311];
-    W[4258] = W[127] * W[4237] + W[520] * W[3844] + W[913] * W[3451] + W[1306] * W[3058] + W[1699] * W[2665]
-            + W[2092] * W[2272] + W[2485] * W[1879] + W[2878] * W[1486] + W[3271] * W[1093] + W[3664] * W[700]
-            + W[4057] * W[307];
-    W[4260] = W[119] * W[4241] + W[512] * W[3848] + W[905] * W[3455] + W[1298] * W[3062] + W[1691] * W[2669]
-            + W[2084] * W[2276] + W[2477] * W[1883] + W[2870] * W[1490] + W[3263] * W[1097] + W[3656] * W[704]
-            + W[4049] * W[311];
-    W[4269] = W[130] * W[4268] + W[523] * W[3875] + W[916] * W[3482] + W[1309] * W[3089] + W[1702] * W[2696]
-            + W[2095] * W[2303] + W[2488] * W[1910] + W[2881] * W[1517] + W[3274] * W[1124] + W[3667] * W[731]
-            + W[4060] * W[338];
-    W[4276] = W[132] * W[4268] + W[525] * W[3875] + W[918] * W[3482] + W[1311] * W[3089] + W[1704] * W[2696]
-            + W[2097] * W[2303] + W[2490] * W[1910] + W[2883] * W[1517] + W[3276] * W[1124] + W[3669] * W[731]
-            + W[4062] * W[338];
-    W[4283] = W[135] * W[4268] + W[528] * W[3875] + W[921] * W[3482] + W[1314] * W[3089] + W[1707] * W[2696]
-            + W[2100] * W[2303] + W[2493] * W[1910] + W[2886] * W[1517] + W[3279] * W[1124] + W[3672] * W[731]
-            + W[4065] * W[338];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_192(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4098] = W[164] * W[4097];
     W[4102] = W[169] * W[4101];
     W[4107] = W[174] * W[4106];
@@ -8406,6 +6630,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[4162] = W[229] * W[4161];
     W[4167] = W[234] * W[4166];
     W[4172] = W[220] * W[4171];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_193(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4174] = W[224] * W[4173];
     W[4177] = W[229] * W[4176];
     W[4180] = W[234] * W[4179];
@@ -8426,6 +6660,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[4243] = W[310] * W[4242];
     W[4250] = W[306] * W[4249];
     W[4252] = W[310] * W[4251];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_194(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4259] = W[306] * W[4258];
     W[4261] = W[310] * W[4260];
     W[4270] = W[337] * W[4269];
@@ -8446,6 +6690,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[4271] = W[4270] - W[4243];
     W[4278] = W[4277] - W[4252];
     W[4285] = W[4284] - W[4261];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_195(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4290] = W[4239] + W[4270];
     W[4295] = W[4250] + W[4277];
     W[4300] = W[4259] + W[4284];
@@ -8466,6 +6720,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[4286] = W[4285] - W[4228];
     W[4291] = W[4200] + W[4290];
     W[4296] = W[4215] + W[4295];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_196(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4301] = W[4226] + W[4300];
     W[4113] = W[4108] + W[4112];
     W[4130] = W[4127] + W[4129];
@@ -8486,26 +6750,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[4297] = W[4172] + W[4296];
     W[4302] = W[4185] + W[4301];
     W[4118] = W[4113] + W[4117];
-    W[4133] = W[4130] + W[4132];
-    W[4148] = W[4145] + W[4147];
-    W[4169] = W[4168] - W[4117];
-    W[4182] = W[4181] - W[4132];
-    W[4195] = W[4194] - W[4147];
-    W[4212] = W[4211] - W[4112];
-    W[4223] = W[4222] - W[4129];
-    W[4234] = W[4233] - W[4144];
-    W[4247] = W[4246] - W[4107];
-    W[4256] = W[4255] - W[4126];
-    W[4265] = W[4264] - W[4141];
-    W[4274] = W[4273] - W[4102];
-    W[4281] = W[4280] - W[4123];
-    W[4288] = W[4287] - W[4138];
-    W[4293] = W[4098] + W[4292];
-    W[4298] = W[4121] + W[4297];
-    W[4303] = W[4136] + W[4302];
-    W[4119] = W[161] * W[4118];
-    W[4134] = W[161] * W[4133];
-    W[4149] = W[161] * W[4148];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_198(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4170] = W[161] * W[4169];
     W[4183] = W[161] * W[4182];
     W[4196] = W[161] * W[4195];
@@ -8526,26 +6780,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[398] = X[380] / 11.0;
     X[399] = X[381] / 11.0;
     X[400] = X[382] / 11.0;
-    X[401] = X[383] / 11.0;
-    X[402] = X[384] / 11.0;
-    X[403] = X[385] / 11.0;
-    X[404] = X[386] / 11.0;
-    X[405] = X[387] / 11.0;
-    X[406] = X[388] / 11.0;
-    X[407] = X[389] / 11.0;
-    X[408] = X[390] / 11.0;
-    X[409] = X[391] / 11.0;
-    X[410] = X[392] / 11.0;
-    X[411] = X[393] / 11.0;
-    X[412] = X[394] / 11.0;
-    X[413] = X[395] / 11.0;
-    X[414] = -W[4119] / W[138] / 11.0;
-    X[415] = -W[4134] / W[138] / 11.0;
-    X[416] = -W[4149] / W[138] / 11.0;
-    X[417] = -W[4170] / W[140] / 11.0;
-    X[418] = -W[4183] / W[140] / 11.0;
-    X[419] = -W[4196] / W[140] / 11.0;
-    X[420] = -W[4213] / W[141] / 11.0;
+    return 0;
+}
+
+/* Lines 340 .. 350 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_200(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[421] = -W[4224] / W[141] / 11.0;
     X[422] = -W[4235] / W[141] / 11.0;
     X[423] = -W[4248] / W[142] / 11.0;
@@ -8557,9 +6801,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[429] = -W[4294] / W[144] / 11.0;
     X[430] = -W[4299] / W[144] / 11.0;
     X[431] = -W[4304] / W[144] / 11.0;
-    if (K == 11)
-        goto out;
-    /* order 11 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_201(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4325] = X[396] - X[399];
     W[4329] = X[397] - X[400];
     W[4334] = X[398] - X[401];
@@ -8580,26 +6831,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[4386] = X[401] - X[404];
     W[4389] = X[399] - X[405];
     W[4391] = X[400] - X[406];
-    W[4394] = X[401] - X[407];
-    W[4397] = X[399] - X[408];
-    W[4399] = X[400] - X[409];
-    W[4402] = X[401] - X[410];
-    W[4405] = X[399] - X[411];
-    W[4407] = X[400] - X[412];
-    W[4410] = X[401] - X[413];
-    W[4413] = X[402] - X[405];
-    W[4415] = X[403] - X[406];
-    W[4418] = X[404] - X[407];
-    W[4421] = X[402] - X[408];
-    W[4423] = X[403] - X[409];
-    W[4426] = X[404] - X[410];
-    W[4429] = X[402] - X[411];
-    W[4431] = X[403] - X[412];
-    W[4434] = X[404] - X[413];
-    W[4437] = X[405] - X[408];
-    W[4439] = X[406] - X[409];
-    W[4442] = X[407] - X[410];
-    W[4445] = X[405] - X[411];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_203(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4447] = X[406] - X[412];
     W[4450] = X[407] - X[413];
     W[4453] = X[408] - X[411];
@@ -8635,46 +6876,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[2016] * W[2409]) * 2.0;
     W[4379] = (W[55] * W[4378] + W[448] * W[3985] + W[841] * W[3592] + W[1234] * W[3199] + W[1627] * W[2806]
             + W[2020] * W[2413]) * 2.0;
-    W[4382] = (W[58] * W[4381] + W[451] * W[3988] + W[844] * W[3595] + W[1237] * W[3202] + W[1630] * W[2809]
-            + W[2023] * W[2416]) * 2.0;
-    W[4384] = (W[60] * W[4383] + W[453] * W[3990] + W[846] * W[3597] + W[1239] * W[3204] + W[1632] * W[2811]
-            + W[2025] * W[2418]) * 2.0;
-    W[4387] = (W[63] * W[4386] + W[456] * W[3993] + W[849] * W[3600] + W[1242] * W[3207] + W[1635] * W[2814]
-            + W[2028] * W[2421]) * 2.0;
-    W[4390] = (W[66] * W[4389] + W[459] * W[3996] + W[852] * W[3603] + W[1245] * W[3210] + W[1638] * W[2817]
-            + W[2031] * W[2424]) * 2.0;
-    W[4392] = (W[68] * W[4391] + W[461] * W[3998] + W[854] * W[3605] + W[1247] * W[3212] + W[1640] * W[2819]
-            + W[2033] * W[2426]) * 2.0;
-    W[4395] = (W[71] * W[4394] + W[464] * W[4001] + W[857] * W[3608] + W[1250] * W[3215] + W[1643] * W[2822]
-            + W[2036] * W[2429]) * 2.0;
-    W[4398] = (W[74] * W[4397] + W[467] * W[4004] + W[860] * W[3611] + W[1253] * W[3218] + W[1646] * W[2825]
-            + W[2039] * W[2432]) * 2.0;
-    W[4400] = (W[76] * W[4399] + W[469] * W[4006] + W[862] * W[3613] + W[1255] * W[3220] + W[1648] * W[2827]
-            + W[2041] * W[2434]) * 2.0;
-    W[4403] = (W[79] * W[4402] + W[472] * W[4009] + W[865] * W[3616] + W[1258] * W[3223] + W[1651] * W[2830]
-            + W[2044] * W[2437]) * 2.0;
-    W[4406] = (W[82] * W[4405] + W[475] * W[4012] + W[868] * W[3619] + W[1261] * W[3226] + W[1654] * W[2833]
-            + W[2047] * W[2440]) * 2.0;
-    W[4408] = (W[84] * W[4407] + W[477] * W[4014] + W[870] * W[3621] + W[1263] * W[3228] + W[1656] * W[2835]
-            + W[2049] * W[2442]) * 2.0;
-    W[4411] = (W[87] * W[4410] + W[480] * W[4017] + W[873] * W[3624] + W[1266] * W[3231] + W[1659] * W[2838]
-            + W[2052] * W[2445]) * 2.0;
-    W[4414] = (W[90] * W[4413] + W[483] * W[4020] + W[876] * W[3627] + W[1269] * W[3234] + W[1662] * W[2841]
-            + W[2055] * W[2448]) * 2.0;
-    W[4416] = (W[92] * W[4415] + W[485] * W[4022] + W[878] * W[3629] + W[1271] * W[3236] + W[1664] * W[2843]
-            + W[2057] * W[2450]) * 2.0;
-    W[4419] = (W[95] * W[4418] + W[488] * W[4025] + W[881] * W[3632] + W[1274] * W[3239] + W[1667] * W[2846]
-            + W[2060] * W[2453]) * 2.0;
-    W[4422] = (W[98] * W[4421] + W[491] * W[4028] + W[884] * W[3635] + W[1277] * W[3242] + W[1670] * W[2849]
-            + W[2063] * W[2456]) * 2.0;
-    W[4424] = (W[100] * W[4423] + W[493] * W[4030] + W[886] * W[3637] + W[1279] * W[3244] + W[1672] * W[2851]
-            + W[2065] * W[2458]) * 2.0;
-    W[4427] = (W[103] * W[4426] + W[496] * W[4033] + W[889] * W[3640] + W[1282] * W[3247] + W[1675] * W[2854]
-            + W[2068] * W[2461]) * 2.0;
-    W[4430] = (W[106] * W[4429] + W[499] * W[4036] + W[892] * W[3643] + W[1285] * W[3250] + W[1678] * W[2857]
-            + W[2071] * W[2464]) * 2.0;
-    W[4432] = (W[108] * W[4431] + W[501] * W[4038] + W[894] * W[3645] + W[1287] * W[3252] + W[1680] * W[2859]
-            + W[2073] * W[2466]) * 2.0;
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_205(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4435] = (W[111] * W[4434] + W[504] * W[4041] + W[897] * W[3648] + W[1290] * W[3255] + W[1683] * W[2862]
             + W[2076] * W[2469]) * 2.0;
     W[4438] = (W[114] * W[4437] + W[507] * W[4044] + W[900] * W[3651] + W[1293] * W[3258] + W[1686] * W[2865]
@@ -8705,86 +6916,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[4401] = W[4398] + W[4400];
     W[4409] = W[4406] + W[4408];
     W[4417] = W[4414] + W[4416];
-    W[4425] = W[4422] + W[4424];
-    W[4433] = W[4430] + W[4432];
-    W[4441] = W[4438] + W[4440];
-    W[4449] = W[4446] + W[4448];
-    W[4457] = W[4454] + W[4456];
-    W[4336] = W[4331] + W[4335];
-    W[4347] = W[4343] + W[4346];
-    W[4358] = W[4354] + W[4357];
-    W[4369] = W[4365] + W[4368];
-    W[4380] = W[4376] + W[4379];
-    W[4388] = W[4385] + W[4387];
-    W[4396] = W[4393] + W[4395];
-    W[4404] = W[4401] + W[4403];
-    W[4412] = W[4409] + W[4411];
-    W[4420] = W[4417] + W[4419];
-    W[4428] = W[4425] + W[4427];
-    W[4436] = W[4433] + W[4435];
-    W[4444] = W[4441] + W[4443];
-    W[4452] = W[4449] + W[4451];
-    W[4460] = W[4457] + W[4459];
-    W[4489] = (-16.5 * W[4380] * W[166] - 16.0 * W[3987] * W[559] - 15.5 * W[3594] * W[952] - 15.0 * W[3201] * W[1345]
-            - 14.5 * W[2808] * W[1738] - 14.0 * W[2415] * W[2131] - 13.5 * W[2022] * W[2524] - 13.0 * W[1629] * W[2917]
-            - 12.5 * W[1236] * W[3310] - 12.0 * W[843] * W[3703] - 11.5 * W[450] * W[4096]) / (11.0 * W[57]);
-    W[4493] = (-16.5 * W[4369] * W[170] - 16.0 * W[3976] * W[563] - 15.5 * W[3583] * W[956] - 15.0 * W[3190] * W[1349]
-            - 14.5 * W[2797] * W[1742] - 14.0 * W[2404] * W[2135] - 13.5 * W[2011] * W[2528] - 13.0 * W[1618] * W[2921]
-            - 12.5 * W[1225] * W[3314] - 12.0 * W[832] * W[3707] - 11.5 * W[439] * W[4100]) / (11.0 * W[46]);
-    W[4498] = (-16.5 * W[4358] * W[175] - 16.0 * W[3965] * W[568] - 15.5 * W[3572] * W[961] - 15.0 * W[3179] * W[1354]
-            - 14.5 * W[2786] * W[1747] - 14.0 * W[2393] * W[2140] - 13.5 * W[2000] * W[2533] - 13.0 * W[1607] * W[2926]
-            - 12.5 * W[1214] * W[3319] - 12.0 * W[821] * W[3712] - 11.5 * W[428] * W[4105]) / (11.0 * W[35]);
-    W[4503] = (-16.5 * W[4347] * W[180] - 16.0 * W[3954] * W[573] - 15.5 * W[3561] * W[966] - 15.0 * W[3168] * W[1359]
-            - 14.5 * W[2775] * W[1752] - 14.0 * W[2382] * W[2145] - 13.5 * W[1989] * W[2538] - 13.0 * W[1596] * W[2931]
-            - 12.5 * W[1203] * W[3324] - 12.0 * W[810] * W[3717] - 11.5 * W[417] * W[4110]) / (11.0 * W[24]);
-    W[4508] = (-16.5 * W[4336] * W[185] - 16.0 * W[3943] * W[578] - 15.5 * W[3550] * W[971] - 15.0 * W[3157] * W[1364]
-            - 14.5 * W[2764] * W[1757] - 14.0 * W[2371] * W[2150] - 13.5 * W[1978] * W[2543] - 13.0 * W[1585] * W[2936]
-            - 12.5 * W[1192] * W[3329] - 12.0 * W[799] * W[3722] - 11.5 * W[406] * W[4115]) / (11.0 * W[13]);
-    W[4544] = (-16.5 * W[4412] * W[221] - 16.0 * W[4019] * W[614] - 15.5 * W[3626] * W[1007] - 15.0 * W[3233] * W[1400]
-            - 14.5 * W[2840] * W[1793] - 14.0 * W[2447] * W[2186] - 13.5 * W[2054] * W[2579] - 13.0 * W[1661] * W[2972]
-            - 12.5 * W[1268] * W[3365] - 12.0 * W[875] * W[3758] - 11.5 * W[482] * W[4151]) / (11.0 * W[89]);
-    W[4548] = (-16.5 * W[4404] * W[225] - 16.0 * W[4011] * W[618] - 15.5 * W[3618] * W[1011] - 15.0 * W[3225] * W[1404]
-            - 14.5 * W[2832] * W[1797] - 14.0 * W[2439] * W[2190] - 13.5 * W[2046] * W[2583] - 13.0 * W[1653] * W[2976]
-            - 12.5 * W[1260] * W[3369] - 12.0 * W[867] * W[3762] - 11.5 * W[474] * W[4155]) / (11.0 * W[81]);
-    W[4553] = (-16.5 * W[4396] * W[230] - 16.0 * W[4003] * W[623] - 15.5 * W[3610] * W[1016] - 15.0 * W[3217] * W[1409]
-            - 14.5 * W[2824] * W[1802] - 14.0 * W[2431] * W[2195] - 13.5 * W[2038] * W[2588] - 13.0 * W[1645] * W[2981]
-            - 12.5 * W[1252] * W[3374] - 12.0 * W[859] * W[3767] - 11.5 * W[466] * W[4160]) / (11.0 * W[73]);
-    W[4558] = (-16.5 * W[4388] * W[235] - 16.0 * W[3995] * W[628] - 15.5 * W[3602] * W[1021] - 15.0 * W[3209] * W[1414]
-            - 14.5 * W[2816] * W[1807] - 14.0 * W[2423] * W[2200] - 13.5 * W[2030] * W[2593] - 13.0 * W[1637] * W[2986]
-            - 12.5 * W[1244] * W[3379] - 12.0 * W[851] * W[3772] - 11.5 * W[458] * W[4165]) / (11.0 * W[65]);
-    W[4591] = (-16.5 * W[4436] * W[268] - 16.0 * W[4043] * W[661] - 15.5 * W[3650] * W[1054] - 15.0 * W[3257] * W[1447]
-            - 14.5 * W[2864] * W[1840] - 14.0 * W[2471] * W[2233] - 13.5 * W[2078] * W[2626] - 13.0 * W[1685] * W[3019]
-            - 12.5 * W[1292] * W[3412] - 12.0 * W[899] * W[3805] - 11.5 * W[506] * W[4198]) / (11.0 * W[113]);
-    W[4595] = (-16.5 * W[4428] * W[272] - 16.0 * W[4035] * W[665] - 15.5 * W[3642] * W[1058] - 15.0 * W[3249] * W[1451]
-            - 14.5 * W[2856] * W[1844] - 14.0 * W[2463] * W[2237] - 13.5 * W[2070] * W[2630] - 13.0 * W[1677] * W[3023]
-            - 12.5 * W[1284] * W[3416] - 12.0 * W[891] * W[3809] - 11.5 * W[498] * W[4202]) / (11.0 * W[105]);
-    W[4600] = (-16.5 * W[4420] * W[277] - 16.0 * W[4027] * W[670] - 15.5 * W[3634] * W[1063] - 15.0 * W[3241] * W[1456]
-            - 14.5 * W[2848] * W[1849] - 14.0 * W[2455] * W[2242] - 13.5 * W[2062] * W[2635] - 13.0 * W[1669] * W[3028]
-            - 12.5 * W[1276] * W[3421] - 12.0 * W[883] * W[3814] - 11.5 * W[490] * W[4207]) / (11.0 * W[97]);
-    W[4630] = (-16.5 * W[4452] * W[307] - 16.0 * W[4059] * W[700] - 15.5 * W[3666] * W[1093] - 15.0 * W[3273] * W[1486]
-            - 14.5 * W[2880] * W[1879] - 14.0 * W[2487] * W[2272] - 13.5 * W[2094] * W[2665] - 13.0 * W[1701] * W[3058]
-            - 12.5 * W[1308] * W[3451] - 12.0 * W[915] * W[3844] - 11.5 * W[522] * W[4237]) / (11.0 * W[129]);
-    W[4634] = (-16.5 * W[4444] * W[311] - 16.0 * W[4051] * W[704] - 15.5 * W[3658] * W[1097] - 15.0 * W[3265] * W[1490]
-            - 14.5 * W[2872] * W[1883] - 14.0 * W[2479] * W[2276] - 13.5 * W[2086] * W[2669] - 13.0 * W[1693] * W[3062]
-            - 12.5 * W[1300] * W[3455] - 12.0 * W[907] * W[3848] - 11.5 * W[514] * W[4241]) / (11.0 * W[121]);
-    W[4661] = (-16.5 * W[4460] * W[338] - 16.0 * W[4067] * W[731] - 15.5 * W[3674] * W[1124] - 15.0 * W[3281] * W[1517]
-            - 14.5 * W[2888] * W[1910] - 14.0 * W[2495] * W[2303] - 13.5 * W[2102] * W[2696] - 13.0 * W[1709] * W[3089]
-            - 12.5 * W[1316] * W[3482] - 12.0 * W[923] * W[3875] - 11.5 * W[530] * W[4268]) / (11.0 * W[137]);
-    W[4490] = W[48] * W[4489] + W[441] * W[4096] + W[834] * W[3703] + W[1227] * W[3310] + W[1620] * W[2917]
-            + W[2013] * W[2524] + W[2406] * W[2131] + W[2799] * W[1738] + W[3192] * W[1345] + W[3585] * W[952]
-            + W[3978] * W[559] + W[4371] * W[166];
-    W[4494] = W[37] * W[4493] + W[430] * W[4100] + W[823] * W[3707] + W[1216] * W[3314] + W[1609] * W[2921]
-            + W[2002] * W[2528] + W[2395] * W[2135] + W[2788] * W[1742] + W[3181] * W[1349] + W[3574] * W[956]
-            + W[3967] * W[563] + W[4360] * W[170];
-    W[4499] = W[26] * W[4498] + W[419] * W[4105] + W[812] * W[3712] + W[1205] * W[3319] + W[1598] * W[2926]
-            + W[1991] * W[2533] + W[2384] * W[2140] + W[2777] * W[1747] + W[3170] * W[1354] + W[3563] * W[961]
-            + W[3956] * W[568] + W[4349] * W[175];
-    W[4504] = W[15] * W[4503] + W[408] * W[4110] + W[801] * W[3717] + W[1194] * W[3324] + W[1587] * W[2931]
-            + W[1980] * W[2538] + W[2373] * W[2145] + W[2766] * W[1752] + W[3159] * W[1359] + W[3552] * W[966]
-            + W[3945] * W[573] + W[4338] * W[180];
-    W[4509] = W[2] * W[4508] + W[395] * W[4115] + W[788] * W[3722] + W[1181] * W[3329] + W[1574] * W[2936]
-            + W[1967] * W[2543] + W[2360] * W[2150] + W[2753] * W[1757] + W[3146] * W[1364] + W[3539] * W[971]
-            + W[3932] * W[578] + W[4325] * W[185];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_208(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4513] = W[51] * W[4489] + W[444] * W[4096] + W[837] * W[3703] + W[1230] * W[3310] + W[1623] * W[2917]
             + W[2016] * W[2524] + W[2409] * W[2131] + W[2802] * W[1738] + W[3195] * W[1345] + W[3588] * W[952]
             + W[3981] * W[559] + W[4374] * W[166];
@@ -8845,66 +6986,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[4579] = W[79] * W[4548] + W[472] * W[4155] + W[865] * W[3762] + W[1258] * W[3369] + W[1651] * W[2976]
             + W[2044] * W[2583] + W[2437] * W[2190] + W[2830] * W[1797] + W[3223] * W[1404] + W[3616] * W[1011]
             + W[4009] * W[618] + W[4402] * W[225];
-    W[4582] = W[71] * W[4553] + W[464] * W[4160] + W[857] * W[3767] + W[1250] * W[3374] + W[1643] * W[2981]
-            + W[2036] * W[2588] + W[2429] * W[2195] + W[2822] * W[1802] + W[3215] * W[1409] + W[3608] * W[1016]
-            + W[4001] * W[623] + W[4394] * W[230];
-    W[4585] = W[63] * W[4558] + W[456] * W[4165] + W[849] * W[3772] + W[1242] * W[3379] + W[1635] * W[2986]
-            + W[2028] * W[2593] + W[2421] * W[2200] + W[2814] * W[1807] + W[3207] * W[1414] + W[3600] * W[1021]
-            + W[3993] * W[628] + W[4386] * W[235];
-    W[4592] = W[106] * W[4591] + W[499] * W[4198] + W[892] * W[3805] + W[1285] * W[3412] + W[1678] * W[3019]
-            + W[2071] * W[2626] + W[2464] * W[2233] + W[2857] * W[1840] + W[3250] * W[1447] + W[3643] * W[1054]
-            + W[4036] * W[661] + W[4429] * W[268];
-    W[4596] = W[98] * W[4595] + W[491] * W[4202] + W[884] * W[3809] + W[1277] * W[3416] + W[1670] * W[3023]
-            + W[2063] * W[2630] + W[2456] * W[2237] + W[2849] * W[1844] + W[3242] * W[1451] + W[3635] * W[1058]
-            + W[4028] * W[665] + W[4421] * W[272];
-    W[4601] = W[90] * W[4600] + W[483] * W[4207] + W[876] * W[3814] + W[1269] * W[3421] + W[1662] * W[3028]
-            + W[2055] * W[2635] + W[2448] * W[2242] + W[2841] * W[1849] + W[3234] * W[1456] + W[3627] * W[1063]
-            + W[4020] * W[670] + W[4413] * W[277];
-    W[4607] = W[108] * W[4591] + W[501] * W[4198] + W[894] * W[3805] + W[1287] * W[3412] + W[1680] * W[3019]
-            + W[2073] * W[2626] + W[2466] * W[2233] + W[2859] * W[1840] + W[3252] * W[1447] + W[3645] * W[1054]
-            + W[4038] * W[661] + W[4431] * W[268];
-    W[4609] = W[100] * W[4595] + W[493] * W[4202] + W[886] * W[3809] + W[1279] * W[3416] + W[1672] * W[3023]
-            + W[2065] * W[2630] + W[2458] * W[2237] + W[2851] * W[1844] + W[3244] * W[1451] + W[3637] * W[1058]
-            + W[4030] * W[665] + W[4423] * W[272];
-    W[4612] = W[92] * W[4600] + W[485] * W[4207] + W[878] * W[3814] + W[1271] * W[3421] + W[1664] * W[3028]
-            + W[2057] * W[2635] + W[2450] * W[2242] + W[2843] * W[1849] + W[3236] * W[1456] + W[3629] * W[1063]
-            + W[4022] * W[670] + W[4415] * W[277];
-    W[4618] = W[111] * W[4591] + W[504] * W[4198] + W[897] * W[3805] + W[1290] * W[3412] + W[1683] * W[3019]
-            + W[2076] * W[2626] + W[2469] * W[2233] + W[2862] * W[1840] + W[3255] * W[1447] + W[3648] * W[1054]
-            + W[4041] * W[661] + W[4434] * W[268];
-    W[4620] = W[103] * W[4595] + W[496] * W[4202] + W[889] * W[3809] + W[1282] * W[3416] + W[1675] * W[3023]
-            + W[2068] * W[2630] + W[2461] * W[2237] + W[2854] * W[1844] + W[3247] * W[1451] + W[3640] * W[1058]
-            + W[4033] * W[665] + W[4426] * W[272];
-    W[4623] = W[95] * W[4600] + W[488] * W[4207] + W[881] * W[3814] + W[1274] * W[3421] + W[1667] * W[3028]
-            + W[2060] * W[2635] + W[2453] * W[2242] + W[2846] * W[1849] + W[3239] * W[1456] + W[3632] * W[1063]
-            + W[4025] * W[670] + W[4418] * W[277];
-    W[4631] = W[122] * W[4630] + W[515] * W[4237] + W[908] * W[3844] + W[1301] * W[3451] + W[1694] * W[3058]
-            + W[2087] * W[2665] + W[2480] * W[2272] + W[2873] * W[1879] + W[3266] * W[1486] + W[3659] * W[1093]
-            + W[4052] * W[700] + W[4445] * W[307];
-    W[4635] = W[114] * W[4634] + W[507] * W[4241] + W[900] * W[3848] + W[1293] * W[3455] + W[1686] * W[3062]
-            + W[2079] * W[2669] + W[2472] * W[2276] + W[2865] * W[1883] + W[3258] * W[1490] + W[3651] * W[1097]
-            + W[4044] * W[704] + W[4437] * W[311];
-    W[4642] = W[124] * W[4630] + W[517] * W[4237] + W[910] * W[3844] + W[1303] * W[3451] + W[1696] * W[3058]
-            + W[2089] * W[2665] + W[2482] * W[2272] + W[2875] * W[1879] + W[3268] * W[1486] + W[3661] * W[1093]
-            + W[4054] * W[700] + W[4447] * W[307];
-    W[4644] = W[116] * W[4634] + W[509] * W[4241] + W[902] * W[3848] + W[1295] * W[3455] + W[1688] * W[3062]
-            + W[2081] * W[2669] + W[2474] * W[2276] + W[2867] * W[1883] + W[3260] * W[1490] + W[3653] * W[1097]
-            + W[4046] * W[704] + W[4439] * W[311];
-    W[4651] = W[127] * W[4630] + W[520] * W[4237] + W[913] * W[3844] + W[1306] * W[3451] + W[1699] * W[3058]
-            + W[2092] * W[2665] + W[2485] * W[2272] + W[2878] * W[1879] + W[3271] * W[1486] + W[3664] * W[1093]
-            + W[4057] * W[700] + W[4450] * W[307];
-    W[4653] = W[119] * W[4634] + W[512] * W[4241] + W[905] * W[3848] + W[1298] * W[3455] + W[1691] * W[3062]
-            + W[2084] * W[2669] + W[2477] * W[2276] + W[2870] * W[1883] + W[3263] * W[1490] + W[3656] * W[1097]
-            + W[4049] * W[704] + W[4442] * W[311];
-    W[4662] = W[130] * W[4661] + W[523] * W[4268] + W[916] * W[3875] + W[1309] * W[3482] + W[1702] * W[3089]
-            + W[2095] * W[2696] + W[2488] * W[2303] + W[2881] * W[1910] + W[3274] * W[1517] + W[3667] * W[1124]
-            + W[4060] * W[731] + W[4453] * W[338];
-    W[4669] = W[132] * W[4661] + W[525] * W[4268] + W[918] * W[3875] + W[1311] * W[3482] + W[1704] * W[3089]
-            + W[2097] * W[2696] + W[2490] * W[2303] + W[2883] * W[1910] + W[3276] * W[1517] + W[3669] * W[1124]
-            + W[4062] * W[731] + W[4455] * W[338];
-    W[4676] = W[135] * W[4661] + W[528] * W[4268] + W[921] * W[3875] + W[1314] * W[3482] + W[1707] * W[3089]
-            + W[2100] * W[2696] + W[2493] * W[2303] + W[2886] * W[1910] + W[3279] * W[1517] + W[3672] * W[1124]
-            + W[4065] * W[731] + W[4458] * W[338];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_210(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4491] = W[164] * W[4490];
     W[4495] = W[169] * W[4494];
     W[4500] = W[174] * W[4499];
@@ -8925,6 +7016,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[4555] = W[229] * W[4554];
     W[4560] = W[234] * W[4559];
     W[4565] = W[220] * W[4564];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_211(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4567] = W[224] * W[4566];
     W[4570] = W[229] * W[4569];
     W[4573] = W[234] * W[4572];
@@ -8945,6 +7046,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[4636] = W[310] * W[4635];
     W[4643] = W[306] * W[4642];
     W[4645] = W[310] * W[4644];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_212(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4652] = W[306] * W[4651];
     W[4654] = W[310] * W[4653];
     W[4663] = W[337] * W[4662];
@@ -8965,6 +7076,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[4664] = W[4663] - W[4636];
     W[4671] = W[4670] - W[4645];
     W[4678] = W[4677] - W[4654];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_213(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4683] = W[4632] + W[4663];
     W[4688] = W[4643] + W[4670];
     W[4693] = W[4652] + W[4677];
@@ -8985,6 +7106,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[4679] = W[4678] - W[4621];
     W[4684] = W[4593] + W[4683];
     W[4689] = W[4608] + W[4688];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_214(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4694] = W[4619] + W[4693];
     W[4506] = W[4501] + W[4505];
     W[4523] = W[4520] + W[4522];
@@ -9005,26 +7136,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[4690] = W[4565] + W[4689];
     W[4695] = W[4578] + W[4694];
     W[4511] = W[4506] + W[4510];
-    W[4526] = W[4523] + W[4525];
-    W[4541] = W[4538] + W[4540];
-    W[4562] = W[4561] - W[4510];
-    W[4575] = W[4574] - W[4525];
-    W[4588] = W[4587] - W[4540];
-    W[4605] = W[4604] - W[4505];
-    W[4616] = W[4615] - W[4522];
-    W[4627] = W[4626] - W[4537];
-    W[4640] = W[4639] - W[4500];
-    W[4649] = W[4648] - W[4519];
-    W[4658] = W[4657] - W[4534];
-    W[4667] = W[4666] - W[4495];
-    W[4674] = W[4673] - W[4516];
-    W[4681] = W[4680] - W[4531];
-    W[4686] = W[4491] + W[4685];
-    W[4691] = W[4514] + W[4690];
-    W[4696] = W[4529] + W[4695];
-    W[4512] = W[161] * W[4511];
-    W[4527] = W[161] * W[4526];
-    W[4542] = W[161] * W[4541];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_216(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4563] = W[161] * W[4562];
     W[4576] = W[161] * W[4575];
     W[4589] = W[161] * W[4588];
@@ -9045,26 +7166,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[434] = X[416] / 12.0;
     X[435] = X[417] / 12.0;
     X[436] = X[418] / 12.0;
-    X[437] = X[419] / 12.0;
-    X[438] = X[420] / 12.0;
-    X[439] = X[421] / 12.0;
-    X[440] = X[422] / 12.0;
-    X[441] = X[423] / 12.0;
-    X[442] = X[424] / 12.0;
-    X[443] = X[425] / 12.0;
-    X[444] = X[426] / 12.0;
-    X[445] = X[427] / 12.0;
-    X[446] = X[428] / 12.0;
-    X[447] = X[429] / 12.0;
-    X[448] = X[430] / 12.0;
-    X[449] = X[431] / 12.0;
-    X[450] = -W[4512] / W[138] / 12.0;
-    X[451] = -W[4527] / W[138] / 12.0;
-    X[452] = -W[4542] / W[138] / 12.0;
-    X[453] = -W[4563] / W[140] / 12.0;
-    X[454] = -W[4576] / W[140] / 12.0;
-    X[455] = -W[4589] / W[140] / 12.0;
-    X[456] = -W[4606] / W[141] / 12.0;
+    return 0;
+}
+
+/* Lines 340 .. 350 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_218(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[457] = -W[4617] / W[141] / 12.0;
     X[458] = -W[4628] / W[141] / 12.0;
     X[459] = -W[4641] / W[142] / 12.0;
@@ -9076,9 +7187,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[465] = -W[4687] / W[144] / 12.0;
     X[466] = -W[4692] / W[144] / 12.0;
     X[467] = -W[4697] / W[144] / 12.0;
-    if (K == 12)
-        goto out;
-    /* order 12 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_219(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4718] = X[432] - X[435];
     W[4722] = X[433] - X[436];
     W[4727] = X[434] - X[437];
@@ -9099,26 +7217,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[4779] = X[437] - X[440];
     W[4782] = X[435] - X[441];
     W[4784] = X[436] - X[442];
-    W[4787] = X[437] - X[443];
-    W[4790] = X[435] - X[444];
-    W[4792] = X[436] - X[445];
-    W[4795] = X[437] - X[446];
-    W[4798] = X[435] - X[447];
-    W[4800] = X[436] - X[448];
-    W[4803] = X[437] - X[449];
-    W[4806] = X[438] - X[441];
-    W[4808] = X[439] - X[442];
-    W[4811] = X[440] - X[443];
-    W[4814] = X[438] - X[444];
-    W[4816] = X[439] - X[445];
-    W[4819] = X[440] - X[446];
-    W[4822] = X[438] - X[447];
-    W[4824] = X[439] - X[448];
-    W[4827] = X[440] - X[449];
-    W[4830] = X[441] - X[444];
-    W[4832] = X[442] - X[445];
-    W[4835] = X[443] - X[446];
-    W[4838] = X[441] - X[447];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_221(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4840] = X[442] - X[448];
     W[4843] = X[443] - X[449];
     W[4846] = X[444] - X[447];
@@ -9154,46 +7262,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[2016] * W[2802]) * 2.0 + W[2409] * W[2409];
     W[4772] = (W[55] * W[4771] + W[448] * W[4378] + W[841] * W[3985] + W[1234] * W[3592] + W[1627] * W[3199]
             + W[2020] * W[2806]) * 2.0 + W[2413] * W[2413];
-    W[4775] = (W[58] * W[4774] + W[451] * W[4381] + W[844] * W[3988] + W[1237] * W[3595] + W[1630] * W[3202]
-            + W[2023] * W[2809]) * 2.0 + W[2416] * W[2416];
-    W[4777] = (W[60] * W[4776] + W[453] * W[4383] + W[846] * W[3990] + W[1239] * W[3597] + W[1632] * W[3204]
-            + W[2025] * W[2811]) * 2.0 + W[2418] * W[2418];
-    W[4780] = (W[63] * W[4779] + W[456] * W[4386] + W[849] * W[3993] + W[1242] * W[3600] + W[1635] * W[3207]
-            + W[2028] * W[2814]) * 2.0 + W[2421] * W[2421];
-    W[4783] = (W[66] * W[4782] + W[459] * W[4389] + W[852] * W[3996] + W[1245] * W[3603] + W[1638] * W[3210]
-            + W[2031] * W[2817]) * 2.0 + W[2424] * W[2424];
-    W[4785] = (W[68] * W[4784] + W[461] * W[4391] + W[854] * W[3998] + W[1247] * W[3605] + W[1640] * W[3212]
-            + W[2033] * W[2819]) * 2.0 + W[2426] * W[2426];
-    W[4788] = (W[71] * W[4787] + W[464] * W[4394] + W[857] * W[4001] + W[1250] * W[3608] + W[1643] * W[3215]
-            + W[2036] * W[2822]) * 2.0 + W[2429] * W[2429];
-    W[4791] = (W[74] * W[4790] + W[467] * W[4397] + W[860] * W[4004] + W[1253] * W[3611] + W[1646] * W[3218]
-            + W[2039] * W[2825]) * 2.0 + W[2432] * W[2432];
-    W[4793] = (W[76] * W[4792] + W[469] * W[4399] + W[862] * W[4006] + W[1255] * W[3613] + W[1648] * W[3220]
-            + W[2041] * W[2827]) * 2.0 + W[2434] * W[2434];
-    W[4796] = (W[79] * W[4795] + W[472] * W[4402] + W[865] * W[4009] + W[1258] * W[3616] + W[1651] * W[3223]
-            + W[2044] * W[2830]) * 2.0 + W[2437] * W[2437];
-    W[4799] = (W[82] * W[4798] + W[475] * W[4405] + W[868] * W[4012] + W[1261] * W[3619] + W[1654] * W[3226]
-            + W[2047] * W[2833]) * 2.0 + W[2440] * W[2440];
-    W[4801] = (W[84] * W[4800] + W[477] * W[4407] + W[870] * W[4014] + W[1263] * W[3621] + W[1656] * W[3228]
-            + W[2049] * W[2835]) * 2.0 + W[2442] * W[2442];
-    W[4804] = (W[87] * W[4803] + W[480] * W[4410] + W[873] * W[4017] + W[1266] * W[3624] + W[1659] * W[3231]
-            + W[2052] * W[2838]) * 2.0 + W[2445] * W[2445];
-    W[4807] = (W[90] * W[4806] + W[483] * W[4413] + W[876] * W[4020] + W[1269] * W[3627] + W[1662] * W[3234]
-            + W[2055] * W[2841]) * 2.0 + W[2448] * W[2448];
-    W[4809] = (W[92] * W[4808] + W[485] * W[4415] + W[878] * W[4022] + W[1271] * W[3629] + W[1664] * W[3236]
-            + W[2057] * W[2843]) * 2.0 + W[2450] * W[2450];
-    W[4812] = (W[95] * W[4811] + W[488] * W[4418] + W[881] * W[4025] + W[1274] * W[3632] + W[1667] * W[3239]
-            + W[2060] * W[2846]) * 2.0 + W[2453] * W[2453];
-    W[4815] = (W[98] * W[4814] + W[491] * W[4421] + W[884] * W[4028] + W[1277] * W[3635] + W[1670] * W[3242]
-            + W[2063] * W[2849]) * 2.0 + W[2456] * W[2456];
-    W[4817] = (W[100] * W[4816] + W[493] * W[4423] + W[886] * W[4030] + W[1279] * W[3637] + W[1672] * W[3244]
-            + W[2065] * W[2851]) * 2.0 + W[2458] * W[2458];
-    W[4820] = (W[103] * W[4819] + W[496] * W[4426] + W[889] * W[4033] + W[1282] * W[3640] + W[1675] * W[3247]
-            + W[2068] * W[2854]) * 2.0 + W[2461] * W[2461];
-    W[4823] = (W[106] * W[4822] + W[499] * W[4429] + W[892] * W[4036] + W[1285] * W[3643] + W[1678] * W[3250]
-            + W[2071] * W[2857]) * 2.0 + W[2464] * W[2464];
-    W[4825] = (W[108] * W[4824] + W[501] * W[4431] + W[894] * W[4038] + W[1287] * W[3645] + W[1680] * W[3252]
-            + W[2073] * W[2859]) * 2.0 + W[2466] * W[2466];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_223(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4828] = (W[111] * W[4827] + W[504] * W[4434] + W[897] * W[4041] + W[1290] * W[3648] + W[1683] * W[3255]
             + W[2076] * W[2862]) * 2.0 + W[2469] * W[2469];
     W[4831] = (W[114] * W[4830] + W[507] * W[4437] + W[900] * W[4044] + W[1293] * W[3651] + W[1686] * W[3258]
@@ -9224,86 +7302,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[4794] = W[4791] + W[4793];
     W[4802] = W[4799] + W[4801];
     W[4810] = W[4807] + W[4809];
-    W[4818] = W[4815] + W[4817];
-    W[4826] = W[4823] + W[4825];
-    W[4834] = W[4831] + W[4833];
-    W[4842] = W[4839] + W[4841];
-    W[4850] = W[4847] + W[4849];
-    W[4729] = W[4724] + W[4728];
-    W[4740] = W[4736] + W[4739];
-    W[4751] = W[4747] + W[4750];
-    W[4762] = W[4758] + W[4761];
-    W[4773] = W[4769] + W[4772];
-    W[4781] = W[4778] + W[4780];
-    W[4789] = W[4786] + W[4788];
-    W[4797] = W[4794] + W[4796];
-    W[4805] = W[4802] + W[4804];
-    W[4813] = W[4810] + W[4812];
-    W[4821] = W[4818] + W[4820];
-    W[4829] = W[4826] + W[4828];
-    W[4837] = W[4834] + W[4836];
-    W[4845] = W[4842] + W[4844];
-    W[4853] = W[4850] + W[4852];
-    W[4882] = (-18.0 * W[4773] * W[166] - 17.5 * W[4380] * W[559] - 17.0 * W[3987] * W[952] - 16.5 * W[3594] * W[1345]
-            - 16.0 * W[3201] * W[1738] - 15.5 * W[2808] * W[2131] - 15.0 * W[2415] * W[2524] - 14.5 * W[2022] * W[2917]
-            - 14.0 * W[1629] * W[3310] - 13.5 * W[1236] * W[3703] - 13.0 * W[843] * W[4096] - 12.5 * W[450] * W[4489]) / (12.0 * W[57]);
-    W[4886] = (-18.0 * W[4762] * W[170] - 17.5 * W[4369] * W[563] - 17.0 * W[3976] * W[956] - 16.5 * W[3583] * W[1349]
-            - 16.0 * W[3190] * W[1742] - 15.5 * W[2797] * W[2135] - 15.0 * W[2404] * W[2528] - 14.5 * W[2011] * W[2921]
-            - 14.0 * W[1618] * W[3314] - 13.5 * W[1225] * W[3707] - 13.0 * W[832] * W[4100] - 12.5 * W[439] * W[4493]) / (12.0 * W[46]);
-    W[4891] = (-18.0 * W[4751] * W[175] - 17.5 * W[4358] * W[568] - 17.0 * W[3965] * W[961] - 16.5 * W[3572] * W[1354]
-            - 16.0 * W[3179] * W[1747] - 15.5 * W[2786] * W[2140] - 15.0 * W[2393] * W[2533] - 14.5 * W[2000] * W[2926]
-            - 14.0 * W[1607] * W[3319] - 13.5 * W[1214] * W[3712] - 13.0 * W[821] * W[4105] - 12.5 * W[428] * W[4498]) / (12.0 * W[35]);
-    W[4896] = (-18.0 * W[4740] * W[180] - 17.5 * W[4347] * W[573] - 17.0 * W[3954] * W[966] - 16.5 * W[3561] * W[1359]
-            - 16.0 * W[3168] * W[1752] - 15.5 * W[2775] * W[2145] - 15.0 * W[2382] * W[2538] - 14.5 * W[1989] * W[2931]
-            - 14.0 * W[1596] * W[3324] - 13.5 * W[1203] * W[3717] - 13.0 * W[810] * W[4110] - 12.5 * W[417] * W[4503]) / (12.0 * W[24]);
-    W[4901] = (-18.0 * W[4729] * W[185] - 17.5 * W[4336] * W[578] - 17.0 * W[3943] * W[971] - 16.5 * W[3550] * W[1364]
-            - 16.0 * W[3157] * W[1757] - 15.5 * W[2764] * W[2150] - 15.0 * W[2371] * W[2543] - 14.5 * W[1978] * W[2936]
-            - 14.0 * W[1585] * W[3329] - 13.5 * W[1192] * W[3722] - 13.0 * W[799] * W[4115] - 12.5 * W[406] * W[4508]) / (12.0 * W[13]);
-    W[4937] = (-18.0 * W[4805] * W[221] - 17.5 * W[4412] * W[614] - 17.0 * W[4019] * W[1007] - 16.5 * W[3626] * W[1400]
-            - 16.0 * W[3233] * W[1793] - 15.5 * W[2840] * W[2186] - 15.0 * W[2447] * W[2579] - 14.5 * W[2054] * W[2972]
-            - 14.0 * W[1661] * W[3365] - 13.5 * W[1268] * W[3758] - 13.0 * W[875] * W[4151] - 12.5 * W[482] * W[4544]) / (12.0 * W[89]);
-    W[4941] = (-18.0 * W[4797] * W[225] - 17.5 * W[4404] * W[618] - 17.0 * W[4011] * W[1011] - 16.5 * W[3618] * W[1404]
-            - 16.0 * W[3225] * W[1797] - 15.5 * W[2832] * W[2190] - 15.0 * W[2439] * W[2583] - 14.5 * W[2046] * W[2976]
-            - 14.0 * W[1653] * W[3369] - 13.5 * W[1260] * W[3762] - 13.0 * W[867] * W[4155] - 12.5 * W[474] * W[4548]) / (12.0 * W[81]);
-    W[4946] = (-18.0 * W[4789] * W[230] - 17.5 * W[4396] * W[623] - 17.0 * W[4003] * W[1016] - 16.5 * W[3610] * W[1409]
-            - 16.0 * W[3217] * W[1802] - 15.5 * W[2824] * W[2195] - 15.0 * W[2431] * W[2588] - 14.5 * W[2038] * W[2981]
-            - 14.0 * W[1645] * W[3374] - 13.5 * W[1252] * W[3767] - 13.0 * W[859] * W[4160] - 12.5 * W[466] * W[4553]) / (12.0 * W[73]);
-    W[4951] = (-18.0 * W[4781] * W[235] - 17.5 * W[4388] * W[628] - 17.0 * W[3995] * W[1021] - 16.5 * W[3602] * W[1414]
-            - 16.0 * W[3209] * W[1807] - 15.5 * W[2816] * W[2200] - 15.0 * W[2423] * W[2593] - 14.5 * W[2030] * W[2986]
-            - 14.0 * W[1637] * W[3379] - 13.5 * W[1244] * W[3772] - 13.0 * W[851] * W[4165] - 12.5 * W[458] * W[4558]) / (12.0 * W[65]);
-    W[4984] = (-18.0 * W[4829] * W[268] - 17.5 * W[4436] * W[661] - 17.0 * W[4043] * W[1054] - 16.5 * W[3650] * W[1447]
-            - 16.0 * W[3257] * W[1840] - 15.5 * W[2864] * W[2233] - 15.0 * W[2471] * W[2626] - 14.5 * W[2078] * W[3019]
-            - 14.0 * W[1685] * W[3412] - 13.5 * W[1292] * W[3805] - 13.0 * W[899] * W[4198] - 12.5 * W[506] * W[4591]) / (12.0 * W[113]);
-    W[4988] = (-18.0 * W[4821] * W[272] - 17.5 * W[4428] * W[665] - 17.0 * W[4035] * W[1058] - 16.5 * W[3642] * W[1451]
-            - 16.0 * W[3249] * W[1844] - 15.5 * W[2856] * W[2237] - 15.0 * W[2463] * W[2630] - 14.5 * W[2070] * W[3023]
-            - 14.0 * W[1677] * W[3416] - 13.5 * W[1284] * W[3809] - 13.0 * W[891] * W[4202] - 12.5 * W[498] * W[4595]) / (12.0 * W[105]);
-    W[4993] = (-18.0 * W[4813] * W[277] - 17.5 * W[4420] * W[670] - 17.0 * W[4027] * W[1063] - 16.5 * W[3634] * W[1456]
-            - 16.0 * W[3241] * W[1849] - 15.5 * W[2848] * W[2242] - 15.0 * W[2455] * W[2635] - 14.5 * W[2062] * W[3028]
-            - 14.0 * W[1669] * W[3421] - 13.5 * W[1276] * W[3814] - 13.0 * W[883] * W[4207] - 12.5 * W[490] * W[4600]) / (12.0 * W[97]);
-    W[5023] = (-18.0 * W[4845] * W[307] - 17.5 * W[4452] * W[700] - 17.0 * W[4059] * W[1093] - 16.5 * W[3666] * W[1486]
-            - 16.0 * W[3273] * W[1879] - 15.5 * W[2880] * W[2272] - 15.0 * W[2487] * W[2665] - 14.5 * W[2094] * W[3058]
-            - 14.0 * W[1701] * W[3451] - 13.5 * W[1308] * W[3844] - 13.0 * W[915] * W[4237] - 12.5 * W[522] * W[4630]) / (12.0 * W[129]);
-    W[5027] = (-18.0 * W[4837] * W[311] - 17.5 * W[4444] * W[704] - 17.0 * W[4051] * W[1097] - 16.5 * W[3658] * W[1490]
-            - 16.0 * W[3265] * W[1883] - 15.5 * W[2872] * W[2276] - 15.0 * W[2479] * W[2669] - 14.5 * W[2086] * W[3062]
-            - 14.0 * W[1693] * W[3455] - 13.5 * W[1300] * W[3848] - 13.0 * W[907] * W[4241] - 12.5 * W[514] * W[4634]) / (12.0 * W[121]);
-    W[5054] = (-18.0 * W[4853] * W[338] - 17.5 * W[4460] * W[731] - 17.0 * W[4067] * W[1124] - 16.5 * W[3674] * W[1517]
-            - 16.0 * W[3281] * W[1910] - 15.5 * W[2888] * W[2303] - 15.0 * W[2495] * W[2696] - 14.5 * W[2102] * W[3089]
-            - 14.0 * W[1709] * W[3482] - 13.5 * W[1316] * W[3875] - 13.0 * W[923] * W[4268] - 12.5 * W[530] * W[4661]) / (12.0 * W[137]);
-    W[4883] = W[48] * W[4882] + W[441] * W[4489] + W[834] * W[4096] + W[1227] * W[3703] + W[1620] * W[3310]
-            + W[2013] * W[2917] + W[2406] * W[2524] + W[2799] * W[2131] + W[3192] * W[1738] + W[3585] * W[1345]
-            + W[3978] * W[952] + W[4371] * W[559] + W[4764] * W[166];
-    W[4887] = W[37] * W[4886] + W[430] * W[4493] + W[823] * W[4100] + W[1216] * W[3707] + W[1609] * W[3314]
-            + W[2002] * W[2921] + W[2395] * W[2528] + W[2788] * W[2135] + W[3181] * W[1742] + W[3574] * W[1349]
-            + W[3967] * W[956] + W[4360] * W[563] + W[4753] * W[170];
-    W[4892] = W[26] * W[4891] + W[419] * W[4498] + W[812] * W[4105] + W[1205] * W[3712] + W[1598] * W[3319]
-            + W[1991] * W[2926] + W[2384] * W[2533] + W[2777] * W[2140] + W[3170] * W[1747] + W[3563] * W[1354]
-            + W[3956] * W[961] + W[4349] * W[568] + W[4742] * W[175];
-    W[4897] = W[15] * W[4896] + W[408] * W[4503] + W[801] * W[4110] + W[1194] * W[3717] + W[1587] * W[3324]
-            + W[1980] * W[2931] + W[2373] * W[2538] + W[2766] * W[2145] + W[3159] * W[1752] + W[3552] * W[1359]
-            + W[3945] * W[966] + W[4338] * W[573] + W[4731] * W[180];
-    W[4902] = W[2] * W[4901] + W[395] * W[4508] + W[788] * W[4115] + W[1181] * W[3722] + W[1574] * W[3329]
-            + W[1967] * W[2936] + W[2360] * W[2543] + W[2753] * W[2150] + W[3146] * W[1757] + W[3539] * W[1364]
-            + W[3932] * W[971] + W[4325] * W[578] + W[4718] * W[185];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_226(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4906] = W[51] * W[4882] + W[444] * W[4489] + W[837] * W[4096] + W[1230] * W[3703] + W[1623] * W[3310]
             + W[2016] * W[2917] + W[2409] * W[2524] + W[2802] * W[2131] + W[3195] * W[1738] + W[3588] * W[1345]
             + W[3981] * W[952] + W[4374] * W[559] + W[4767] * W[166];
@@ -9364,66 +7372,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[4972] = W[79] * W[4941] + W[472] * W[4548] + W[865] * W[4155] + W[1258] * W[3762] + W[1651] * W[3369]
             + W[2044] * W[2976] + W[2437] * W[2583] + W[2830] * W[2190] + W[3223] * W[1797] + W[3616] * W[1404]
             + W[4009] * W[1011] + W[4402] * W[618] + W[4795] * W[225];
-    W[4975] = W[71] * W[4946] + W[464] * W[4553] + W[857] * W[4160] + W[1250] * W[3767] + W[1643] * W[3374]
-            + W[2036] * W[2981] + W[2429] * W[2588] + W[2822] * W[2195] + W[3215] * W[1802] + W[3608] * W[1409]
-            + W[4001] * W[1016] + W[4394] * W[623] + W[4787] * W[230];
-    W[4978] = W[63] * W[4951] + W[456] * W[4558] + W[849] * W[4165] + W[1242] * W[3772] + W[1635] * W[3379]
-            + W[2028] * W[2986] + W[2421] * W[2593] + W[2814] * W[2200] + W[3207] * W[1807] + W[3600] * W[1414]
-            + W[3993] * W[1021] + W[4386] * W[628] + W[4779] * W[235];
-    W[4985] = W[106] * W[4984] + W[499] * W[4591] + W[892] * W[4198] + W[1285] * W[3805] + W[1678] * W[3412]
-            + W[2071] * W[3019] + W[2464] * W[2626] + W[2857] * W[2233] + W[3250] * W[1840] + W[3643] * W[1447]
-            + W[4036] * W[1054] + W[4429] * W[661] + W[4822] * W[268];
-    W[4989] = W[98] * W[4988] + W[491] * W[4595] + W[884] * W[4202] + W[1277] * W[3809] + W[1670] * W[3416]
-            + W[2063] * W[3023] + W[2456] * W[2630] + W[2849] * W[2237] + W[3242] * W[1844] + W[3635] * W[1451]
-            + W[4028] * W[1058] + W[4421] * W[665] + W[4814] * W[272];
-    W[4994] = W[90] * W[4993] + W[483] * W[4600] + W[876] * W[4207] + W[1269] * W[3814] + W[1662] * W[3421]
-            + W[2055] * W[3028] + W[2448] * W[2635] + W[2841] * W[2242] + W[3234] * W[1849] + W[3627] * W[1456]
-            + W[4020] * W[1063] + W[4413] * W[670] + W[4806] * W[277];
-    W[5000] = W[108] * W[4984] + W[501] * W[4591] + W[894] * W[4198] + W[1287] * W[3805] + W[1680] * W[3412]
-            + W[2073] * W[3019] + W[2466] * W[2626] + W[2859] * W[2233] + W[3252] * W[1840] + W[3645] * W[1447]
-            + W[4038] * W[1054] + W[4431] * W[661] + W[4824] * W[268];
-    W[5002] = W[100] * W[4988] + W[493] * W[4595] + W[886] * W[4202] + W[1279] * W[3809] + W[1672] * W[3416]
-            + W[2065] * W[3023] + W[2458] * W[2630] + W[2851] * W[2237] + W[3244] * W[1844] + W[3637] * W[1451]
-            + W[4030] * W[1058] + W[4423] * W[665] + W[4816] * W[272];
-    W[5005] = W[92] * W[4993] + W[485] * W[4600] + W[878] * W[4207] + W[1271] * W[3814] + W[1664] * W[3421]
-            + W[2057] * W[3028] + W[2450] * W[2635] + W[2843] * W[2242] + W[3236] * W[1849] + W[3629] * W[1456]
-            + W[4022] * W[1063] + W[4415] * W[670] + W[4808] * W[277];
-    W[5011] = W[111] * W[4984] + W[504] * W[4591] + W[897] * W[4198] + W[1290] * W[3805] + W[1683] * W[3412]
-            + W[2076] * W[3019] + W[2469] * W[2626] + W[2862] * W[2233] + W[3255] * W[1840] + W[3648] * W[1447]
-            + W[4041] * W[1054] + W[4434] * W[661] + W[4827] * W[268];
-    W[5013] = W[103] * W[4988] + W[496] * W[4595] + W[889] * W[4202] + W[1282] * W[3809] + W[1675] * W[3416]
-            + W[2068] * W[3023] + W[2461] * W[2630] + W[2854] * W[2237] + W[3247] * W[1844] + W[3640] * W[1451]
-            + W[4033] * W[1058] + W[4426] * W[665] + W[4819] * W[272];
-    W[5016] = W[95] * W[4993] + W[488] * W[4600] + W[881] * W[4207] + W[1274] * W[3814] + W[1667] * W[3421]
-            + W[2060] * W[3028] + W[2453] * W[2635] + W[2846] * W[2242] + W[3239] * W[1849] + W[3632] * W[1456]
-            + W[4025] * W[1063] + W[4418] * W[670] + W[4811] * W[277];
-    W[5024] = W[122] * W[5023] + W[515] * W[4630] + W[908] * W[4237] + W[1301] * W[3844] + W[1694] * W[3451]
-            + W[2087] * W[3058] + W[2480] * W[2665] + W[2873] * W[2272] + W[3266] * W[1879] + W[3659] * W[1486]
-            + W[4052] * W[1093] + W[4445] * W[700] + W[4838] * W[307];
-    W[5028] = W[114] * W[5027] + W[507] * W[4634] + W[900] * W[4241] + W[1293] * W[3848] + W[1686] * W[3455]
-            + W[2079] * W[3062] + W[2472] * W[2669] + W[2865] * W[2276] + W[3258] * W[1883] + W[3651] * W[1490]
-            + W[4044] * W[1097] + W[4437] * W[704] + W[4830] * W[311];
-    W[5035] = W[124] * W[5023] + W[517] * W[4630] + W[910] * W[4237] + W[1303] * W[3844] + W[1696] * W[3451]
-            + W[2089] * W[3058] + W[2482] * W[2665] + W[2875] * W[2272] + W[3268] * W[1879] + W[3661] * W[1486]
-            + W[4054] * W[1093] + W[4447] * W[700] + W[4840] * W[307];
-    W[5037] = W[116] * W[5027] + W[509] * W[4634] + W[902] * W[4241] + W[1295] * W[3848] + W[1688] * W[3455]
-            + W[2081] * W[3062] + W[2474] * W[2669] + W[2867] * W[2276] + W[3260] * W[1883] + W[3653] * W[1490]
-            + W[4046] * W[1097] + W[4439] * W[704] + W[4832] * W[311];
-    W[5044] = W[127] * W[5023] + W[520] * W[4630] + W[913] * W[4237] + W[1306] * W[3844] + W[1699] * W[3451]
-            + W[2092] * W[3058] + W[2485] * W[2665] + W[2878] * W[2272] + W[3271] * W[1879] + W[3664] * W[1486]
-            + W[4057] * W[1093] + W[4450] * W[700] + W[4843] * W[307];
-    W[5046] = W[119] * W[5027] + W[512] * W[4634] + W[905] * W[4241] + W[1298] * W[3848] + W[1691] * W[3455]
-            + W[2084] * W[3062] + W[2477] * W[2669] + W[2870] * W[2276] + W[3263] * W[1883] + W[3656] * W[1490]
-            + W[4049] * W[1097] + W[4442] * W[704] + W[4835] * W[311];
-    W[5055] = W[130] * W[5054] + W[523] * W[4661] + W[916] * W[4268] + W[1309] * W[3875] + W[1702] * W[3482]
-            + W[2095] * W[3089] + W[2488] * W[2696] + W[2881] * W[2303] + W[3274] * W[1910] + W[3667] * W[1517]
-            + W[4060] * W[1124] + W[4453] * W[731] + W[4846] * W[338];
-    W[5062] = W[132] * W[5054] + W[525] * W[4661] + W[918] * W[4268] + W[1311] * W[3875] + W[1704] * W[3482]
-            + W[2097] * W[3089] + W[2490] * W[2696] + W[2883] * W[2303] + W[3276] * W[1910] + W[3669] * W[1517]
-            + W[4062] * W[1124] + W[4455] * W[731] + W[4848] * W[338];
-    W[5069] = W[135] * W[5054] + W[528] * W[4661] + W[921] * W[4268] + W[1314] * W[3875] + W[1707] * W[3482]
-            + W[2100] * W[3089] + W[2493] * W[2696] + W[2886] * W[2303] + W[3279] * W[1910] + W[3672] * W[1517]
-            + W[4065] * W[1124] + W[4458] * W[731] + W[4851] * W[338];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_228(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4884] = W[164] * W[4883];
     W[4888] = W[169] * W[4887];
     W[4893] = W[174] * W[4892];
@@ -9444,6 +7402,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[4948] = W[229] * W[4947];
     W[4953] = W[234] * W[4952];
     W[4958] = W[220] * W[4957];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_229(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4960] = W[224] * W[4959];
     W[4963] = W[229] * W[4962];
     W[4966] = W[234] * W[4965];
@@ -9464,6 +7432,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[5029] = W[310] * W[5028];
     W[5036] = W[306] * W[5035];
     W[5038] = W[310] * W[5037];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_230(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5045] = W[306] * W[5044];
     W[5047] = W[310] * W[5046];
     W[5056] = W[337] * W[5055];
@@ -9484,6 +7462,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[5057] = W[5056] - W[5029];
     W[5064] = W[5063] - W[5038];
     W[5071] = W[5070] - W[5047];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_231(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5076] = W[5025] + W[5056];
     W[5081] = W[5036] + W[5063];
     W[5086] = W[5045] + W[5070];
@@ -9504,6 +7492,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[5072] = W[5071] - W[5014];
     W[5077] = W[4986] + W[5076];
     W[5082] = W[5001] + W[5081];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_232(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5087] = W[5012] + W[5086];
     W[4899] = W[4894] + W[4898];
     W[4916] = W[4913] + W[4915];
@@ -9524,26 +7522,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[5083] = W[4958] + W[5082];
     W[5088] = W[4971] + W[5087];
     W[4904] = W[4899] + W[4903];
-    W[4919] = W[4916] + W[4918];
-    W[4934] = W[4931] + W[4933];
-    W[4955] = W[4954] - W[4903];
-    W[4968] = W[4967] - W[4918];
-    W[4981] = W[4980] - W[4933];
-    W[4998] = W[4997] - W[4898];
-    W[5009] = W[5008] - W[4915];
-    W[5020] = W[5019] - W[4930];
-    W[5033] = W[5032] - W[4893];
-    W[5042] = W[5041] - W[4912];
-    W[5051] = W[5050] - W[4927];
-    W[5060] = W[5059] - W[4888];
-    W[5067] = W[5066] - W[4909];
-    W[5074] = W[5073] - W[4924];
-    W[5079] = W[4884] + W[5078];
-    W[5084] = W[4907] + W[5083];
-    W[5089] = W[4922] + W[5088];
-    W[4905] = W[161] * W[4904];
-    W[4920] = W[161] * W[4919];
-    W[4935] = W[161] * W[4934];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_234(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4956] = W[161] * W[4955];
     W[4969] = W[161] * W[4968];
     W[4982] = W[161] * W[4981];
@@ -9564,6 +7552,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[470] = X[452] / 13.0;
     X[471] = X[453] / 13.0;
     X[472] = X[454] / 13.0;
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_235(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[473] = X[455] / 13.0;
     X[474] = X[456] / 13.0;
     X[475] = X[457] / 13.0;
@@ -9584,40 +7582,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[490] = -W[4969] / W[140] / 13.0;
     X[491] = -W[4982] / W[140] / 13.0;
     X[492] = -W[4999] / W[141] / 13.0;
-    X[493] = -W[5010] / W[141] / 13.0;
-    X[494] = -W[5021] / W[141] / 13.0;
-    X[495] = -W[5034] / W[142] / 13.0;
-    X[496] = -W[5043] / W[142] / 13.0;
-    X[497] = -W[5052] / W[142] / 13.0;
-    X[498] = -W[5061] / W[143] / 13.0;
-    X[499] = -W[5068] / W[143] / 13.0;
-    X[500] = -W[5075] / W[143] / 13.0;
-    X[501] = -W[5080] / W[144] / 13.0;
-    X[502] = -W[5085] / W[144] / 13.0;
-    X[503] = -W[5090] / W[144] / 13.0;
-    if (K == 13)
-        goto out;
-    /* order 13 */
-    W[5111] = X[468] - X[471];
-    W[5115] = X[469] - X[472];
-    W[5120] = X[470] - X[473];
-    W[5124] = X[468] - X[474];
-    W[5127] = X[469] - X[475];
-    W[5131] = X[470] - X[476];
-    W[5135] = X[468] - X[477];
-    W[5138] = X[469] - X[478];
-    W[5142] = X[470] - X[479];
-    W[5146] = X[468] - X[480];
-    W[5149] = X[469] - X[481];
-    W[5153] = X[470] - X[482];
-    W[5157] = X[468] - X[483];
-    W[5160] = X[469] - X[484];
-    W[5164] = X[470] - X[485];
-    W[5167] = X[471] - X[474];
-    W[5169] = X[472] - X[475];
-    W[5172] = X[473] - X[476];
-    W[5175] = X[471] - X[477];
-    W[5177] = X[472] - X[478];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 13. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_238(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5180] = X[473] - X[479];
     W[5183] = X[471] - X[480];
     W[5185] = X[472] - X[481];
@@ -9638,41 +7612,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[5225] = X[478] - X[481];
     W[5228] = X[479] - X[482];
     W[5231] = X[477] - X[483];
-    W[5233] = X[478] - X[484];
-    W[5236] = X[479] - X[485];
-    W[5239] = X[480] - X[483];
-    W[5241] = X[481] - X[484];
-    W[5244] = X[482] - X[485];
-    W[5112] = (W[2] * W[5111] + W[395] * W[4718] + W[788] * W[4325] + W[1181] * W[3932] + W[1574] * W[3539]
-            + W[1967] * W[3146] + W[2360] * W[2753]) * 2.0;
-    W[5116] = (W[6] * W[5115] + W[399] * W[4722] + W[792] * W[4329] + W[1185] * W[3936] + W[1578] * W[3543]
-            + W[1971] * W[3150] + W[2364] * W[2757]) * 2.0;
-    W[5121] = (W[11] * W[5120] + W[404] * W[4727] + W[797] * W[4334] + W[1190] * W[3941] + W[1583] * W[3548]
-            + W[1976] * W[3155] + W[2369] * W[2762]) * 2.0;
-    W[5125] = (W[15] * W[5124] + W[408] * W[4731] + W[801] * W[4338] + W[1194] * W[3945] + W[1587] * W[3552]
-            + W[1980] * W[3159] + W[2373] * W[2766]) * 2.0;
-    W[5128] = (W[18] * W[5127] + W[411] * W[4734] + W[804] * W[4341] + W[1197] * W[3948] + W[1590] * W[3555]
-            + W[1983] * W[3162] + W[2376] * W[2769]) * 2.0;
-    W[5132] = (W[22] * W[5131] + W[415] * W[4738] + W[808] * W[4345] + W[1201] * W[3952] + W[1594] * W[3559]
-            + W[1987] * W[3166] + W[2380] * W[2773]) * 2.0;
-    W[5136] = (W[26] * W[5135] + W[419] * W[4742] + W[812] * W[4349] + W[1205] * W[3956] + W[1598] * W[3563]
-            + W[1991] * W[3170] + W[2384] * W[2777]) * 2.0;
-    W[5139] = (W[29] * W[5138] + W[422] * W[4745] + W[815] * W[4352] + W[1208] * W[3959] + W[1601] * W[3566]
-            + W[1994] * W[3173] + W[2387] * W[2780]) * 2.0;
-    W[5143] = (W[33] * W[5142] + W[426] * W[4749] + W[819] * W[4356] + W[1212] * W[3963] + W[1605] * W[3570]
-            + W[1998] * W[3177] + W[2391] * W[2784]) * 2.0;
-    W[5147] = (W[37] * W[5146] + W[430] * W[4753] + W[823] * W[4360] + W[1216] * W[3967] + W[1609] * W[3574]
-            + W[2002] * W[3181] + W[2395] * W[2788]) * 2.0;
-    W[5150] = (W[40] * W[5149] + W[433] * W[4756] + W[826] * W[4363] + W[1219] * W[3970] + W[1612] * W[3577]
-            + W[2005] * W[3184] + W[2398] * W[2791]) * 2.0;
-    W[5154] = (W[44] * W[5153] + W[437] * W[4760] + W[830] * W[4367] + W[1223] * W[3974] + W[1616] * W[3581]
-            + W[2009] * W[3188] + W[2402] * W[2795]) * 2.0;
-    W[5158] = (W[48] * W[5157] + W[441] * W[4764] + W[834] * W[4371] + W[1227] * W[3978] + W[1620] * W[3585]
-            + W[2013] * W[3192] + W[2406] * W[2799]) * 2.0;
-    W[5161] = (W[51] * W[5160] + W[444] * W[4767] + W[837] * W[4374] + W[1230] * W[3981] + W[1623] * W[3588]
-            + W[2016] * W[3195] + W[2409] * W[2802]) * 2.0;
-    W[5165] = (W[55] * W[5164] + W[448] * W[4771] + W[841] * W[4378] + W[1234] * W[3985] + W[1627] * W[3592]
-            + W[2020] * W[3199] + W[2413] * W[2806]) * 2.0;
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 13. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_240(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5168] = (W[58] * W[5167] + W[451] * W[4774] + W[844] * W[4381] + W[1237] * W[3988] + W[1630] * W[3595]
             + W[2023] * W[3202] + W[2416] * W[2809]) * 2.0;
     W[5170] = (W[60] * W[5169] + W[453] * W[4776] + W[846] * W[4383] + W[1239] * W[3990] + W[1632] * W[3597]
@@ -9713,36 +7662,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[2071] * W[3250] + W[2464] * W[2857]) * 2.0;
     W[5218] = (W[108] * W[5217] + W[501] * W[4824] + W[894] * W[4431] + W[1287] * W[4038] + W[1680] * W[3645]
             + W[2073] * W[3252] + W[2466] * W[2859]) * 2.0;
-    W[5221] = (W[111] * W[5220] + W[504] * W[4827] + W[897] * W[4434] + W[1290] * W[4041] + W[1683] * W[3648]
-            + W[2076] * W[3255] + W[2469] * W[2862]) * 2.0;
-    W[5224] = (W[114] * W[5223] + W[507] * W[4830] + W[900] * W[4437] + W[1293] * W[4044] + W[1686] * W[3651]
-            + W[2079] * W[3258] + W[2472] * W[2865]) * 2.0;
-    W[5226] = (W[116] * W[5225] + W[509] * W[4832] + W[902] * W[4439] + W[1295] * W[4046] + W[1688] * W[3653]
-            + W[2081] * W[3260] + W[2474] * W[2867]) * 2.0;
-    W[5229] = (W[119] * W[5228] + W[512] * W[4835] + W[905] * W[4442] + W[1298] * W[4049] + W[1691] * W[3656]
-            + W[2084] * W[3263] + W[2477] * W[2870]) * 2.0;
-    W[5232] = (W[122] * W[5231] + W[515] * W[4838] + W[908] * W[4445] + W[1301] * W[4052] + W[1694] * W[3659]
-            + W[2087] * W[3266] + W[2480] * W[2873]) * 2.0;
-    W[5234] = (W[124] * W[5233] + W[517] * W[4840] + W[910] * W[4447] + W[1303] * W[4054] + W[1696] * W[3661]
-            + W[2089] * W[3268] + W[2482] * W[2875]) * 2.0;
-    W[5237] = (W[127] * W[5236] + W[520] * W[4843] + W[913] * W[4450] + W[1306] * W[4057] + W[1699] * W[3664]
-            + W[2092] * W[3271] + W[2485] * W[2878]) * 2.0;
-    W[5240] = (W[130] * W[5239] + W[523] * W[4846] + W[916] * W[4453] + W[1309] * W[4060] + W[1702] * W[3667]
-            + W[2095] * W[3274] + W[2488] * W[2881]) * 2.0;
-    W[5242] = (W[132] * W[5241] + W[525] * W[4848] + W[918] * W[4455] + W[1311] * W[4062] + W[1704] * W[3669]
-            + W[2097] * W[3276] + W[2490] * W[2883]) * 2.0;
-    W[5245] = (W[135] * W[5244] + W[528] * W[4851] + W[921] * W[4458] + W[1314] * W[4065] + W[1707] * W[3672]
-            + W[2100] * W[3279] + W[2493] * W[2886]) * 2.0;
-    W[5117] = W[5112] + W[5116];
-    W[5129] = W[5125] + W[5128];
-    W[5140] = W[5136] + W[5139];
-    W[5151] = W[5147] + W[5150];
-    W[5162] = W[5158] + W[5161];
-    W[5171] = W[5168] + W[5170];
-    W[5179] = W[5176] + W[5178];
-    W[5187] = W[5184] + W[5186];
-    W[5195] = W[5192] + W[5194];
-    W[5203] = W[5200] + W[5202];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 13. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_242(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5211] = W[5208] + W[5210];
     W[5219] = W[5216] + W[5218];
     W[5227] = W[5224] + W[5226];
@@ -9763,6 +7692,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[5230] = W[5227] + W[5229];
     W[5238] = W[5235] + W[5237];
     W[5246] = W[5243] + W[5245];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 13. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_243(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5275] = (-19.5 * W[5166] * W[166] - 19.0 * W[4773] * W[559] - 18.5 * W[4380] * W[952] - 18.0 * W[3987] * W[1345]
             - 17.5 * W[3594] * W[1738] - 17.0 * W[3201] * W[2131] - 16.5 * W[2808] * W[2524] - 16.0 * W[2415] * W[2917]
             - 15.5 * W[2022] * W[3310] - 15.0 * W[1629] * W[3703] - 14.5 * W[1236] * W[4096] - 14.0 * W[843] * W[4489]
@@ -9838,66 +7777,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[5295] = W[2] * W[5294] + W[395] * W[4901] + W[788] * W[4508] + W[1181] * W[4115] + W[1574] * W[3722]
             + W[1967] * W[3329] + W[2360] * W[2936] + W[2753] * W[2543] + W[3146] * W[2150] + W[3539] * W[1757]
             + W[3932] * W[1364] + W[4325] * W[971] + W[4718] * W[578] + W[5111] * W[185];
-    W[5299] = W[51] * W[5275] + W[444] * W[4882] + W[837] * W[4489] + W[1230] * W[4096] + W[1623] * W[3703]
-            + W[2016] * W[3310] + W[2409] * W[2917] + W[2802] * W[2524] + W[3195] * W[2131] + W[3588] * W[1738]
-            + W[3981] * W[1345] + W[4374] * W[952] + W[4767] * W[559] + W[5160] * W[166];
-    W[5301] = W[40] * W[5279] + W[433] * W[4886] + W[826] * W[4493] + W[1219] * W[4100] + W[1612] * W[3707]
-            + W[2005] * W[3314] + W[2398] * W[2921] + W[2791] * W[2528] + W[3184] * W[2135] + W[3577] * W[1742]
-            + W[3970] * W[1349] + W[4363] * W[956] + W[4756] * W[563] + W[5149] * W[170];
-    W[5304] = W[29] * W[5284] + W[422] * W[4891] + W[815] * W[4498] + W[1208] * W[4105] + W[1601] * W[3712]
-            + W[1994] * W[3319] + W[2387] * W[2926] + W[2780] * W[2533] + W[3173] * W[2140] + W[3566] * W[1747]
-            + W[3959] * W[1354] + W[4352] * W[961] + W[4745] * W[568] + W[5138] * W[175];
-    W[5307] = W[18] * W[5289] + W[411] * W[4896] + W[804] * W[4503] + W[1197] * W[4110] + W[1590] * W[3717]
-            + W[1983] * W[3324] + W[2376] * W[2931] + W[2769] * W[2538] + W[3162] * W[2145] + W[3555] * W[1752]
-            + W[3948] * W[1359] + W[4341] * W[966] + W[4734] * W[573] + W[5127] * W[180];
-    W[5310] = W[6] * W[5294] + W[399] * W[4901] + W[792] * W[4508] + W[1185] * W[4115] + W[1578] * W[3722]
-            + W[1971] * W[3329] + W[2364] * W[2936] + W[2757] * W[2543] + W[3150] * W[2150] + W[3543] * W[1757]
-            + W[3936] * W[1364] + W[4329] * W[971] + W[4722] * W[578] + W[5115] * W[185];
-    W[5314] = W[55] * W[5275] + W[448] * W[4882] + W[841] * W[4489] + W[1234] * W[4096] + W[1627] * W[3703]
-            + W[2020] * W[3310] + W[2413] * W[2917] + W[2806] * W[2524] + W[3199] * W[2131] + W[3592] * W[1738]
-            + W[3985] * W[1345] + W[4378] * W[952] + W[4771] * W[559] + W[5164] * W[166];
-    W[5316] = W[44] * W[5279] + W[437] * W[4886] + W[830] * W[4493] + W[1223] * W[4100] + W[1616] * W[3707]
-            + W[2009] * W[3314] + W[2402] * W[2921] + W[2795] * W[2528] + W[3188] * W[2135] + W[3581] * W[1742]
-            + W[3974] * W[1349] + W[4367] * W[956] + W[4760] * W[563] + W[5153] * W[170];
-    W[5319] = W[33] * W[5284] + W[426] * W[4891] + W[819] * W[4498] + W[1212] * W[4105] + W[1605] * W[3712]
-            + W[1998] * W[3319] + W[2391] * W[2926] + W[2784] * W[2533] + W[3177] * W[2140] + W[3570] * W[1747]
-            + W[3963] * W[1354] + W[4356] * W[961] + W[4749] * W[568] + W[5142] * W[175];
-    W[5322] = W[22] * W[5289] + W[415] * W[4896] + W[808] * W[4503] + W[1201] * W[4110] + W[1594] * W[3717]
-            + W[1987] * W[3324] + W[2380] * W[2931] + W[2773] * W[2538] + W[3166] * W[2145] + W[3559] * W[1752]
-            + W[3952] * W[1359] + W[4345] * W[966] + W[4738] * W[573] + W[5131] * W[180];
-    W[5325] = W[11] * W[5294] + W[404] * W[4901] + W[797] * W[4508] + W[1190] * W[4115] + W[1583] * W[3722]
-            + W[1976] * W[3329] + W[2369] * W[2936] + W[2762] * W[2543] + W[3155] * W[2150] + W[3548] * W[1757]
-            + W[3941] * W[1364] + W[4334] * W[971] + W[4727] * W[578] + W[5120] * W[185];
-    W[5331] = W[82] * W[5330] + W[475] * W[4937] + W[868] * W[4544] + W[1261] * W[4151] + W[1654] * W[3758]
-            + W[2047] * W[3365] + W[2440] * W[2972] + W[2833] * W[2579] + W[3226] * W[2186] + W[3619] * W[1793]
-            + W[4012] * W[1400] + W[4405] * W[1007] + W[4798] * W[614] + W[5191] * W[221];
-    W[5335] = W[74] * W[5334] + W[467] * W[4941] + W[860] * W[4548] + W[1253] * W[4155] + W[1646] * W[3762]
-            + W[2039] * W[3369] + W[2432] * W[2976] + W[2825] * W[2583] + W[3218] * W[2190] + W[3611] * W[1797]
-            + W[4004] * W[1404] + W[4397] * W[1011] + W[4790] * W[618] + W[5183] * W[225];
-    W[5340] = W[66] * W[5339] + W[459] * W[4946] + W[852] * W[4553] + W[1245] * W[4160] + W[1638] * W[3767]
-            + W[2031] * W[3374] + W[2424] * W[2981] + W[2817] * W[2588] + W[3210] * W[2195] + W[3603] * W[1802]
-            + W[3996] * W[1409] + W[4389] * W[1016] + W[4782] * W[623] + W[5175] * W[230];
-    W[5345] = W[58] * W[5344] + W[451] * W[4951] + W[844] * W[4558] + W[1237] * W[4165] + W[1630] * W[3772]
-            + W[2023] * W[3379] + W[2416] * W[2986] + W[2809] * W[2593] + W[3202] * W[2200] + W[3595] * W[1807]
-            + W[3988] * W[1414] + W[4381] * W[1021] + W[4774] * W[628] + W[5167] * W[235];
-    W[5350] = W[84] * W[5330] + W[477] * W[4937] + W[870] * W[4544] + W[1263] * W[4151] + W[1656] * W[3758]
-            + W[2049] * W[3365] + W[2442] * W[2972] + W[2835] * W[2579] + W[3228] * W[2186] + W[3621] * W[1793]
-            + W[4014] * W[1400] + W[4407] * W[1007] + W[4800] * W[614] + W[5193] * W[221];
-    W[5352] = W[76] * W[5334] + W[469] * W[4941] + W[862] * W[4548] + W[1255] * W[4155] + W[1648] * W[3762]
-            + W[2041] * W[3369] + W[2434] * W[2976] + W[2827] * W[2583] + W[3220] * W[2190] + W[3613] * W[1797]
-            + W[4006] * W[1404] + W[4399] * W[1011] + W[4792] * W[618] + W[5185] * W[225];
-    W[5355] = W[68] * W[5339] + W[461] * W[4946] + W[854] * W[4553] + W[1247] * W[4160] + W[1640] * W[3767]
-            + W[2033] * W[3374] + W[2426] * W[2981] + W[2819] * W[2588] + W[3212] * W[2195] + W[3605] * W[1802]
-            + W[3998] * W[1409] + W[4391] * W[1016] + W[4784] * W[623] + W[5177] * W[230];
-    W[5358] = W[60] * W[5344] + W[453] * W[4951] + W[846] * W[4558] + W[1239] * W[4165] + W[1632] * W[3772]
-            + W[2025] * W[3379] + W[2418] * W[2986] + W[2811] * W[2593] + W[3204] * W[2200] + W[3597] * W[1807]
-            + W[3990] * W[1414] + W[4383] * W[1021] + W[4776] * W[628] + W[5169] * W[235];
-    W[5363] = W[87] * W[5330] + W[480] * W[4937] + W[873] * W[4544] + W[1266] * W[4151] + W[1659] * W[3758]
-            + W[2052] * W[3365] + W[2445] * W[2972] + W[2838] * W[2579] + W[3231] * W[2186] + W[3624] * W[1793]
-            + W[4017] * W[1400] + W[4410] * W[1007] + W[4803] * W[614] + W[5196] * W[221];
-    W[5365] = W[79] * W[5334] + W[472] * W[4941] + W[865] * W[4548] + W[1258] * W[4155] + W[1651] * W[3762]
-            + W[2044] * W[3369] + W[2437] * W[2976] + W[2830] * W[2583] + W[3223] * W[2190] + W[3616] * W[1797]
-            + W[4009] * W[1404] + W[4402] * W[1011] + W[4795] * W[618] + W[5188] * W[225];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 13. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_245(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5368] = W[71] * W[5339] + W[464] * W[4946] + W[857] * W[4553] + W[1250] * W[4160] + W[1643] * W[3767]
             + W[2036] * W[3374] + W[2429] * W[2981] + W[2822] * W[2588] + W[3215] * W[2195] + W[3608] * W[1802]
             + W[4001] * W[1409] + W[4394] * W[1016] + W[4787] * W[623] + W[5180] * W[230];
@@ -9958,126 +7847,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[5462] = W[135] * W[5447] + W[528] * W[5054] + W[921] * W[4661] + W[1314] * W[4268] + W[1707] * W[3875]
             + W[2100] * W[3482] + W[2493] * W[3089] + W[2886] * W[2696] + W[3279] * W[2303] + W[3672] * W[1910]
             + W[4065] * W[1517] + W[4458] * W[1124] + W[4851] * W[731] + W[5244] * W[338];
-    W[5277] = W[164] * W[5276];
-    W[5281] = W[169] * W[5280];
-    W[5286] = W[174] * W[5285];
-    W[5291] = W[179] * W[5290];
-    W[5296] = W[184] * W[5295];
-    W[5300] = W[164] * W[5299];
-    W[5302] = W[169] * W[5301];
-    W[5305] = W[174] * W[5304];
-    W[5308] = W[179] * W[5307];
-    W[5311] = W[184] * W[5310];
-    W[5315] = W[164] * W[5314];
-    W[5317] = W[169] * W[5316];
-    W[5320] = W[174] * W[5319];
-    W[5323] = W[179] * W[5322];
-    W[5326] = W[184] * W[5325];
-    W[5332] = W[220] * W[5331];
-    W[5336] = W[224] * W[5335];
-    W[5341] = W[229] * W[5340];
-    W[5346] = W[234] * W[5345];
-    W[5351] = W[220] * W[5350];
-    W[5353] = W[224] * W[5352];
-    W[5356] = W[229] * W[5355];
-    W[5359] = W[234] * W[5358];
-    W[5364] = W[220] * W[5363];
-    W[5366] = W[224] * W[5365];
-    W[5369] = W[229] * W[5368];
-    W[5372] = W[234] * W[5371];
-    W[5379] = W[267] * W[5378];
-    W[5383] = W[271] * W[5382];
-    W[5388] = W[276] * W[5387];
-    W[5394] = W[267] * W[5393];
-    W[5396] = W[271] * W[5395];
-    W[5399] = W[276] * W[5398];
-    W[5405] = W[267] * W[5404];
-    W[5407] = W[271] * W[5406];
-    W[5410] = W[276] * W[5409];
-    W[5418] = W[306] * W[5417];
-    W[5422] = W[310] * W[5421];
-    W[5429] = W[306] * W[5428];
-    W[5431] = W[310] * W[5430];
-    W[5438] = W[306] * W[5437];
-    W[5440] = W[310] * W[5439];
-    W[5449] = W[337] * W[5448];
-    W[5456] = W[337] * W[5455];
-    W[5463] = W[337] * W[5462];
-    W[5282] = W[5277] + W[5281];
-    W[5303] = W[5300] + W[5302];
-    W[5318] = W[5315] + W[5317];
-    W[5337] = W[5332] + W[5336];
-    W[5354] = W[5351] + W[5353];
-    W[5367] = W[5364] + W[5366];
-    W[5384] = W[5379] + W[5383];
-    W[5397] = W[5394] + W[5396];
-    W[5408] = W[5405] + W[5407];
-    W[5423] = W[5418] + W[5422];
-    W[5432] = W[5429] + W[5431];
-    W[5441] = W[5438] + W[5440];
-    W[5450] = W[5449] - W[5422];
-    W[5457] = W[5456] - W[5431];
-    W[5464] = W[5463] - W[5440];
-    W[5469] = W[5418] + W[5449];
-    W[5474] = W[5429] + W[5456];
-    W[5479] = W[5438] + W[5463];
-    W[5287] = W[5282] + W[5286];
-    W[5306] = W[5303] + W[5305];
-    W[5321] = W[5318] + W[5320];
-    W[5342] = W[5337] + W[5341];
-    W[5357] = W[5354] + W[5356];
-    W[5370] = W[5367] + W[5369];
-    W[5389] = W[5384] + W[5388];
-    W[5400] = W[5397] + W[5399];
-    W[5411] = W[5408] + W[5410];
-    W[5424] = W[5423] - W[5388];
-    W[5433] = W[5432] - W[5399];
-    W[5442] = W[5441] - W[5410];
-    W[5451] = W[5450] - W[5383];
-    W[5458] = W[5457] - W[5396];
-    W[5465] = W[5464] - W[5407];
-    W[5470] = W[5379] + W[5469];
-    W[5475] = W[5394] + W[5474];
-    W[5480] = W[5405] + W[5479];
-    W[5292] = W[5287] + W[5291];
-    W[5309] = W[5306] + W[5308];
-    W[5324] = W[5321] + W[5323];
-    W[5347] = W[5342] + W[5346];
-    W[5360] = W[5357] + W[5359];
-    W[5373] = W[5370] + W[5372];
-    W[5390] = W[5389] - W[5346];
-    W[5401] = W[5400] - W[5359];
-    W[5412] = W[5411] - W[5372];
-    W[5425] = W[5424] - W[5341];
-    W[5434] = W[5433] - W[5356];
-    W[5443] = W[5442] - W[5369];
-    W[5452] = W[5451] - W[5336];
-    W[5459] = W[5458] - W[5353];
-    W[5466] = W[5465] - W[5366];
-    W[5471] = W[5332] + W[5470];
-    W[5476] = W[5351] + W[5475];
-    W[5481] = W[5364] + W[5480];
-    W[5297] = W[5292] + W[5296];
-    W[5312] = W[5309] + W[5311];
-    W[5327] = W[5324] + W[5326];
-    W[5348] = W[5347] - W[5296];
-    W[5361] = W[5360] - W[5311];
-    W[5374] = W[5373] - W[5326];
-    W[5391] = W[5390] - W[5291];
-    W[5402] = W[5401] - W[5308];
-    W[5413] = W[5412] - W[5323];
-    W[5426] = W[5425] - W[5286];
-    W[5435] = W[5434] - W[5305];
-    W[5444] = W[5443] - W[5320];
-    W[5453] = W[5452] - W[5281];
-    W[5460] = W[5459] - W[5302];
-    W[5467] = W[5466] - W[5317];
-    W[5472] = W[5277] + W[5471];
-    W[5477] = W[5300] + W[5476];
-    W[5482] = W[5315] + W[5481];
-    W[5298] = W[161] * W[5297];
-    W[5313] = W[161] * W[5312];
-    W[5328] = W[161] * W[5327];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 13. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_252(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5349] = W[161] * W[5348];
     W[5362] = W[161] * W[5361];
     W[5375] = W[161] * W[5374];
@@ -10098,6 +7877,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[506] = X[488] / 14.0;
     X[507] = X[489] / 14.0;
     X[508] = X[490] / 14.0;
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 13. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_253(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[509] = X[491] / 14.0;
     X[510] = X[492] / 14.0;
     X[511] = X[493] / 14.0;
@@ -10118,40 +7907,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[526] = -W[5362] / W[140] / 14.0;
     X[527] = -W[5375] / W[140] / 14.0;
     X[528] = -W[5392] / W[141] / 14.0;
-    X[529] = -W[5403] / W[141] / 14.0;
-    X[530] = -W[5414] / W[141] / 14.0;
-    X[531] = -W[5427] / W[142] / 14.0;
-    X[532] = -W[5436] / W[142] / 14.0;
-    X[533] = -W[5445] / W[142] / 14.0;
-    X[534] = -W[5454] / W[143] / 14.0;
-    X[535] = -W[5461] / W[143] / 14.0;
-    X[536] = -W[5468] / W[143] / 14.0;
-    X[537] = -W[5473] / W[144] / 14.0;
-    X[538] = -W[5478] / W[144] / 14.0;
-    X[539] = -W[5483] / W[144] / 14.0;
-    if (K == 14)
-        goto out;
-    /* order 14 */
-    W[5504] = X[504] - X[507];
-    W[5508] = X[505] - X[508];
-    W[5513] = X[506] - X[509];
-    W[5517] = X[504] - X[510];
-    W[5520] = X[505] - X[511];
-    W[5524] = X[506] - X[512];
-    W[5528] = X[504] - X[513];
-    W[5531] = X[505] - X[514];
-    W[5535] = X[506] - X[515];
-    W[5539] = X[504] - X[516];
-    W[5542] = X[505] - X[517];
-    W[5546] = X[506] - X[518];
-    W[5550] = X[504] - X[519];
-    W[5553] = X[505] - X[520];
-    W[5557] = X[506] - X[521];
-    W[5560] = X[507] - X[510];
-    W[5562] = X[508] - X[511];
-    W[5565] = X[509] - X[512];
-    W[5568] = X[507] - X[513];
-    W[5570] = X[508] - X[514];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 14. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_256(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5573] = X[509] - X[515];
     W[5576] = X[507] - X[516];
     W[5578] = X[508] - X[517];
@@ -10172,41 +7937,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[5618] = X[514] - X[517];
     W[5621] = X[515] - X[518];
     W[5624] = X[513] - X[519];
-    W[5626] = X[514] - X[520];
-    W[5629] = X[515] - X[521];
-    W[5632] = X[516] - X[519];
-    W[5634] = X[517] - X[520];
-    W[5637] = X[518] - X[521];
-    W[5505] = (W[2] * W[5504] + W[395] * W[5111] + W[788] * W[4718] + W[1181] * W[4325] + W[1574] * W[3932]
-            + W[1967] * W[3539] + W[2360] * W[3146]) * 2.0 + W[2753] * W[2753];
-    W[5509] = (W[6] * W[5508] + W[399] * W[5115] + W[792] * W[4722] + W[1185] * W[4329] + W[1578] * W[3936]
-            + W[1971] * W[3543] + W[2364] * W[3150]) * 2.0 + W[2757] * W[2757];
-    W[5514] = (W[11] * W[5513] + W[404] * W[5120] + W[797] * W[4727] + W[1190] * W[4334] + W[1583] * W[3941]
-            + W[1976] * W[3548] + W[2369] * W[3155]) * 2.0 + W[2762] * W[2762];
-    W[5518] = (W[15] * W[5517] + W[408] * W[5124] + W[801] * W[4731] + W[1194] * W[4338] + W[1587] * W[3945]
-            + W[1980] * W[3552] + W[2373] * W[3159]) * 2.0 + W[2766] * W[2766];
-    W[5521] = (W[18] * W[5520] + W[411] * W[5127] + W[804] * W[4734] + W[1197] * W[4341] + W[1590] * W[3948]
-            + W[1983] * W[3555] + W[2376] * W[3162]) * 2.0 + W[2769] * W[2769];
-    W[5525] = (W[22] * W[5524] + W[415] * W[5131] + W[808] * W[4738] + W[1201] * W[4345] + W[1594] * W[3952]
-            + W[1987] * W[3559] + W[2380] * W[3166]) * 2.0 + W[2773] * W[2773];
-    W[5529] = (W[26] * W[5528] + W[419] * W[5135] + W[812] * W[4742] + W[1205] * W[4349] + W[1598] * W[3956]
-            + W[1991] * W[3563] + W[2384] * W[3170]) * 2.0 + W[2777] * W[2777];
-    W[5532] = (W[29] * W[5531] + W[422] * W[5138] + W[815] * W[4745] + W[1208] * W[4352] + W[1601] * W[3959]
-            + W[1994] * W[3566] + W[2387] * W[3173]) * 2.0 + W[2780] * W[2780];
-    W[5536] = (W[33] * W[5535] + W[426] * W[5142] + W[819] * W[4749] + W[1212] * W[4356] + W[1605] * W[3963]
-            + W[1998] * W[3570] + W[2391] * W[3177]) * 2.0 + W[2784] * W[2784];
-    W[5540] = (W[37] * W[5539] + W[430] * W[5146] + W[823] * W[4753] + W[1216] * W[4360] + W[1609] * W[3967]
-            + W[2002] * W[3574] + W[2395] * W[3181]) * 2.0 + W[2788] * W[2788];
-    W[5543] = (W[40] * W[5542] + W[433] * W[5149] + W[826] * W[4756] + W[1219] * W[4363] + W[1612] * W[3970]
-            + W[2005] * W[3577] + W[2398] * W[3184]) * 2.0 + W[2791] * W[2791];
-    W[5547] = (W[44] * W[5546] + W[437] * W[5153] + W[830] * W[4760] + W[1223] * W[4367] + W[1616] * W[3974]
-            + W[2009] * W[3581] + W[2402] * W[3188]) * 2.0 + W[2795] * W[2795];
-    W[5551] = (W[48] * W[5550] + W[441] * W[5157] + W[834] * W[4764] + W[1227] * W[4371] + W[1620] * W[3978]
-            + W[2013] * W[3585] + W[2406] * W[3192]) * 2.0 + W[2799] * W[2799];
-    W[5554] = (W[51] * W[5553] + W[444] * W[5160] + W[837] * W[4767] + W[1230] * W[4374] + W[1623] * W[3981]
-            + W[2016] * W[3588] + W[2409] * W[3195]) * 2.0 + W[2802] * W[2802];
-    W[5558] = (W[55] * W[5557] + W[448] * W[5164] + W[841] * W[4771] + W[1234] * W[4378] + W[1627] * W[3985]
-            + W[2020] * W[3592] + W[2413] * W[3199]) * 2.0 + W[2806] * W[2806];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 14. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_258(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5561] = (W[58] * W[5560] + W[451] * W[5167] + W[844] * W[4774] + W[1237] * W[4381] + W[1630] * W[3988]
             + W[2023] * W[3595] + W[2416] * W[3202]) * 2.0 + W[2809] * W[2809];
     W[5563] = (W[60] * W[5562] + W[453] * W[5169] + W[846] * W[4776] + W[1239] * W[4383] + W[1632] * W[3990]
@@ -10247,36 +7987,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[2071] * W[3643] + W[2464] * W[3250]) * 2.0 + W[2857] * W[2857];
     W[5611] = (W[108] * W[5610] + W[501] * W[5217] + W[894] * W[4824] + W[1287] * W[4431] + W[1680] * W[4038]
             + W[2073] * W[3645] + W[2466] * W[3252]) * 2.0 + W[2859] * W[2859];
-    W[5614] = (W[111] * W[5613] + W[504] * W[5220] + W[897] * W[4827] + W[1290] * W[4434] + W[1683] * W[4041]
-            + W[2076] * W[3648] + W[2469] * W[3255]) * 2.0 + W[2862] * W[2862];
-    W[5617] = (W[114] * W[5616] + W[507] * W[5223] + W[900] * W[4830] + W[1293] * W[4437] + W[1686] * W[4044]
-            + W[2079] * W[3651] + W[2472] * W[3258]) * 2.0 + W[2865] * W[2865];
-    W[5619] = (W[116] * W[5618] + W[509] * W[5225] + W[902] * W[4832] + W[1295] * W[4439] + W[1688] * W[4046]
-            + W[2081] * W[3653] + W[2474] * W[3260]) * 2.0 + W[2867] * W[2867];
-    W[5622] = (W[119] * W[5621] + W[512] * W[5228] + W[905] * W[4835] + W[1298] * W[4442] + W[1691] * W[4049]
-            + W[2084] * W[3656] + W[2477] * W[3263]) * 2.0 + W[2870] * W[2870];
-    W[5625] = (W[122] * W[5624] + W[515] * W[5231] + W[908] * W[4838] + W[1301] * W[4445] + W[1694] * W[4052]
-            + W[2087] * W[3659] + W[2480] * W[3266]) * 2.0 + W[2873] * W[2873];
-    W[5627] = (W[124] * W[5626] + W[517] * W[5233] + W[910] * W[4840] + W[1303] * W[4447] + W[1696] * W[4054]
-            + W[2089] * W[3661] + W[2482] * W[3268]) * 2.0 + W[2875] * W[2875];
-    W[5630] = (W[127] * W[5629] + W[520] * W[5236] + W[913] * W[4843] + W[1306] * W[4450] + W[1699] * W[4057]
-            + W[2092] * W[3664] + W[2485] * W[3271]) * 2.0 + W[2878] * W[2878];
-    W[5633] = (W[130] * W[5632] + W[523] * W[5239] + W[916] * W[4846] + W[1309] * W[4453] + W[1702] * W[4060]
-            + W[2095] * W[3667] + W[2488] * W[3274]) * 2.0 + W[2881] * W[2881];
-    W[5635] = (W[132] * W[5634] + W[525] * W[5241] + W[918] * W[4848] + W[1311] * W[4455] + W[1704] * W[4062]
-            + W[2097] * W[3669] + W[2490] * W[3276]) * 2.0 + W[2883] * W[2883];
-    W[5638] = (W[135] * W[5637] + W[528] * W[5244] + W[921] * W[4851] + W[1314] * W[4458] + W[1707] * W[4065]
-            + W[2100] * W[3672] + W[2493] * W[3279]) * 2.0 + W[2886] * W[2886];
-    W[5510] = W[5505] + W[5509];
-    W[5522] = W[5518] + W[5521];
-    W[5533] = W[5529] + W[5532];
-    W[5544] = W[5540] + W[5543];
-    W[5555] = W[5551] + W[5554];
-    W[5564] = W[5561] + W[5563];
-    W[5572] = W[5569] + W[5571];
-    W[5580] = W[5577] + W[5579];
-    W[5588] = W[5585] + W[5587];
-    W[5596] = W[5593] + W[5595];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 14. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_260(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5604] = W[5601] + W[5603];
     W[5612] = W[5609] + W[5611];
     W[5620] = W[5617] + W[5619];
@@ -10297,6 +8017,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[5623] = W[5620] + W[5622];
     W[5631] = W[5628] + W[5630];
     W[5639] = W[5636] + W[5638];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 14. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_261(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5668] = (-21.0 * W[5559] * W[166] - 20.5 * W[5166] * W[559] - 20.0 * W[4773] * W[952] - 19.5 * W[4380] * W[1345]
             - 19.0 * W[3987] * W[1738] - 18.5 * W[3594] * W[2131] - 18.0 * W[3201] * W[2524] - 17.5 * W[2808] * W[2917]
             - 17.0 * W[2415] * W[3310] - 16.5 * W[2022] * W[3703] - 16.0 * W[1629] * W[4096] - 15.5 * W[1236] * W[4489]
@@ -10372,66 +8102,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[5688] = W[2] * W[5687] + W[395] * W[5294] + W[788] * W[4901] + W[1181] * W[4508] + W[1574] * W[4115]
             + W[1967] * W[3722] + W[2360] * W[3329] + W[2753] * W[2936] + W[3146] * W[2543] + W[3539] * W[2150]
             + W[3932] * W[1757] + W[4325] * W[1364] + W[4718] * W[971] + W[5111] * W[578] + W[5504] * W[185];
-    W[5692] = W[51] * W[5668] + W[444] * W[5275] + W[837] * W[4882] + W[1230] * W[4489] + W[1623] * W[4096]
-            + W[2016] * W[3703] + W[2409] * W[3310] + W[2802] * W[2917] + W[3195] * W[2524] + W[3588] * W[2131]
-            + W[3981] * W[1738] + W[4374] * W[1345] + W[4767] * W[952] + W[5160] * W[559] + W[5553] * W[166];
-    W[5694] = W[40] * W[5672] + W[433] * W[5279] + W[826] * W[4886] + W[1219] * W[4493] + W[1612] * W[4100]
-            + W[2005] * W[3707] + W[2398] * W[3314] + W[2791] * W[2921] + W[3184] * W[2528] + W[3577] * W[2135]
-            + W[3970] * W[1742] + W[4363] * W[1349] + W[4756] * W[956] + W[5149] * W[563] + W[5542] * W[170];
-    W[5697] = W[29] * W[5677] + W[422] * W[5284] + W[815] * W[4891] + W[1208] * W[4498] + W[1601] * W[4105]
-            + W[1994] * W[3712] + W[2387] * W[3319] + W[2780] * W[2926] + W[3173] * W[2533] + W[3566] * W[2140]
-            + W[3959] * W[1747] + W[4352] * W[1354] + W[4745] * W[961] + W[5138] * W[568] + W[5531] * W[175];
-    W[5700] = W[18] * W[5682] + W[411] * W[5289] + W[804] * W[4896] + W[1197] * W[4503] + W[1590] * W[4110]
-            + W[1983] * W[3717] + W[2376] * W[3324] + W[2769] * W[2931] + W[3162] * W[2538] + W[3555] * W[2145]
-            + W[3948] * W[1752] + W[4341] * W[1359] + W[4734] * W[966] + W[5127] * W[573] + W[5520] * W[180];
-    W[5703] = W[6] * W[5687] + W[399] * W[5294] + W[792] * W[4901] + W[1185] * W[4508] + W[1578] * W[4115]
-            + W[1971] * W[3722] + W[2364] * W[3329] + W[2757] * W[2936] + W[3150] * W[2543] + W[3543] * W[2150]
-            + W[3936] * W[1757] + W[4329] * W[1364] + W[4722] * W[971] + W[5115] * W[578] + W[5508] * W[185];
-    W[5707] = W[55] * W[5668] + W[448] * W[5275] + W[841] * W[4882] + W[1234] * W[4489] + W[1627] * W[4096]
-            + W[2020] * W[3703] + W[2413] * W[3310] + W[2806] * W[2917] + W[3199] * W[2524] + W[3592] * W[2131]
-            + W[3985] * W[1738] + W[4378] * W[1345] + W[4771] * W[952] + W[5164] * W[559] + W[5557] * W[166];
-    W[5709] = W[44] * W[5672] + W[437] * W[5279] + W[830] * W[4886] + W[1223] * W[4493] + W[1616] * W[4100]
-            + W[2009] * W[3707] + W[2402] * W[3314] + W[2795] * W[2921] + W[3188] * W[2528] + W[3581] * W[2135]
-            + W[3974] * W[1742] + W[4367] * W[1349] + W[4760] * W[956] + W[5153] * W[563] + W[5546] * W[170];
-    W[5712] = W[33] * W[5677] + W[426] * W[5284] + W[819] * W[4891] + W[1212] * W[4498] + W[1605] * W[4105]
-            + W[1998] * W[3712] + W[2391] * W[3319] + W[2784] * W[2926] + W[3177] * W[2533] + W[3570] * W[2140]
-            + W[3963] * W[1747] + W[4356] * W[1354] + W[4749] * W[961] + W[5142] * W[568] + W[5535] * W[175];
-    W[5715] = W[22] * W[5682] + W[415] * W[5289] + W[808] * W[4896] + W[1201] * W[4503] + W[1594] * W[4110]
-            + W[1987] * W[3717] + W[2380] * W[3324] + W[2773] * W[2931] + W[3166] * W[2538] + W[3559] * W[2145]
-            + W[3952] * W[1752] + W[4345] * W[1359] + W[4738] * W[966] + W[5131] * W[573] + W[5524] * W[180];
-    W[5718] = W[11] * W[5687] + W[404] * W[5294] + W[797] * W[4901] + W[1190] * W[4508] + W[1583] * W[4115]
-            + W[1976] * W[3722] + W[2369] * W[3329] + W[2762] * W[2936] + W[3155] * W[2543] + W[3548] * W[2150]
-            + W[3941] * W[1757] + W[4334] * W[1364] + W[4727] * W[971] + W[5120] * W[578] + W[5513] * W[185];
-    W[5724] = W[82] * W[5723] + W[475] * W[5330] + W[868] * W[4937] + W[1261] * W[4544] + W[1654] * W[4151]
-            + W[2047] * W[3758] + W[2440] * W[3365] + W[2833] * W[2972] + W[3226] * W[2579] + W[3619] * W[2186]
-            + W[4012] * W[1793] + W[4405] * W[1400] + W[4798] * W[1007] + W[5191] * W[614] + W[5584] * W[221];
-    W[5728] = W[74] * W[5727] + W[467] * W[5334] + W[860] * W[4941] + W[1253] * W[4548] + W[1646] * W[4155]
-            + W[2039] * W[3762] + W[2432] * W[3369] + W[2825] * W[2976] + W[3218] * W[2583] + W[3611] * W[2190]
-            + W[4004] * W[1797] + W[4397] * W[1404] + W[4790] * W[1011] + W[5183] * W[618] + W[5576] * W[225];
-    W[5733] = W[66] * W[5732] + W[459] * W[5339] + W[852] * W[4946] + W[1245] * W[4553] + W[1638] * W[4160]
-            + W[2031] * W[3767] + W[2424] * W[3374] + W[2817] * W[2981] + W[3210] * W[2588] + W[3603] * W[2195]
-            + W[3996] * W[1802] + W[4389] * W[1409] + W[4782] * W[1016] + W[5175] * W[623] + W[5568] * W[230];
-    W[5738] = W[58] * W[5737] + W[451] * W[5344] + W[844] * W[4951] + W[1237] * W[4558] + W[1630] * W[4165]
-            + W[2023] * W[3772] + W[2416] * W[3379] + W[2809] * W[2986] + W[3202] * W[2593] + W[3595] * W[2200]
-            + W[3988] * W[1807] + W[4381] * W[1414] + W[4774] * W[1021] + W[5167] * W[628] + W[5560] * W[235];
-    W[5743] = W[84] * W[5723] + W[477] * W[5330] + W[870] * W[4937] + W[1263] * W[4544] + W[1656] * W[4151]
-            + W[2049] * W[3758] + W[2442] * W[3365] + W[2835] * W[2972] + W[3228] * W[2579] + W[3621] * W[2186]
-            + W[4014] * W[1793] + W[4407] * W[1400] + W[4800] * W[1007] + W[5193] * W[614] + W[5586] * W[221];
-    W[5745] = W[76] * W[5727] + W[469] * W[5334] + W[862] * W[4941] + W[1255] * W[4548] + W[1648] * W[4155]
-            + W[2041] * W[3762] + W[2434] * W[3369] + W[2827] * W[2976] + W[3220] * W[2583] + W[3613] * W[2190]
-            + W[4006] * W[1797] + W[4399] * W[1404] + W[4792] * W[1011] + W[5185] * W[618] + W[5578] * W[225];
-    W[5748] = W[68] * W[5732] + W[461] * W[5339] + W[854] * W[4946] + W[1247] * W[4553] + W[1640] * W[4160]
-            + W[2033] * W[3767] + W[2426] * W[3374] + W[2819] * W[2981] + W[3212] * W[2588] + W[3605] * W[2195]
-            + W[3998] * W[1802] + W[4391] * W[1409] + W[4784] * W[1016] + W[5177] * W[623] + W[5570] * W[230];
-    W[5751] = W[60] * W[5737] + W[453] * W[5344] + W[846] * W[4951] + W[1239] * W[4558] + W[1632] * W[4165]
-            + W[2025] * W[3772] + W[2418] * W[3379] + W[2811] * W[2986] + W[3204] * W[2593] + W[3597] * W[2200]
-            + W[3990] * W[1807] + W[4383] * W[1414] + W[4776] * W[1021] + W[5169] * W[628] + W[5562] * W[235];
-    W[5756] = W[87] * W[5723] + W[480] * W[5330] + W[873] * W[4937] + W[1266] * W[4544] + W[1659] * W[4151]
-            + W[2052] * W[3758] + W[2445] * W[3365] + W[2838] * W[2972] + W[3231] * W[2579] + W[3624] * W[2186]
-            + W[4017] * W[1793] + W[4410] * W[1400] + W[4803] * W[1007] + W[5196] * W[614] + W[5589] * W[221];
-    W[5758] = W[79] * W[5727] + W[472] * W[5334] + W[865] * W[4941] + W[1258] * W[4548] + W[1651] * W[4155]
-            + W[2044] * W[3762] + W[2437] * W[3369] + W[2830] * W[2976] + W[3223] * W[2583] + W[3616] * W[2190]
-            + W[4009] * W[1797] + W[4402] * W[1404] + W[4795] * W[1011] + W[5188] * W[618] + W[5581] * W[225];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 14. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_263(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5761] = W[71] * W[5732] + W[464] * W[5339] + W[857] * W[4946] + W[1250] * W[4553] + W[1643] * W[4160]
             + W[2036] * W[3767] + W[2429] * W[3374] + W[2822] * W[2981] + W[3215] * W[2588] + W[3608] * W[2195]
             + W[4001] * W[1802] + W[4394] * W[1409] + W[4787] * W[1016] + W[5180] * W[623] + W[5573] * W[230];
@@ -10492,126 +8172,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[5855] = W[135] * W[5840] + W[528] * W[5447] + W[921] * W[5054] + W[1314] * W[4661] + W[1707] * W[4268]
             + W[2100] * W[3875] + W[2493] * W[3482] + W[2886] * W[3089] + W[3279] * W[2696] + W[3672] * W[2303]
             + W[4065] * W[1910] + W[4458] * W[1517] + W[4851] * W[1124] + W[5244] * W[731] + W[5637] * W[338];
-    W[5670] = W[164] * W[5669];
-    W[5674] = W[169] * W[5673];
-    W[5679] = W[174] * W[5678];
-    W[5684] = W[179] * W[5683];
-    W[5689] = W[184] * W[5688];
-    W[5693] = W[164] * W[5692];
-    W[5695] = W[169] * W[5694];
-    W[5698] = W[174] * W[5697];
-    W[5701] = W[179] * W[5700];
-    W[5704] = W[184] * W[5703];
-    W[5708] = W[164] * W[5707];
-    W[5710] = W[169] * W[5709];
-    W[5713] = W[174] * W[5712];
-    W[5716] = W[179] * W[5715];
-    W[5719] = W[184] * W[5718];
-    W[5725] = W[220] * W[5724];
-    W[5729] = W[224] * W[5728];
-    W[5734] = W[229] * W[5733];
-    W[5739] = W[234] * W[5738];
-    W[5744] = W[220] * W[5743];
-    W[5746] = W[224] * W[5745];
-    W[5749] = W[229] * W[5748];
-    W[5752] = W[234] * W[5751];
-    W[5757] = W[220] * W[5756];
-    W[5759] = W[224] * W[5758];
-    W[5762] = W[229] * W[5761];
-    W[5765] = W[234] * W[5764];
-    W[5772] = W[267] * W[5771];
-    W[5776] = W[271] * W[5775];
-    W[5781] = W[276] * W[5780];
-    W[5787] = W[267] * W[5786];
-    W[5789] = W[271] * W[5788];
-    W[5792] = W[276] * W[5791];
-    W[5798] = W[267] * W[5797];
-    W[5800] = W[271] * W[5799];
-    W[5803] = W[276] * W[5802];
-    W[5811] = W[306] * W[5810];
-    W[5815] = W[310] * W[5814];
-    W[5822] = W[306] * W[5821];
-    W[5824] = W[310] * W[5823];
-    W[5831] = W[306] * W[5830];
-    W[5833] = W[310] * W[5832];
-    W[5842] = W[337] * W[5841];
-    W[5849] = W[337] * W[5848];
-    W[5856] = W[337] * W[5855];
-    W[5675] = W[5670] + W[5674];
-    W[5696] = W[5693] + W[5695];
-    W[5711] = W[5708] + W[5710];
-    W[5730] = W[5725] + W[5729];
-    W[5747] = W[5744] + W[5746];
-    W[5760] = W[5757] + W[5759];
-    W[5777] = W[5772] + W[5776];
-    W[5790] = W[5787] + W[5789];
-    W[5801] = W[5798] + W[5800];
-    W[5816] = W[5811] + W[5815];
-    W[5825] = W[5822] + W[5824];
-    W[5834] = W[5831] + W[5833];
-    W[5843] = W[5842] - W[5815];
-    W[5850] = W[5849] - W[5824];
-    W[5857] = W[5856] - W[5833];
-    W[5862] = W[5811] + W[5842];
-    W[5867] = W[5822] + W[5849];
-    W[5872] = W[5831] + W[5856];
-    W[5680] = W[5675] + W[5679];
-    W[5699] = W[5696] + W[5698];
-    W[5714] = W[5711] + W[5713];
-    W[5735] = W[5730] + W[5734];
-    W[5750] = W[5747] + W[5749];
-    W[5763] = W[5760] + W[5762];
-    W[5782] = W[5777] + W[5781];
-    W[5793] = W[5790] + W[5792];
-    W[5804] = W[5801] + W[5803];
-    W[5817] = W[5816] - W[5781];
-    W[5826] = W[5825] - W[5792];
-    W[5835] = W[5834] - W[5803];
-    W[5844] = W[5843] - W[5776];
-    W[5851] = W[5850] - W[5789];
-    W[5858] = W[5857] - W[5800];
-    W[5863] = W[5772] + W[5862];
-    W[5868] = W[5787] + W[5867];
-    W[5873] = W[5798] + W[5872];
-    W[5685] = W[5680] + W[5684];
-    W[5702] = W[5699] + W[5701];
-    W[5717] = W[5714] + W[5716];
-    W[5740] = W[5735] + W[5739];
-    W[5753] = W[5750] + W[5752];
-    W[5766] = W[5763] + W[5765];
-    W[5783] = W[5782] - W[5739];
-    W[5794] = W[5793] - W[5752];
-    W[5805] = W[5804] - W[5765];
-    W[5818] = W[5817] - W[5734];
-    W[5827] = W[5826] - W[5749];
-    W[5836] = W[5835] - W[5762];
-    W[5845] = W[5844] - W[5729];
-    W[5852] = W[5851] - W[5746];
-    W[5859] = W[5858] - W[5759];
-    W[5864] = W[5725] + W[5863];
-    W[5869] = W[5744] + W[5868];
-    W[5874] = W[5757] + W[5873];
-    W[5690] = W[5685] + W[5689];
-    W[5705] = W[5702] + W[5704];
-    W[5720] = W[5717] + W[5719];
-    W[5741] = W[5740] - W[5689];
-    W[5754] = W[5753] - W[5704];
-    W[5767] = W[5766] - W[5719];
-    W[5784] = W[5783] - W[5684];
-    W[5795] = W[5794] - W[5701];
-    W[5806] = W[5805] - W[5716];
-    W[5819] = W[5818] - W[5679];
-    W[5828] = W[5827] - W[5698];
-    W[5837] = W[5836] - W[5713];
-    W[5846] = W[5845] - W[5674];
-    W[5853] = W[5852] - W[5695];
-    W[5860] = W[5859] - W[5710];
-    W[5865] = W[5670] + W[5864];
-    W[5870] = W[5693] + W[5869];
-    W[5875] = W[5708] + W[5874];
-    W[5691] = W[161] * W[5690];
-    W[5706] = W[161] * W[5705];
-    W[5721] = W[161] * W[5720];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 14. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_270(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5742] = W[161] * W[5741];
     W[5755] = W[161] * W[5754];
     W[5768] = W[161] * W[5767];
@@ -10632,26 +8202,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[542] = X[524] / 15.0;
     X[543] = X[525] / 15.0;
     X[544] = X[526] / 15.0;
-    X[545] = X[527] / 15.0;
-    X[546] = X[528] / 15.0;
-    X[547] = X[529] / 15.0;
-    X[548] = X[530] / 15.0;
-    X[549] = X[531] / 15.0;
-    X[550] = X[532] / 15.0;
-    X[551] = X[533] / 15.0;
-    X[552] = X[534] / 15.0;
-    X[553] = X[535] / 15.0;
-    X[554] = X[536] / 15.0;
-    X[555] = X[537] / 15.0;
-    X[556] = X[538] / 15.0;
-    X[557] = X[539] / 15.0;
-    X[558] = -W[5691] / W[138] / 15.0;
-    X[559] = -W[5706] / W[138] / 15.0;
-    X[560] = -W[5721] / W[138] / 15.0;
-    X[561] = -W[5742] / W[140] / 15.0;
-    X[562] = -W[5755] / W[140] / 15.0;
-    X[563] = -W[5768] / W[140] / 15.0;
-    X[564] = -W[5785] / W[141] / 15.0;
+    return 0;
+}
+
+/* Lines 340 .. 350 of taylor_run's order 14. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_272(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[565] = -W[5796] / W[141] / 15.0;
     X[566] = -W[5807] / W[141] / 15.0;
     X[567] = -W[5820] / W[142] / 15.0;
@@ -10663,9 +8223,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[573] = -W[5866] / W[144] / 15.0;
     X[574] = -W[5871] / W[144] / 15.0;
     X[575] = -W[5876] / W[144] / 15.0;
-    if (K == 15)
-        goto out;
-    /* order 15 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_273(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5897] = X[540] - X[543];
     W[5901] = X[541] - X[544];
     W[5906] = X[542] - X[545];
@@ -10686,26 +8253,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[5958] = X[545] - X[548];
     W[5961] = X[543] - X[549];
     W[5963] = X[544] - X[550];
-    W[5966] = X[545] - X[551];
-    W[5969] = X[543] - X[552];
-    W[5971] = X[544] - X[553];
-    W[5974] = X[545] - X[554];
-    W[5977] = X[543] - X[555];
-    W[5979] = X[544] - X[556];
-    W[5982] = X[545] - X[557];
-    W[5985] = X[546] - X[549];
-    W[5987] = X[547] - X[550];
-    W[5990] = X[548] - X[551];
-    W[5993] = X[546] - X[552];
-    W[5995] = X[547] - X[553];
-    W[5998] = X[548] - X[554];
-    W[6001] = X[546] - X[555];
-    W[6003] = X[547] - X[556];
-    W[6006] = X[548] - X[557];
-    W[6009] = X[549] - X[552];
-    W[6011] = X[550] - X[553];
-    W[6014] = X[551] - X[554];
-    W[6017] = X[549] - X[555];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_275(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6019] = X[550] - X[556];
     W[6022] = X[551] - X[557];
     W[6025] = X[552] - X[555];
@@ -10741,46 +8298,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[2016] * W[3981] + W[2409] * W[3588] + W[2802] * W[3195]) * 2.0;
     W[5951] = (W[55] * W[5950] + W[448] * W[5557] + W[841] * W[5164] + W[1234] * W[4771] + W[1627] * W[4378]
             + W[2020] * W[3985] + W[2413] * W[3592] + W[2806] * W[3199]) * 2.0;
-    W[5954] = (W[58] * W[5953] + W[451] * W[5560] + W[844] * W[5167] + W[1237] * W[4774] + W[1630] * W[4381]
-            + W[2023] * W[3988] + W[2416] * W[3595] + W[2809] * W[3202]) * 2.0;
-    W[5956] = (W[60] * W[5955] + W[453] * W[5562] + W[846] * W[5169] + W[1239] * W[4776] + W[1632] * W[4383]
-            + W[2025] * W[3990] + W[2418] * W[3597] + W[2811] * W[3204]) * 2.0;
-    W[5959] = (W[63] * W[5958] + W[456] * W[5565] + W[849] * W[5172] + W[1242] * W[4779] + W[1635] * W[4386]
-            + W[2028] * W[3993] + W[2421] * W[3600] + W[2814] * W[3207]) * 2.0;
-    W[5962] = (W[66] * W[5961] + W[459] * W[5568] + W[852] * W[5175] + W[1245] * W[4782] + W[1638] * W[4389]
-            + W[2031] * W[3996] + W[2424] * W[3603] + W[2817] * W[3210]) * 2.0;
-    W[5964] = (W[68] * W[5963] + W[461] * W[5570] + W[854] * W[5177] + W[1247] * W[4784] + W[1640] * W[4391]
-            + W[2033] * W[3998] + W[2426] * W[3605] + W[2819] * W[3212]) * 2.0;
-    W[5967] = (W[71] * W[5966] + W[464] * W[5573] + W[857] * W[5180] + W[1250] * W[4787] + W[1643] * W[4394]
-            + W[2036] * W[4001] + W[2429] * W[3608] + W[2822] * W[3215]) * 2.0;
-    W[5970] = (W[74] * W[5969] + W[467] * W[5576] + W[860] * W[5183] + W[1253] * W[4790] + W[1646] * W[4397]
-            + W[2039] * W[4004] + W[2432] * W[3611] + W[2825] * W[3218]) * 2.0;
-    W[5972] = (W[76] * W[5971] + W[469] * W[5578] + W[862] * W[5185] + W[1255] * W[4792] + W[1648] * W[4399]
-            + W[2041] * W[4006] + W[2434] * W[3613] + W[2827] * W[3220]) * 2.0;
-    W[5975] = (W[79] * W[5974] + W[472] * W[5581] + W[865] * W[5188] + W[1258] * W[4795] + W[1651] * W[4402]
-            + W[2044] * W[4009] + W[2437] * W[3616] + W[2830] * W[3223]) * 2.0;
-    W[5978] = (W[82] * W[5977] + W[475] * W[5584] + W[868] * W[5191] + W[1261] * W[4798] + W[1654] * W[4405]
-            + W[2047] * W[4012] + W[2440] * W[3619] + W[2833] * W[3226]) * 2.0;
-    W[5980] = (W[84] * W[5979] + W[477] * W[5586] + W[870] * W[5193] + W[1263] * W[4800] + W[1656] * W[4407]
-            + W[2049] * W[4014] + W[2442] * W[3621] + W[2835] * W[3228]) * 2.0;
-    W[5983] = (W[87] * W[5982] + W[480] * W[5589] + W[873] * W[5196] + W[1266] * W[4803] + W[1659] * W[4410]
-            + W[2052] * W[4017] + W[2445] * W[3624] + W[2838] * W[3231]) * 2.0;
-    W[5986] = (W[90] * W[5985] + W[483] * W[5592] + W[876] * W[5199] + W[1269] * W[4806] + W[1662] * W[4413]
-            + W[2055] * W[4020] + W[2448] * W[3627] + W[2841] * W[3234]) * 2.0;
-    W[5988] = (W[92] * W[5987] + W[485] * W[5594] + W[878] * W[5201] + W[1271] * W[4808] + W[1664] * W[4415]
-            + W[2057] * W[4022] + W[2450] * W[3629] + W[2843] * W[3236]) * 2.0;
-    W[5991] = (W[95] * W[5990] + W[488] * W[5597] + W[881] * W[5204] + W[1274] * W[4811] + W[1667] * W[4418]
-            + W[2060] * W[4025] + W[2453] * W[3632] + W[2846] * W[3239]) * 2.0;
-    W[5994] = (W[98] * W[5993] + W[491] * W[5600] + W[884] * W[5207] + W[1277] * W[4814] + W[1670] * W[4421]
-            + W[2063] * W[4028] + W[2456] * W[3635] + W[2849] * W[3242]) * 2.0;
-    W[5996] = (W[100] * W[5995] + W[493] * W[5602] + W[886] * W[5209] + W[1279] * W[4816] + W[1672] * W[4423]
-            + W[2065] * W[4030] + W[2458] * W[3637] + W[2851] * W[3244]) * 2.0;
-    W[5999] = (W[103] * W[5998] + W[496] * W[5605] + W[889] * W[5212] + W[1282] * W[4819] + W[1675] * W[4426]
-            + W[2068] * W[4033] + W[2461] * W[3640] + W[2854] * W[3247]) * 2.0;
-    W[6002] = (W[106] * W[6001] + W[499] * W[5608] + W[892] * W[5215] + W[1285] * W[4822] + W[1678] * W[4429]
-            + W[2071] * W[4036] + W[2464] * W[3643] + W[2857] * W[3250]) * 2.0;
-    W[6004] = (W[108] * W[6003] + W[501] * W[5610] + W[894] * W[5217] + W[1287] * W[4824] + W[1680] * W[4431]
-            + W[2073] * W[4038] + W[2466] * W[3645] + W[2859] * W[3252]) * 2.0;
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_277(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6007] = (W[111] * W[6006] + W[504] * W[5613] + W[897] * W[5220] + W[1290] * W[4827] + W[1683] * W[4434]
             + W[2076] * W[4041] + W[2469] * W[3648] + W[2862] * W[3255]) * 2.0;
     W[6010] = (W[114] * W[6009] + W[507] * W[5616] + W[900] * W[5223] + W[1293] * W[4830] + W[1686] * W[4437]
@@ -10811,106 +8338,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[5973] = W[5970] + W[5972];
     W[5981] = W[5978] + W[5980];
     W[5989] = W[5986] + W[5988];
-    W[5997] = W[5994] + W[5996];
-    W[6005] = W[6002] + W[6004];
-    W[6013] = W[6010] + W[6012];
-    W[6021] = W[6018] + W[6020];
-    W[6029] = W[6026] + W[6028];
-    W[5908] = W[5903] + W[5907];
-    W[5919] = W[5915] + W[5918];
-    W[5930] = W[5926] + W[5929];
-    W[5941] = W[5937] + W[5940];
-    W[5952] = W[5948] + W[5951];
-    W[5960] = W[5957] + W[5959];
-    W[5968] = W[5965] + W[5967];
-    W[5976] = W[5973] + W[5975];
-    W[5984] = W[5981] + W[5983];
-    W[5992] = W[5989] + W[5991];
-    W[6000] = W[5997] + W[5999];
-    W[6008] = W[6005] + W[6007];
-    W[6016] = W[6013] + W[6015];
-    W[6024] = W[6021] + W[6023];
-    W[6032] = W[6029] + W[6031];
-    W[6061] = (-22.5 * W[5952] * W[166] - 22.0 * W[5559] * W[559] - 21.5 * W[5166] * W[952] - 21.0 * W[4773] * W[1345]
-            - 20.5 * W[4380] * W[1738] - 20.0 * W[3987] * W[2131] - 19.5 * W[3594] * W[2524] - 19.0 * W[3201] * W[2917]
-            - 18.5 * W[2808] * W[3310] - 18.0 * W[2415] * W[3703] - 17.5 * W[2022] * W[4096] - 17.0 * W[1629] * W[4489]
-            - 16.5 * W[1236] * W[4882] - 16.0 * W[843] * W[5275] - 15.5 * W[450] * W[5668]) / (15.0 * W[57]);
-    W[6065] = (-22.5 * W[5941] * W[170] - 22.0 * W[5548] * W[563] - 21.5 * W[5155] * W[956] - 21.0 * W[4762] * W[1349]
-            - 20.5 * W[4369] * W[1742] - 20.0 * W[3976] * W[2135] - 19.5 * W[3583] * W[2528] - 19.0 * W[3190] * W[2921]
-            - 18.5 * W[2797] * W[3314] - 18.0 * W[2404] * W[3707] - 17.5 * W[2011] * W[4100] - 17.0 * W[1618] * W[4493]
-            - 16.5 * W[1225] * W[4886] - 16.0 * W[832] * W[5279] - 15.5 * W[439] * W[5672]) / (15.0 * W[46]);
-    W[6070] = (-22.5 * W[5930] * W[175] - 22.0 * W[5537] * W[568] - 21.5 * W[5144] * W[961] - 21.0 * W[4751] * W[1354]
-            - 20.5 * W[4358] * W[1747] - 20.0 * W[3965] * W[2140] - 19.5 * W[3572] * W[2533] - 19.0 * W[3179] * W[2926]
-            - 18.5 * W[2786] * W[3319] - 18.0 * W[2393] * W[3712] - 17.5 * W[2000] * W[4105] - 17.0 * W[1607] * W[4498]
-            - 16.5 * W[1214] * W[4891] - 16.0 * W[821] * W[5284] - 15.5 * W[428] * W[5677]) / (15.0 * W[35]);
-    W[6075] = (-22.5 * W[5919] * W[180] - 22.0 * W[5526] * W[573] - 21.5 * W[5133] * W[966] - 21.0 * W[4740] * W[1359]
-            - 20.5 * W[4347] * W[1752] - 20.0 * W[3954] * W[2145] - 19.5 * W[3561] * W[2538] - 19.0 * W[3168] * W[2931]
-            - 18.5 * W[2775] * W[3324] - 18.0 * W[2382] * W[3717] - 17.5 * W[1989] * W[4110] - 17.0 * W[1596] * W[4503]
-            - 16.5 * W[1203] * W[4896] - 16.0 * W[810] * W[5289] - 15.5 * W[417] * W[5682]) / (15.0 * W[24]);
-    W[6080] = (-22.5 * W[5908] * W[185] - 22.0 * W[5515] * W[578] - 21.5 * W[5122] * W[971] - 21.0 * W[4729] * W[1364]
-            - 20.5 * W[4336] * W[1757] - 20.0 * W[3943] * W[2150] - 19.5 * W[3550] * W[2543] - 19.0 * W[3157] * W[2936]
-            - 18.5 * W[2764] * W[3329] - 18.0 * W[2371] * W[3722] - 17.5 * W[1978] * W[4115] - 17.0 * W[1585] * W[4508]
-            - 16.5 * W[1192] * W[4901] - 16.0 * W[799] * W[5294] - 15.5 * W[406] * W[5687]) / (15.0 * W[13]);
-    W[6116] = (-22.5 * W[5984] * W[221] - 22.0 * W[5591] * W[614] - 21.5 * W[5198] * W[1007] - 21.0 * W[4805] * W[1400]
-            - 20.5 * W[4412] * W[1793] - 20.0 * W[4019] * W[2186] - 19.5 * W[3626] * W[2579] - 19.0 * W[3233] * W[2972]
-            - 18.5 * W[2840] * W[3365] - 18.0 * W[2447] * W[3758] - 17.5 * W[2054] * W[4151] - 17.0 * W[1661] * W[4544]
-            - 16.5 * W[1268] * W[4937] - 16.0 * W[875] * W[5330] - 15.5 * W[482] * W[5723]) / (15.0 * W[89]);
-    W[6120] = (-22.5 * W[5976] * W[225] - 22.0 * W[5583] * W[618] - 21.5 * W[5190] * W[1011] - 21.0 * W[4797] * W[1404]
-            - 20.5 * W[4404] * W[1797] - 20.0 * W[4011] * W[2190] - 19.5 * W[3618] * W[2583] - 19.0 * W[3225] * W[2976]
-            - 18.5 * W[2832] * W[3369] - 18.0 * W[2439] * W[3762] - 17.5 * W[2046] * W[4155] - 17.0 * W[1653] * W[4548]
-            - 16.5 * W[1260] * W[4941] - 16.0 * W[867] * W[5334] - 15.5 * W[474] * W[5727]) / (15.0 * W[81]);
-    W[6125] = (-22.5 * W[5968] * W[230] - 22.0 * W[5575] * W[623] - 21.5 * W[5182] * W[1016] - 21.0 * W[4789] * W[1409]
-            - 20.5 * W[4396] * W[1802] - 20.0 * W[4003] * W[2195] - 19.5 * W[3610] * W[2588] - 19.0 * W[3217] * W[2981]
-            - 18.5 * W[2824] * W[3374] - 18.0 * W[2431] * W[3767] - 17.5 * W[2038] * W[4160] - 17.0 * W[1645] * W[4553]
-            - 16.5 * W[1252] * W[4946] - 16.0 * W[859] * W[5339] - 15.5 * W[466] * W[5732]) / (15.0 * W[73]);
-    W[6130] = (-22.5 * W[5960] * W[235] - 22.0 * W[5567] * W[628] - 21.5 * W[5174] * W[1021] - 21.0 * W[4781] * W[1414]
-            - 20.5 * W[4388] * W[1807] - 20.0 * W[3995] * W[2200] - 19.5 * W[3602] * W[2593] - 19.0 * W[3209] * W[2986]
-            - 18.5 * W[2816] * W[3379] - 18.0 * W[2423] * W[3772] - 17.5 * W[2030] * W[4165] - 17.0 * W[1637] * W[4558]
-            - 16.5 * W[1244] * W[4951] - 16.0 * W[851] * W[5344] - 15.5 * W[458] * W[5737]) / (15.0 * W[65]);
-    W[6163] = (-22.5 * W[6008] * W[268] - 22.0 * W[5615] * W[661] - 21.5 * W[5222] * W[1054] - 21.0 * W[4829] * W[1447]
-            - 20.5 * W[4436] * W[1840] - 20.0 * W[4043] * W[2233] - 19.5 * W[3650] * W[2626] - 19.0 * W[3257] * W[3019]
-            - 18.5 * W[2864] * W[3412] - 18.0 * W[2471] * W[3805] - 17.5 * W[2078] * W[4198] - 17.0 * W[1685] * W[4591]
-            - 16.5 * W[1292] * W[4984] - 16.0 * W[899] * W[5377] - 15.5 * W[506] * W[5770]) / (15.0 * W[113]);
-    W[6167] = (-22.5 * W[6000] * W[272] - 22.0 * W[5607] * W[665] - 21.5 * W[5214] * W[1058] - 21.0 * W[4821] * W[1451]
-            - 20.5 * W[4428] * W[1844] - 20.0 * W[4035] * W[2237] - 19.5 * W[3642] * W[2630] - 19.0 * W[3249] * W[3023]
-            - 18.5 * W[2856] * W[3416] - 18.0 * W[2463] * W[3809] - 17.5 * W[2070] * W[4202] - 17.0 * W[1677] * W[4595]
-            - 16.5 * W[1284] * W[4988] - 16.0 * W[891] * W[5381] - 15.5 * W[498] * W[5774]) / (15.0 * W[105]);
-    W[6172] = (-22.5 * W[5992] * W[277] - 22.0 * W[5599] * W[670] - 21.5 * W[5206] * W[1063] - 21.0 * W[4813] * W[1456]
-            - 20.5 * W[4420] * W[1849] - 20.0 * W[4027] * W[2242] - 19.5 * W[3634] * W[2635] - 19.0 * W[3241] * W[3028]
-            - 18.5 * W[2848] * W[3421] - 18.0 * W[2455] * W[3814] - 17.5 * W[2062] * W[4207] - 17.0 * W[1669] * W[4600]
-            - 16.5 * W[1276] * W[4993] - 16.0 * W[883] * W[5386] - 15.5 * W[490] * W[5779]) / (15.0 * W[97]);
-    W[6202] = (-22.5 * W[6024] * W[307] - 22.0 * W[5631] * W[700] - 21.5 * W[5238] * W[1093] - 21.0 * W[4845] * W[1486]
-            - 20.5 * W[4452] * W[1879] - 20.0 * W[4059] * W[2272] - 19.5 * W[3666] * W[2665] - 19.0 * W[3273] * W[3058]
-            - 18.5 * W[2880] * W[3451] - 18.0 * W[2487] * W[3844] - 17.5 * W[2094] * W[4237] - 17.0 * W[1701] * W[4630]
-            - 16.5 * W[1308] * W[5023] - 16.0 * W[915] * W[5416] - 15.5 * W[522] * W[5809]) / (15.0 * W[129]);
-    W[6206] = (-22.5 * W[6016] * W[311] - 22.0 * W[5623] * W[704] - 21.5 * W[5230] * W[1097] - 21.0 * W[4837] * W[1490]
-            - 20.5 * W[4444] * W[1883] - 20.0 * W[4051] * W[2276] - 19.5 * W[3658] * W[2669] - 19.0 * W[3265] * W[3062]
-            - 18.5 * W[2872] * W[3455] - 18.0 * W[2479] * W[3848] - 17.5 * W[2086] * W[4241] - 17.0 * W[1693] * W[4634]
-            - 16.5 * W[1300] * W[5027] - 16.0 * W[907] * W[5420] - 15.5 * W[514] * W[5813]) / (15.0 * W[121]);
-    W[6233] = (-22.5 * W[6032] * W[338] - 22.0 * W[5639] * W[731] - 21.5 * W[5246] * W[1124] - 21.0 * W[4853] * W[1517]
-            - 20.5 * W[4460] * W[1910] - 20.0 * W[4067] * W[2303] - 19.5 * W[3674] * W[2696] - 19.0 * W[3281] * W[3089]
-            - 18.5 * W[2888] * W[3482] - 18.0 * W[2495] * W[3875] - 17.5 * W[2102] * W[4268] - 17.0 * W[1709] * W[4661]
-            - 16.5 * W[1316] * W[5054] - 16.0 * W[923] * W[5447] - 15.5 * W[530] * W[5840]) / (15.0 * W[137]);
-    W[6062] = W[48] * W[6061] + W[441] * W[5668] + W[834] * W[5275] + W[1227] * W[4882] + W[1620] * W[4489]
-            + W[2013] * W[4096] + W[2406] * W[3703] + W[2799] * W[3310] + W[3192] * W[2917] + W[3585] * W[2524]
-            + W[3978] * W[2131] + W[4371] * W[1738] + W[4764] * W[1345] + W[5157] * W[952] + W[5550] * W[559]
-            + W[5943] * W[166];
-    W[6066] = W[37] * W[6065] + W[430] * W[5672] + W[823] * W[5279] + W[1216] * W[4886] + W[1609] * W[4493]
-            + W[2002] * W[4100] + W[2395] * W[3707] + W[2788] * W[3314] + W[3181] * W[2921] + W[3574] * W[2528]
-            + W[3967] * W[2135] + W[4360] * W[1742] + W[4753] * W[1349] + W[5146] * W[956] + W[5539] * W[563]
-            + W[5932] * W[170];
-    W[6071] = W[26] * W[6070] + W[419] * W[5677] + W[812] * W[5284] + W[1205] * W[4891] + W[1598] * W[4498]
-            + W[1991] * W[4105] + W[2384] * W[3712] + W[2777] * W[3319] + W[3170] * W[2926] + W[3563] * W[2533]
-            + W[3956] * W[2140] + W[4349] * W[1747] + W[4742] * W[1354] + W[5135] * W[961] + W[5528] * W[568]
-            + W[5921] * W[175];
-    W[6076] = W[15] * W[6075] + W[408] * W[5682] + W[801] * W[5289] + W[1194] * W[4896] + W[1587] * W[4503]
-            + W[1980] * W[4110] + W[2373] * W[3717] + W[2766] * W[3324] + W[3159] * W[2931] + W[3552] * W[2538]
-            + W[3945] * W[2145] + W[4338] * W[1752] + W[4731] * W[1359] + W[5124] * W[966] + W[5517] * W[573]
-            + W[5910] * W[180];
-    W[6081] = W[2] * W[6080] + W[395] * W[5687] + W[788] * W[5294] + W[1181] * W[4901] + W[1574] * W[4508]
-            + W[1967] * W[4115] + W[2360] * W[3722] + W[2753] * W[3329] + W[3146] * W[2936] + W[3539] * W[2543]
-            + W[3932] * W[2150] + W[4325] * W[1757] + W[4718] * W[1364] + W[5111] * W[971] + W[5504] * W[578]
-            + W[5897] * W[185];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_280(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6085] = W[51] * W[6061] + W[444] * W[5668] + W[837] * W[5275] + W[1230] * W[4882] + W[1623] * W[4489]
             + W[2016] * W[4096] + W[2409] * W[3703] + W[2802] * W[3310] + W[3195] * W[2917] + W[3588] * W[2524]
             + W[3981] * W[2131] + W[4374] * W[1738] + W[4767] * W[1345] + W[5160] * W[952] + W[5553] * W[559]
@@ -10991,86 +8428,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[2044] * W[4155] + W[2437] * W[3762] + W[2830] * W[3369] + W[3223] * W[2976] + W[3616] * W[2583]
             + W[4009] * W[2190] + W[4402] * W[1797] + W[4795] * W[1404] + W[5188] * W[1011] + W[5581] * W[618]
             + W[5974] * W[225];
-    W[6154] = W[71] * W[6125] + W[464] * W[5732] + W[857] * W[5339] + W[1250] * W[4946] + W[1643] * W[4553]
-            + W[2036] * W[4160] + W[2429] * W[3767] + W[2822] * W[3374] + W[3215] * W[2981] + W[3608] * W[2588]
-            + W[4001] * W[2195] + W[4394] * W[1802] + W[4787] * W[1409] + W[5180] * W[1016] + W[5573] * W[623]
-            + W[5966] * W[230];
-    W[6157] = W[63] * W[6130] + W[456] * W[5737] + W[849] * W[5344] + W[1242] * W[4951] + W[1635] * W[4558]
-            + W[2028] * W[4165] + W[2421] * W[3772] + W[2814] * W[3379] + W[3207] * W[2986] + W[3600] * W[2593]
-            + W[3993] * W[2200] + W[4386] * W[1807] + W[4779] * W[1414] + W[5172] * W[1021] + W[5565] * W[628]
-            + W[5958] * W[235];
-    W[6164] = W[106] * W[6163] + W[499] * W[5770] + W[892] * W[5377] + W[1285] * W[4984] + W[1678] * W[4591]
-            + W[2071] * W[4198] + W[2464] * W[3805] + W[2857] * W[3412] + W[3250] * W[3019] + W[3643] * W[2626]
-            + W[4036] * W[2233] + W[4429] * W[1840] + W[4822] * W[1447] + W[5215] * W[1054] + W[5608] * W[661]
-            + W[6001] * W[268];
-    W[6168] = W[98] * W[6167] + W[491] * W[5774] + W[884] * W[5381] + W[1277] * W[4988] + W[1670] * W[4595]
-            + W[2063] * W[4202] + W[2456] * W[3809] + W[2849] * W[3416] + W[3242] * W[3023] + W[3635] * W[2630]
-            + W[4028] * W[2237] + W[4421] * W[1844] + W[4814] * W[1451] + W[5207] * W[1058] + W[5600] * W[665]
-            + W[5993] * W[272];
-    W[6173] = W[90] * W[6172] + W[483] * W[5779] + W[876] * W[5386] + W[1269] * W[4993] + W[1662] * W[4600]
-            + W[2055] * W[4207] + W[2448] * W[3814] + W[2841] * W[3421] + W[3234] * W[3028] + W[3627] * W[2635]
-            + W[4020] * W[2242] + W[4413] * W[1849] + W[4806] * W[1456] + W[5199] * W[1063] + W[5592] * W[670]
-            + W[5985] * W[277];
-    W[6179] = W[108] * W[6163] + W[501] * W[5770] + W[894] * W[5377] + W[1287] * W[4984] + W[1680] * W[4591]
-            + W[2073] * W[4198] + W[2466] * W[3805] + W[2859] * W[3412] + W[3252] * W[3019] + W[3645] * W[2626]
-            + W[4038] * W[2233] + W[4431] * W[1840] + W[4824] * W[1447] + W[5217] * W[1054] + W[5610] * W[661]
-            + W[6003] * W[268];
-    W[6181] = W[100] * W[6167] + W[493] * W[5774] + W[886] * W[5381] + W[1279] * W[4988] + W[1672] * W[4595]
-            + W[2065] * W[4202] + W[2458] * W[3809] + W[2851] * W[3416] + W[3244] * W[3023] + W[3637] * W[2630]
-            + W[4030] * W[2237] + W[4423] * W[1844] + W[4816] * W[1451] + W[5209] * W[1058] + W[5602] * W[665]
-            + W[5995] * W[272];
-    W[6184] = W[92] * W[6172] + W[485] * W[5779] + W[878] * W[5386] + W[1271] * W[4993] + W[1664] * W[4600]
-            + W[2057] * W[4207] + W[2450] * W[3814] + W[2843] * W[3421] + W[3236] * W[3028] + W[3629] * W[2635]
-            + W[4022] * W[2242] + W[4415] * W[1849] + W[4808] * W[1456] + W[5201] * W[1063] + W[5594] * W[670]
-            + W[5987] * W[277];
-    W[6190] = W[111] * W[6163] + W[504] * W[5770] + W[897] * W[5377] + W[1290] * W[4984] + W[1683] * W[4591]
-            + W[2076] * W[4198] + W[2469] * W[3805] + W[2862] * W[3412] + W[3255] * W[3019] + W[3648] * W[2626]
-            + W[4041] * W[2233] + W[4434] * W[1840] + W[4827] * W[1447] + W[5220] * W[1054] + W[5613] * W[661]
-            + W[6006] * W[268];
-    W[6192] = W[103] * W[6167] + W[496] * W[5774] + W[889] * W[5381] + W[1282] * W[4988] + W[1675] * W[4595]
-            + W[2068] * W[4202] + W[2461] * W[3809] + W[2854] * W[3416] + W[3247] * W[3023] + W[3640] * W[2630]
-            + W[4033] * W[2237] + W[4426] * W[1844] + W[4819] * W[1451] + W[5212] * W[1058] + W[5605] * W[665]
-            + W[5998] * W[272];
-    W[6195] = W[95] * W[6172] + W[488] * W[5779] + W[881] * W[5386] + W[1274] * W[4993] + W[1667] * W[4600]
-            + W[2060] * W[4207] + W[2453] * W[3814] + W[2846] * W[3421] + W[3239] * W[3028] + W[3632] * W[2635]
-            + W[4025] * W[2242] + W[4418] * W[1849] + W[4811] * W[1456] + W[5204] * W[1063] + W[5597] * W[670]
-            + W[5990] * W[277];
-    W[6203] = W[122] * W[6202] + W[515] * W[5809] + W[908] * W[5416] + W[1301] * W[5023] + W[1694] * W[4630]
-            + W[2087] * W[4237] + W[2480] * W[3844] + W[2873] * W[3451] + W[3266] * W[3058] + W[3659] * W[2665]
-            + W[4052] * W[2272] + W[4445] * W[1879] + W[4838] * W[1486] + W[5231] * W[1093] + W[5624] * W[700]
-            + W[6017] * W[307];
-    W[6207] = W[114] * W[6206] + W[507] * W[5813] + W[900] * W[5420] + W[1293] * W[5027] + W[1686] * W[4634]
-            + W[2079] * W[4241] + W[2472] * W[3848] + W[2865] * W[3455] + W[3258] * W[3062] + W[3651] * W[2669]
-            + W[4044] * W[2276] + W[4437] * W[1883] + W[4830] * W[1490] + W[5223] * W[1097] + W[5616] * W[704]
-            + W[6009] * W[311];
-    W[6214] = W[124] * W[6202] + W[517] * W[5809] + W[910] * W[5416] + W[1303] * W[5023] + W[1696] * W[4630]
-            + W[2089] * W[4237] + W[2482] * W[3844] + W[2875] * W[3451] + W[3268] * W[3058] + W[3661] * W[2665]
-            + W[4054] * W[2272] + W[4447] * W[1879] + W[4840] * W[1486] + W[5233] * W[1093] + W[5626] * W[700]
-            + W[6019] * W[307];
-    W[6216] = W[116] * W[6206] + W[509] * W[5813] + W[902] * W[5420] + W[1295] * W[5027] + W[1688] * W[4634]
-            + W[2081] * W[4241] + W[2474] * W[3848] + W[2867] * W[3455] + W[3260] * W[3062] + W[3653] * W[2669]
-            + W[4046] * W[2276] + W[4439] * W[1883] + W[4832] * W[1490] + W[5225] * W[1097] + W[5618] * W[704]
-            + W[6011] * W[311];
-    W[6223] = W[127] * W[6202] + W[520] * W[5809] + W[913] * W[5416] + W[1306] * W[5023] + W[1699] * W[4630]
-            + W[2092] * W[4237] + W[2485] * W[3844] + W[2878] * W[3451] + W[3271] * W[3058] + W[3664] * W[2665]
-            + W[4057] * W[2272] + W[4450] * W[1879] + W[4843] * W[1486] + W[5236] * W[1093] + W[5629] * W[700]
-            + W[6022] * W[307];
-    W[6225] = W[119] * W[6206] + W[512] * W[5813] + W[905] * W[5420] + W[1298] * W[5027] + W[1691] * W[4634]
-            + W[2084] * W[4241] + W[2477] * W[3848] + W[2870] * W[3455] + W[3263] * W[3062] + W[3656] * W[2669]
-            + W[4049] * W[2276] + W[4442] * W[1883] + W[4835] * W[1490] + W[5228] * W[1097] + W[5621] * W[704]
-            + W[6014] * W[311];
-    W[6234] = W[130] * W[6233] + W[523] * W[5840] + W[916] * W[5447] + W[1309] * W[5054] + W[1702] * W[4661]
-            + W[2095] * W[4268] + W[2488] * W[3875] + W[2881] * W[3482] + W[3274] * W[3089] + W[3667] * W[2696]
-            + W[4060] * W[2303] + W[4453] * W[1910] + W[4846] * W[1517] + W[5239] * W[1124] + W[5632] * W[731]
-            + W[6025] * W[338];
-    W[6241] = W[132] * W[6233] + W[525] * W[5840] + W[918] * W[5447] + W[1311] * W[5054] + W[1704] * W[4661]
-            + W[2097] * W[4268] + W[2490] * W[3875] + W[2883] * W[3482] + W[3276] * W[3089] + W[3669] * W[2696]
-            + W[4062] * W[2303] + W[4455] * W[1910] + W[4848] * W[1517] + W[5241] * W[1124] + W[5634] * W[731]
-            + W[6027] * W[338];
-    W[6248] = W[135] * W[6233] + W[528] * W[5840] + W[921] * W[5447] + W[1314] * W[5054] + W[1707] * W[4661]
-            + W[2100] * W[4268] + W[2493] * W[3875] + W[2886] * W[3482] + W[3279] * W[3089] + W[3672] * W[2696]
-            + W[4065] * W[2303] + W[4458] * W[1910] + W[4851] * W[1517] + W[5244] * W[1124] + W[5637] * W[731]
-            + W[6030] * W[338];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_282(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6063] = W[164] * W[6062];
     W[6067] = W[169] * W[6066];
     W[6072] = W[174] * W[6071];
@@ -11091,6 +8458,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[6127] = W[229] * W[6126];
     W[6132] = W[234] * W[6131];
     W[6137] = W[220] * W[6136];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_283(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6139] = W[224] * W[6138];
     W[6142] = W[229] * W[6141];
     W[6145] = W[234] * W[6144];
@@ -11111,6 +8488,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[6208] = W[310] * W[6207];
     W[6215] = W[306] * W[6214];
     W[6217] = W[310] * W[6216];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_284(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6224] = W[306] * W[6223];
     W[6226] = W[310] * W[6225];
     W[6235] = W[337] * W[6234];
@@ -11131,6 +8518,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[6236] = W[6235] - W[6208];
     W[6243] = W[6242] - W[6217];
     W[6250] = W[6249] - W[6226];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_285(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6255] = W[6204] + W[6235];
     W[6260] = W[6215] + W[6242];
     W[6265] = W[6224] + W[6249];
@@ -11151,6 +8548,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[6251] = W[6250] - W[6193];
     W[6256] = W[6165] + W[6255];
     W[6261] = W[6180] + W[6260];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_286(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6266] = W[6191] + W[6265];
     W[6078] = W[6073] + W[6077];
     W[6095] = W[6092] + W[6094];
@@ -11171,6 +8578,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[6262] = W[6137] + W[6261];
     W[6267] = W[6150] + W[6266];
     W[6083] = W[6078] + W[6082];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_287(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6098] = W[6095] + W[6097];
     W[6113] = W[6110] + W[6112];
     W[6134] = W[6133] - W[6082];
@@ -11191,26 +8608,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[6084] = W[161] * W[6083];
     W[6099] = W[161] * W[6098];
     W[6114] = W[161] * W[6113];
-    W[6135] = W[161] * W[6134];
-    W[6148] = W[161] * W[6147];
-    W[6161] = W[161] * W[6160];
-    W[6178] = W[161] * W[6177];
-    W[6189] = W[161] * W[6188];
-    W[6200] = W[161] * W[6199];
-    W[6213] = W[161] * W[6212];
-    W[6222] = W[161] * W[6221];
-    W[6231] = W[161] * W[6230];
-    W[6240] = W[161] * W[6239];
-    W[6247] = W[161] * W[6246];
-    W[6254] = W[161] * W[6253];
-    W[6259] = W[163] * W[6258];
-    W[6264] = W[163] * W[6263];
-    W[6269] = W[163] * W[6268];
-    X[576] = X[558] / 16.0;
-    X[577] = X[559] / 16.0;
-    X[578] = X[560] / 16.0;
-    X[579] = X[561] / 16.0;
-    X[580] = X[562] / 16.0;
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_289(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[581] = X[563] / 16.0;
     X[582] = X[564] / 16.0;
     X[583] = X[565] / 16.0;
@@ -11231,20 +8638,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[598] = -W[6148] / W[140] / 16.0;
     X[599] = -W[6161] / W[140] / 16.0;
     X[600] = -W[6178] / W[141] / 16.0;
-    X[601] = -W[6189] / W[141] / 16.0;
-    X[602] = -W[6200] / W[141] / 16.0;
-    X[603] = -W[6213] / W[142] / 16.0;
-    X[604] = -W[6222] / W[142] / 16.0;
-    X[605] = -W[6231] / W[142] / 16.0;
-    X[606] = -W[6240] / W[143] / 16.0;
-    X[607] = -W[6247] / W[143] / 16.0;
-    X[608] = -W[6254] / W[143] / 16.0;
-    X[609] = -W[6259] / W[144] / 16.0;
-    X[610] = -W[6264] / W[144] / 16.0;
-    X[611] = -W[6269] / W[144] / 16.0;
-    if (K == 16)
-        goto out;
-    /* order 16 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_291(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6290] = X[576] - X[579];
     W[6294] = X[577] - X[580];
     W[6299] = X[578] - X[581];
@@ -11265,26 +8668,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[6351] = X[581] - X[584];
     W[6354] = X[579] - X[585];
     W[6356] = X[580] - X[586];
-    W[6359] = X[581] - X[587];
-    W[6362] = X[579] - X[588];
-    W[6364] = X[580] - X[589];
-    W[6367] = X[581] - X[590];
-    W[6370] = X[579] - X[591];
-    W[6372] = X[580] - X[592];
-    W[6375] = X[581] - X[593];
-    W[6378] = X[582] - X[585];
-    W[6380] = X[583] - X[586];
-    W[6383] = X[584] - X[587];
-    W[6386] = X[582] - X[588];
-    W[6388] = X[583] - X[589];
-    W[6391] = X[584] - X[590];
-    W[6394] = X[582] - X[591];
-    W[6396] = X[583] - X[592];
-    W[6399] = X[584] - X[593];
-    W[6402] = X[585] - X[588];
-    W[6404] = X[586] - X[589];
-    W[6407] = X[587] - X[590];
-    W[6410] = X[585] - X[591];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_293(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6412] = X[586] - X[592];
     W[6415] = X[587] - X[593];
     W[6418] = X[588] - X[591];
@@ -11320,46 +8713,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[2016] * W[4374] + W[2409] * W[3981] + W[2802] * W[3588]) * 2.0 + W[3195] * W[3195];
     W[6344] = (W[55] * W[6343] + W[448] * W[5950] + W[841] * W[5557] + W[1234] * W[5164] + W[1627] * W[4771]
             + W[2020] * W[4378] + W[2413] * W[3985] + W[2806] * W[3592]) * 2.0 + W[3199] * W[3199];
-    W[6347] = (W[58] * W[6346] + W[451] * W[5953] + W[844] * W[5560] + W[1237] * W[5167] + W[1630] * W[4774]
-            + W[2023] * W[4381] + W[2416] * W[3988] + W[2809] * W[3595]) * 2.0 + W[3202] * W[3202];
-    W[6349] = (W[60] * W[6348] + W[453] * W[5955] + W[846] * W[5562] + W[1239] * W[5169] + W[1632] * W[4776]
-            + W[2025] * W[4383] + W[2418] * W[3990] + W[2811] * W[3597]) * 2.0 + W[3204] * W[3204];
-    W[6352] = (W[63] * W[6351] + W[456] * W[5958] + W[849] * W[5565] + W[1242] * W[5172] + W[1635] * W[4779]
-            + W[2028] * W[4386] + W[2421] * W[3993] + W[2814] * W[3600]) * 2.0 + W[3207] * W[3207];
-    W[6355] = (W[66] * W[6354] + W[459] * W[5961] + W[852] * W[5568] + W[1245] * W[5175] + W[1638] * W[4782]
-            + W[2031] * W[4389] + W[2424] * W[3996] + W[2817] * W[3603]) * 2.0 + W[3210] * W[3210];
-    W[6357] = (W[68] * W[6356] + W[461] * W[5963] + W[854] * W[5570] + W[1247] * W[5177] + W[1640] * W[4784]
-            + W[2033] * W[4391] + W[2426] * W[3998] + W[2819] * W[3605]) * 2.0 + W[3212] * W[3212];
-    W[6360] = (W[71] * W[6359] + W[464] * W[5966] + W[857] * W[5573] + W[1250] * W[5180] + W[1643] * W[4787]
-            + W[2036] * W[4394] + W[2429] * W[4001] + W[2822] * W[3608]) * 2.0 + W[3215] * W[3215];
-    W[6363] = (W[74] * W[6362] + W[467] * W[5969] + W[860] * W[5576] + W[1253] * W[5183] + W[1646] * W[4790]
-            + W[2039] * W[4397] + W[2432] * W[4004] + W[2825] * W[3611]) * 2.0 + W[3218] * W[3218];
-    W[6365] = (W[76] * W[6364] + W[469] * W[5971] + W[862] * W[5578] + W[1255] * W[5185] + W[1648] * W[4792]
-            + W[2041] * W[4399] + W[2434] * W[4006] + W[2827] * W[3613]) * 2.0 + W[3220] * W[3220];
-    W[6368] = (W[79] * W[6367] + W[472] * W[5974] + W[865] * W[5581] + W[1258] * W[5188] + W[1651] * W[4795]
-            + W[2044] * W[4402] + W[2437] * W[4009] + W[2830] * W[3616]) * 2.0 + W[3223] * W[3223];
-    W[6371] = (W[82] * W[6370] + W[475] * W[5977] + W[868] * W[5584] + W[1261] * W[5191] + W[1654] * W[4798]
-            + W[2047] * W[4405] + W[2440] * W[4012] + W[2833] * W[3619]) * 2.0 + W[3226] * W[3226];
-    W[6373] = (W[84] * W[6372] + W[477] * W[5979] + W[870] * W[5586] + W[1263] * W[5193] + W[1656] * W[4800]
-            + W[2049] * W[4407] + W[2442] * W[4014] + W[2835] * W[3621]) * 2.0 + W[3228] * W[3228];
-    W[6376] = (W[87] * W[6375] + W[480] * W[5982] + W[873] * W[5589] + W[1266] * W[5196] + W[1659] * W[4803]
-            + W[2052] * W[4410] + W[2445] * W[4017] + W[2838] * W[3624]) * 2.0 + W[3231] * W[3231];
-    W[6379] = (W[90] * W[6378] + W[483] * W[5985] + W[876] * W[5592] + W[1269] * W[5199] + W[1662] * W[4806]
-            + W[2055] * W[4413] + W[2448] * W[4020] + W[2841] * W[3627]) * 2.0 + W[3234] * W[3234];
-    W[6381] = (W[92] * W[6380] + W[485] * W[5987] + W[878] * W[5594] + W[1271] * W[5201] + W[1664] * W[4808]
-            + W[2057] * W[4415] + W[2450] * W[4022] + W[2843] * W[3629]) * 2.0 + W[3236] * W[3236];
-    W[6384] = (W[95] * W[6383] + W[488] * W[5990] + W[881] * W[5597] + W[1274] * W[5204] + W[1667] * W[4811]
-            + W[2060] * W[4418] + W[2453] * W[4025] + W[2846] * W[3632]) * 2.0 + W[3239] * W[3239];
-    W[6387] = (W[98] * W[6386] + W[491] * W[5993] + W[884] * W[5600] + W[1277] * W[5207] + W[1670] * W[4814]
-            + W[2063] * W[4421] + W[2456] * W[4028] + W[2849] * W[3635]) * 2.0 + W[3242] * W[3242];
-    W[6389] = (W[100] * W[6388] + W[493] * W[5995] + W[886] * W[5602] + W[1279] * W[5209] + W[1672] * W[4816]
-            + W[2065] * W[4423] + W[2458] * W[4030] + W[2851] * W[3637]) * 2.0 + W[3244] * W[3244];
-    W[6392] = (W[103] * W[6391] + W[496] * W[5998] + W[889] * W[5605] + W[1282] * W[5212] + W[1675] * W[4819]
-            + W[2068] * W[4426] + W[2461] * W[4033] + W[2854] * W[3640]) * 2.0 + W[3247] * W[3247];
-    W[6395] = (W[106] * W[6394] + W[499] * W[6001] + W[892] * W[5608] + W[1285] * W[5215] + W[1678] * W[4822]
-            + W[2071] * W[4429] + W[2464] * W[4036] + W[2857] * W[3643]) * 2.0 + W[3250] * W[3250];
-    W[6397] = (W[108] * W[6396] + W[501] * W[6003] + W[894] * W[5610] + W[1287] * W[5217] + W[1680] * W[4824]
-            + W[2073] * W[4431] + W[2466] * W[4038] + W[2859] * W[3645]) * 2.0 + W[3252] * W[3252];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_295(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6400] = (W[111] * W[6399] + W[504] * W[6006] + W[897] * W[5613] + W[1290] * W[5220] + W[1683] * W[4827]
             + W[2076] * W[4434] + W[2469] * W[4041] + W[2862] * W[3648]) * 2.0 + W[3255] * W[3255];
     W[6403] = (W[114] * W[6402] + W[507] * W[6009] + W[900] * W[5616] + W[1293] * W[5223] + W[1686] * W[4830]
@@ -11390,106 +8753,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[6366] = W[6363] + W[6365];
     W[6374] = W[6371] + W[6373];
     W[6382] = W[6379] + W[6381];
-    W[6390] = W[6387] + W[6389];
-    W[6398] = W[6395] + W[6397];
-    W[6406] = W[6403] + W[6405];
-    W[6414] = W[6411] + W[6413];
-    W[6422] = W[6419] + W[6421];
-    W[6301] = W[6296] + W[6300];
-    W[6312] = W[6308] + W[6311];
-    W[6323] = W[6319] + W[6322];
-    W[6334] = W[6330] + W[6333];
-    W[6345] = W[6341] + W[6344];
-    W[6353] = W[6350] + W[6352];
-    W[6361] = W[6358] + W[6360];
-    W[6369] = W[6366] + W[6368];
-    W[6377] = W[6374] + W[6376];
-    W[6385] = W[6382] + W[6384];
-    W[6393] = W[6390] + W[6392];
-    W[6401] = W[6398] + W[6400];
-    W[6409] = W[6406] + W[6408];
-    W[6417] = W[6414] + W[6416];
-    W[6425] = W[6422] + W[6424];
-    W[6454] = (-24.0 * W[6345] * W[166] - 23.5 * W[5952] * W[559] - 23.0 * W[5559] * W[952] - 22.5 * W[5166] * W[1345]
-            - 22.0 * W[4773] * W[1738] - 21.5 * W[4380] * W[2131] - 21.0 * W[3987] * W[2524] - 20.5 * W[3594] * W[2917]
-            - 20.0 * W[3201] * W[3310] - 19.5 * W[2808] * W[3703] - 19.0 * W[2415] * W[4096] - 18.5 * W[2022] * W[4489]
-            - 18.0 * W[1629] * W[4882] - 17.5 * W[1236] * W[5275] - 17.0 * W[843] * W[5668] - 16.5 * W[450] * W[6061]) / (16.0 * W[57]);
-    W[6458] = (-24.0 * W[6334] * W[170] - 23.5 * W[5941] * W[563] - 23.0 * W[5548] * W[956] - 22.5 * W[5155] * W[1349]
-            - 22.0 * W[4762] * W[1742] - 21.5 * W[4369] * W[2135] - 21.0 * W[3976] * W[2528] - 20.5 * W[3583] * W[2921]
-            - 20.0 * W[3190] * W[3314] - 19.5 * W[2797] * W[3707] - 19.0 * W[2404] * W[4100] - 18.5 * W[2011] * W[4493]
-            - 18.0 * W[1618] * W[4886] - 17.5 * W[1225] * W[5279] - 17.0 * W[832] * W[5672] - 16.5 * W[439] * W[6065]) / (16.0 * W[46]);
-    W[6463] = (-24.0 * W[6323] * W[175] - 23.5 * W[5930] * W[568] - 23.0 * W[5537] * W[961] - 22.5 * W[5144] * W[1354]
-            - 22.0 * W[4751] * W[1747] - 21.5 * W[4358] * W[2140] - 21.0 * W[3965] * W[2533] - 20.5 * W[3572] * W[2926]
-            - 20.0 * W[3179] * W[3319] - 19.5 * W[2786] * W[3712] - 19.0 * W[2393] * W[4105] - 18.5 * W[2000] * W[4498]
-            - 18.0 * W[1607] * W[4891] - 17.5 * W[1214] * W[5284] - 17.0 * W[821] * W[5677] - 16.5 * W[428] * W[6070]) / (16.0 * W[35]);
-    W[6468] = (-24.0 * W[6312] * W[180] - 23.5 * W[5919] * W[573] - 23.0 * W[5526] * W[966] - 22.5 * W[5133] * W[1359]
-            - 22.0 * W[4740] * W[1752] - 21.5 * W[4347] * W[2145] - 21.0 * W[3954] * W[2538] - 20.5 * W[3561] * W[2931]
-            - 20.0 * W[3168] * W[3324] - 19.5 * W[2775] * W[3717] - 19.0 * W[2382] * W[4110] - 18.5 * W[1989] * W[4503]
-            - 18.0 * W[1596] * W[4896] - 17.5 * W[1203] * W[5289] - 17.0 * W[810] * W[5682] - 16.5 * W[417] * W[6075]) / (16.0 * W[24]);
-    W[6473] = (-24.0 * W[6301] * W[185] - 23.5 * W[5908] * W[578] - 23.0 * W[5515] * W[971] - 22.5 * W[5122] * W[1364]
-            - 22.0 * W[4729] * W[1757] - 21.5 * W[4336] * W[2150] - 21.0 * W[3943] * W[2543] - 20.5 * W[3550] * W[2936]
-            - 20.0 * W[3157] * W[3329] - 19.5 * W[2764] * W[3722] - 19.0 * W[2371] * W[4115] - 18.5 * W[1978] * W[4508]
-            - 18.0 * W[1585] * W[4901] - 17.5 * W[1192] * W[5294] - 17.0 * W[799] * W[5687] - 16.5 * W[406] * W[6080]) / (16.0 * W[13]);
-    W[6509] = (-24.0 * W[6377] * W[221] - 23.5 * W[5984] * W[614] - 23.0 * W[5591] * W[1007] - 22.5 * W[5198] * W[1400]
-            - 22.0 * W[4805] * W[1793] - 21.5 * W[4412] * W[2186] - 21.0 * W[4019] * W[2579] - 20.5 * W[3626] * W[2972]
-            - 20.0 * W[3233] * W[3365] - 19.5 * W[2840] * W[3758] - 19.0 * W[2447] * W[4151] - 18.5 * W[2054] * W[4544]
-            - 18.0 * W[1661] * W[4937] - 17.5 * W[1268] * W[5330] - 17.0 * W[875] * W[5723] - 16.5 * W[482] * W[6116]) / (16.0 * W[89]);
-    W[6513] = (-24.0 * W[6369] * W[225] - 23.5 * W[5976] * W[618] - 23.0 * W[5583] * W[1011] - 22.5 * W[5190] * W[1404]
-            - 22.0 * W[4797] * W[1797] - 21.5 * W[4404] * W[2190] - 21.0 * W[4011] * W[2583] - 20.5 * W[3618] * W[2976]
-            - 20.0 * W[3225] * W[3369] - 19.5 * W[2832] * W[3762] - 19.0 * W[2439] * W[4155] - 18.5 * W[2046] * W[4548]
-            - 18.0 * W[1653] * W[4941] - 17.5 * W[1260] * W[5334] - 17.0 * W[867] * W[5727] - 16.5 * W[474] * W[6120]) / (16.0 * W[81]);
-    W[6518] = (-24.0 * W[6361] * W[230] - 23.5 * W[5968] * W[623] - 23.0 * W[5575] * W[1016] - 22.5 * W[5182] * W[1409]
-            - 22.0 * W[4789] * W[1802] - 21.5 * W[4396] * W[2195] - 21.0 * W[4003] * W[2588] - 20.5 * W[3610] * W[2981]
-            - 20.0 * W[3217] * W[3374] - 19.5 * W[2824] * W[3767] - 19.0 * W[2431] * W[4160] - 18.5 * W[2038] * W[4553]
-            - 18.0 * W[1645] * W[4946] - 17.5 * W[1252] * W[5339] - 17.0 * W[859] * W[5732] - 16.5 * W[466] * W[6125]) / (16.0 * W[73]);
-    W[6523] = (-24.0 * W[6353] * W[235] - 23.5 * W[5960] * W[628] - 23.0 * W[5567] * W[1021] - 22.5 * W[5174] * W[1414]
-            - 22.0 * W[4781] * W[1807] - 21.5 * W[4388] * W[2200] - 21.0 * W[3995] * W[2593] - 20.5 * W[3602] * W[2986]
-            - 20.0 * W[3209] * W[3379] - 19.5 * W[2816] * W[3772] - 19.0 * W[2423] * W[4165] - 18.5 * W[2030] * W[4558]
-            - 18.0 * W[1637] * W[4951] - 17.5 * W[1244] * W[5344] - 17.0 * W[851] * W[5737] - 16.5 * W[458] * W[6130]) / (16.0 * W[65]);
-    W[6556] = (-24.0 * W[6401] * W[268] - 23.5 * W[6008] * W[661] - 23.0 * W[5615] * W[1054] - 22.5 * W[5222] * W[1447]
-            - 22.0 * W[4829] * W[1840] - 21.5 * W[4436] * W[2233] - 21.0 * W[4043] * W[2626] - 20.5 * W[3650] * W[3019]
-            - 20.0 * W[3257] * W[3412] - 19.5 * W[2864] * W[3805] - 19.0 * W[2471] * W[4198] - 18.5 * W[2078] * W[4591]
-            - 18.0 * W[1685] * W[4984] - 17.5 * W[1292] * W[5377] - 17.0 * W[899] * W[5770] - 16.5 * W[506] * W[6163]) / (16.0 * W[113]);
-    W[6560] = (-24.0 * W[6393] * W[272] - 23.5 * W[6000] * W[665] - 23.0 * W[5607] * W[1058] - 22.5 * W[5214] * W[1451]
-            - 22.0 * W[4821] * W[1844] - 21.5 * W[4428] * W[2237] - 21.0 * W[4035] * W[2630] - 20.5 * W[3642] * W[3023]
-            - 20.0 * W[3249] * W[3416] - 19.5 * W[2856] * W[3809] - 19.0 * W[2463] * W[4202] - 18.5 * W[2070] * W[4595]
-            - 18.0 * W[1677] * W[4988] - 17.5 * W[1284] * W[5381] - 17.0 * W[891] * W[5774] - 16.5 * W[498] * W[6167]) / (16.0 * W[105]);
-    W[6565] = (-24.0 * W[6385] * W[277] - 23.5 * W[5992] * W[670] - 23.0 * W[5599] * W[1063] - 22.5 * W[5206] * W[1456]
-            - 22.0 * W[4813] * W[1849] - 21.5 * W[4420] * W[2242] - 21.0 * W[4027] * W[2635] - 20.5 * W[3634] * W[3028]
-            - 20.0 * W[3241] * W[3421] - 19.5 * W[2848] * W[3814] - 19.0 * W[2455] * W[4207] - 18.5 * W[2062] * W[4600]
-            - 18.0 * W[1669] * W[4993] - 17.5 * W[1276] * W[5386] - 17.0 * W[883] * W[5779] - 16.5 * W[490] * W[6172]) / (16.0 * W[97]);
-    W[6595] = (-24.0 * W[6417] * W[307] - 23.5 * W[6024] * W[700] - 23.0 * W[5631] * W[1093] - 22.5 * W[5238] * W[1486]
-            - 22.0 * W[4845] * W[1879] - 21.5 * W[4452] * W[2272] - 21.0 * W[4059] * W[2665] - 20.5 * W[3666] * W[3058]
-            - 20.0 * W[3273] * W[3451] - 19.5 * W[2880] * W[3844] - 19.0 * W[2487] * W[4237] - 18.5 * W[2094] * W[4630]
-            - 18.0 * W[1701] * W[5023] - 17.5 * W[1308] * W[5416] - 17.0 * W[915] * W[5809] - 16.5 * W[522] * W[6202]) / (16.0 * W[129]);
-    W[6599] = (-24.0 * W[6409] * W[311] - 23.5 * W[6016] * W[704] - 23.0 * W[5623] * W[1097] - 22.5 * W[5230] * W[1490]
-            - 22.0 * W[4837] * W[1883] - 21.5 * W[4444] * W[2276] - 21.0 * W[4051] * W[2669] - 20.5 * W[3658] * W[3062]
-            - 20.0 * W[3265] * W[3455] - 19.5 * W[2872] * W[3848] - 19.0 * W[2479] * W[4241] - 18.5 * W[2086] * W[4634]
-            - 18.0 * W[1693] * W[5027] - 17.5 * W[1300] * W[5420] - 17.0 * W[907] * W[5813] - 16.5 * W[514] * W[6206]) / (16.0 * W[121]);
-    W[6626] = (-24.0 * W[6425] * W[338] - 23.5 * W[6032] * W[731] - 23.0 * W[5639] * W[1124] - 22.5 * W[5246] * W[1517]
-            - 22.0 * W[4853] * W[1910] - 21.5 * W[4460] * W[2303] - 21.0 * W[4067] * W[2696] - 20.5 * W[3674] * W[3089]
-            - 20.0 * W[3281] * W[3482] - 19.5 * W[2888] * W[3875] - 19.0 * W[2495] * W[4268] - 18.5 * W[2102] * W[4661]
-            - 18.0 * W[1709] * W[5054] - 17.5 * W[1316] * W[5447] - 17.0 * W[923] * W[5840] - 16.5 * W[530] * W[6233]) / (16.0 * W[137]);
-    W[6455] = W[48] * W[6454] + W[441] * W[6061] + W[834] * W[5668] + W[1227] * W[5275] + W[1620] * W[4882]
-            + W[2013] * W[4489] + W[2406] * W[4096] + W[2799] * W[3703] + W[3192] * W[3310] + W[3585] * W[2917]
-            + W[3978] * W[2524] + W[4371] * W[2131] + W[4764] * W[1738] + W[5157] * W[1345] + W[5550] * W[952]
-            + W[5943] * W[559] + W[6336] * W[166];
-    W[6459] = W[37] * W[6458] + W[430] * W[6065] + W[823] * W[5672] + W[1216] * W[5279] + W[1609] * W[4886]
-            + W[2002] * W[4493] + W[2395] * W[4100] + W[2788] * W[3707] + W[3181] * W[3314] + W[3574] * W[2921]
-            + W[3967] * W[2528] + W[4360] * W[2135] + W[4753] * W[1742] + W[5146] * W[1349] + W[5539] * W[956]
-            + W[5932] * W[563] + W[6325] * W[170];
-    W[6464] = W[26] * W[6463] + W[419] * W[6070] + W[812] * W[5677] + W[1205] * W[5284] + W[1598] * W[4891]
-            + W[1991] * W[4498] + W[2384] * W[4105] + W[2777] * W[3712] + W[3170] * W[3319] + W[3563] * W[2926]
-            + W[3956] * W[2533] + W[4349] * W[2140] + W[4742] * W[1747] + W[5135] * W[1354] + W[5528] * W[961]
-            + W[5921] * W[568] + W[6314] * W[175];
-    W[6469] = W[15] * W[6468] + W[408] * W[6075] + W[801] * W[5682] + W[1194] * W[5289] + W[1587] * W[4896]
-            + W[1980] * W[4503] + W[2373] * W[4110] + W[2766] * W[3717] + W[3159] * W[3324] + W[3552] * W[2931]
-            + W[3945] * W[2538] + W[4338] * W[2145] + W[4731] * W[1752] + W[5124] * W[1359] + W[5517] * W[966]
-            + W[5910] * W[573] + W[6303] * W[180];
-    W[6474] = W[2] * W[6473] + W[395] * W[6080] + W[788] * W[5687] + W[1181] * W[5294] + W[1574] * W[4901]
-            + W[1967] * W[4508] + W[2360] * W[4115] + W[2753] * W[3722] + W[3146] * W[3329] + W[3539] * W[2936]
-            + W[3932] * W[2543] + W[4325] * W[2150] + W[4718] * W[1757] + W[5111] * W[1364] + W[5504] * W[971]
-            + W[5897] * W[578] + W[6290] * W[185];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_298(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6478] = W[51] * W[6454] + W[444] * W[6061] + W[837] * W[5668] + W[1230] * W[5275] + W[1623] * W[4882]
             + W[2016] * W[4489] + W[2409] * W[4096] + W[2802] * W[3703] + W[3195] * W[3310] + W[3588] * W[2917]
             + W[3981] * W[2524] + W[4374] * W[2131] + W[4767] * W[1738] + W[5160] * W[1345] + W[5553] * W[952]
@@ -11570,86 +8843,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[2044] * W[4548] + W[2437] * W[4155] + W[2830] * W[3762] + W[3223] * W[3369] + W[3616] * W[2976]
             + W[4009] * W[2583] + W[4402] * W[2190] + W[4795] * W[1797] + W[5188] * W[1404] + W[5581] * W[1011]
             + W[5974] * W[618] + W[6367] * W[225];
-    W[6547] = W[71] * W[6518] + W[464] * W[6125] + W[857] * W[5732] + W[1250] * W[5339] + W[1643] * W[4946]
-            + W[2036] * W[4553] + W[2429] * W[4160] + W[2822] * W[3767] + W[3215] * W[3374] + W[3608] * W[2981]
-            + W[4001] * W[2588] + W[4394] * W[2195] + W[4787] * W[1802] + W[5180] * W[1409] + W[5573] * W[1016]
-            + W[5966] * W[623] + W[6359] * W[230];
-    W[6550] = W[63] * W[6523] + W[456] * W[6130] + W[849] * W[5737] + W[1242] * W[5344] + W[1635] * W[4951]
-            + W[2028] * W[4558] + W[2421] * W[4165] + W[2814] * W[3772] + W[3207] * W[3379] + W[3600] * W[2986]
-            + W[3993] * W[2593] + W[4386] * W[2200] + W[4779] * W[1807] + W[5172] * W[1414] + W[5565] * W[1021]
-            + W[5958] * W[628] + W[6351] * W[235];
-    W[6557] = W[106] * W[6556] + W[499] * W[6163] + W[892] * W[5770] + W[1285] * W[5377] + W[1678] * W[4984]
-            + W[2071] * W[4591] + W[2464] * W[4198] + W[2857] * W[3805] + W[3250] * W[3412] + W[3643] * W[3019]
-            + W[4036] * W[2626] + W[4429] * W[2233] + W[4822] * W[1840] + W[5215] * W[1447] + W[5608] * W[1054]
-            + W[6001] * W[661] + W[6394] * W[268];
-    W[6561] = W[98] * W[6560] + W[491] * W[6167] + W[884] * W[5774] + W[1277] * W[5381] + W[1670] * W[4988]
-            + W[2063] * W[4595] + W[2456] * W[4202] + W[2849] * W[3809] + W[3242] * W[3416] + W[3635] * W[3023]
-            + W[4028] * W[2630] + W[4421] * W[2237] + W[4814] * W[1844] + W[5207] * W[1451] + W[5600] * W[1058]
-            + W[5993] * W[665] + W[6386] * W[272];
-    W[6566] = W[90] * W[6565] + W[483] * W[6172] + W[876] * W[5779] + W[1269] * W[5386] + W[1662] * W[4993]
-            + W[2055] * W[4600] + W[2448] * W[4207] + W[2841] * W[3814] + W[3234] * W[3421] + W[3627] * W[3028]
-            + W[4020] * W[2635] + W[4413] * W[2242] + W[4806] * W[1849] + W[5199] * W[1456] + W[5592] * W[1063]
-            + W[5985] * W[670] + W[6378] * W[277];
-    W[6572] = W[108] * W[6556] + W[501] * W[6163] + W[894] * W[5770] + W[1287] * W[5377] + W[1680] * W[4984]
-            + W[2073] * W[4591] + W[2466] * W[4198] + W[2859] * W[3805] + W[3252] * W[3412] + W[3645] * W[3019]
-            + W[4038] * W[2626] + W[4431] * W[2233] + W[4824] * W[1840] + W[5217] * W[1447] + W[5610] * W[1054]
-            + W[6003] * W[661] + W[6396] * W[268];
-    W[6574] = W[100] * W[6560] + W[493] * W[6167] + W[886] * W[5774] + W[1279] * W[5381] + W[1672] * W[4988]
-            + W[2065] * W[4595] + W[2458] * W[4202] + W[2851] * W[3809] + W[3244] * W[3416] + W[3637] * W[3023]
-            + W[4030] * W[2630] + W[4423] * W[2237] + W[4816] * W[1844] + W[5209] * W[1451] + W[5602] * W[1058]
-            + W[5995] * W[665] + W[6388] * W[272];
-    W[6577] = W[92] * W[6565] + W[485] * W[6172] + W[878] * W[5779] + W[1271] * W[5386] + W[1664] * W[4993]
-            + W[2057] * W[4600] + W[2450] * W[4207] + W[2843] * W[3814] + W[3236] * W[3421] + W[3629] * W[3028]
-            + W[4022] * W[2635] + W[4415] * W[2242] + W[4808] * W[1849] + W[5201] * W[1456] + W[5594] * W[1063]
-            + W[5987] * W[670] + W[6380] * W[277];
-    W[6583] = W[111] * W[6556] + W[504] * W[6163] + W[897] * W[5770] + W[1290] * W[5377] + W[1683] * W[4984]
-            + W[2076] * W[4591] + W[2469] * W[4198] + W[2862] * W[3805] + W[3255] * W[3412] + W[3648] * W[3019]
-            + W[4041] * W[2626] + W[4434] * W[2233] + W[4827] * W[1840] + W[5220] * W[1447] + W[5613] * W[1054]
-            + W[6006] * W[661] + W[6399] * W[268];
-    W[6585] = W[103] * W[6560] + W[496] * W[6167] + W[889] * W[5774] + W[1282] * W[5381] + W[1675] * W[4988]
-            + W[2068] * W[4595] + W[2461] * W[4202] + W[2854] * W[3809] + W[3247] * W[3416] + W[3640] * W[3023]
-            + W[4033] * W[2630] + W[4426] * W[2237] + W[4819] * W[1844] + W[5212] * W[1451] + W[5605] * W[1058]
-            + W[5998] * W[665] + W[6391] * W[272];
-    W[6588] = W[95] * W[6565] + W[488] * W[6172] + W[881] * W[5779] + W[1274] * W[5386] + W[1667] * W[4993]
-            + W[2060] * W[4600] + W[2453] * W[4207] + W[2846] * W[3814] + W[3239] * W[3421] + W[3632] * W[3028]
-            + W[4025] * W[2635] + W[4418] * W[2242] + W[4811] * W[1849] + W[5204] * W[1456] + W[5597] * W[1063]
-            + W[5990] * W[670] + W[6383] * W[277];
-    W[6596] = W[122] * W[6595] + W[515] * W[6202] + W[908] * W[5809] + W[1301] * W[5416] + W[1694] * W[5023]
-            + W[2087] * W[4630] + W[2480] * W[4237] + W[2873] * W[3844] + W[3266] * W[3451] + W[3659] * W[3058]
-            + W[4052] * W[2665] + W[4445] * W[2272] + W[4838] * W[1879] + W[5231] * W[1486] + W[5624] * W[1093]
-            + W[6017] * W[700] + W[6410] * W[307];
-    W[6600] = W[114] * W[6599] + W[507] * W[6206] + W[900] * W[5813] + W[1293] * W[5420] + W[1686] * W[5027]
-            + W[2079] * W[4634] + W[2472] * W[4241] + W[2865] * W[3848] + W[3258] * W[3455] + W[3651] * W[3062]
-            + W[4044] * W[2669] + W[4437] * W[2276] + W[4830] * W[1883] + W[5223] * W[1490] + W[5616] * W[1097]
-            + W[6009] * W[704] + W[6402] * W[311];
-    W[6607] = W[124] * W[6595] + W[517] * W[6202] + W[910] * W[5809] + W[1303] * W[5416] + W[1696] * W[5023]
-            + W[2089] * W[4630] + W[2482] * W[4237] + W[2875] * W[3844] + W[3268] * W[3451] + W[3661] * W[3058]
-            + W[4054] * W[2665] + W[4447] * W[2272] + W[4840] * W[1879] + W[5233] * W[1486] + W[5626] * W[1093]
-            + W[6019] * W[700] + W[6412] * W[307];
-    W[6609] = W[116] * W[6599] + W[509] * W[6206] + W[902] * W[5813] + W[1295] * W[5420] + W[1688] * W[5027]
-            + W[2081] * W[4634] + W[2474] * W[4241] + W[2867] * W[3848] + W[3260] * W[3455] + W[3653] * W[3062]
-            + W[4046] * W[2669] + W[4439] * W[2276] + W[4832] * W[1883] + W[5225] * W[1490] + W[5618] * W[1097]
-            + W[6011] * W[704] + W[6404] * W[311];
-    W[6616] = W[127] * W[6595] + W[520] * W[6202] + W[913] * W[5809] + W[1306] * W[5416] + W[1699] * W[5023]
-            + W[2092] * W[4630] + W[2485] * W[4237] + W[2878] * W[3844] + W[3271] * W[3451] + W[3664] * W[3058]
-            + W[4057] * W[2665] + W[4450] * W[2272] + W[4843] * W[1879] + W[5236] * W[1486] + W[5629] * W[1093]
-            + W[6022] * W[700] + W[6415] * W[307];
-    W[6618] = W[119] * W[6599] + W[512] * W[6206] + W[905] * W[5813] + W[1298] * W[5420] + W[1691] * W[5027]
-            + W[2084] * W[4634] + W[2477] * W[4241] + W[2870] * W[3848] + W[3263] * W[3455] + W[3656] * W[3062]
-            + W[4049] * W[2669] + W[4442] * W[2276] + W[4835] * W[1883] + W[5228] * W[1490] + W[5621] * W[1097]
-            + W[6014] * W[704] + W[6407] * W[311];
-    W[6627] = W[130] * W[6626] + W[523] * W[6233] + W[916] * W[5840] + W[1309] * W[5447] + W[1702] * W[5054]
-            + W[2095] * W[4661] + W[2488] * W[4268] + W[2881] * W[3875] + W[3274] * W[3482] + W[3667] * W[3089]
-            + W[4060] * W[2696] + W[4453] * W[2303] + W[4846] * W[1910] + W[5239] * W[1517] + W[5632] * W[1124]
-            + W[6025] * W[731] + W[6418] * W[338];
-    W[6634] = W[132] * W[6626] + W[525] * W[6233] + W[918] * W[5840] + W[1311] * W[5447] + W[1704] * W[5054]
-            + W[2097] * W[4661] + W[2490] * W[4268] + W[2883] * W[3875] + W[3276] * W[3482] + W[3669] * W[3089]
-            + W[4062] * W[2696] + W[4455] * W[2303] + W[4848] * W[1910] + W[5241] * W[1517] + W[5634] * W[1124]
-            + W[6027] * W[731] + W[6420] * W[338];
-    W[6641] = W[135] * W[6626] + W[528] * W[6233] + W[921] * W[5840] + W[1314] * W[5447] + W[1707] * W[5054]
-            + W[2100] * W[4661] + W[2493] * W[4268] + W[2886] * W[3875] + W[3279] * W[3482] + W[3672] * W[3089]
-            + W[4065] * W[2696] + W[4458] * W[2303] + W[4851] * W[1910] + W[5244] * W[1517] + W[5637] * W[1124]
-            + W[6030] * W[731] + W[6423] * W[338];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_300(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6456] = W[164] * W[6455];
     W[6460] = W[169] * W[6459];
     W[6465] = W[174] * W[6464];
@@ -11670,6 +8873,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[6520] = W[229] * W[6519];
     W[6525] = W[234] * W[6524];
     W[6530] = W[220] * W[6529];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_301(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6532] = W[224] * W[6531];
     W[6535] = W[229] * W[6534];
     W[6538] = W[234] * W[6537];
@@ -11690,6 +8903,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[6601] = W[310] * W[6600];
     W[6608] = W[306] * W[6607];
     W[6610] = W[310] * W[6609];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_302(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6617] = W[306] * W[6616];
     W[6619] = W[310] * W[6618];
     W[6628] = W[337] * W[6627];
@@ -11710,6 +8933,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[6629] = W[6628] - W[6601];
     W[6636] = W[6635] - W[6610];
     W[6643] = W[6642] - W[6619];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_303(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6648] = W[6597] + W[6628];
     W[6653] = W[6608] + W[6635];
     W[6658] = W[6617] + W[6642];
@@ -11730,6 +8963,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[6644] = W[6643] - W[6586];
     W[6649] = W[6558] + W[6648];
     W[6654] = W[6573] + W[6653];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_304(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6659] = W[6584] + W[6658];
     W[6471] = W[6466] + W[6470];
     W[6488] = W[6485] + W[6487];
@@ -11750,6 +8993,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[6655] = W[6530] + W[6654];
     W[6660] = W[6543] + W[6659];
     W[6476] = W[6471] + W[6475];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_305(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6491] = W[6488] + W[6490];
     W[6506] = W[6503] + W[6505];
     W[6527] = W[6526] - W[6475];
@@ -11770,6 +9023,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[6477] = W[161] * W[6476];
     W[6492] = W[161] * W[6491];
     W[6507] = W[161] * W[6506];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_306(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6528] = W[161] * W[6527];
     W[6541] = W[161] * W[6540];
     W[6554] = W[161] * W[6553];
@@ -11790,26 +9053,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[614] = X[596] / 17.0;
     X[615] = X[597] / 17.0;
     X[616] = X[598] / 17.0;
-    X[617] = X[599] / 17.0;
-    X[618] = X[600] / 17.0;
-    X[619] = X[601] / 17.0;
-    X[620] = X[602] / 17.0;
-    X[621] = X[603] / 17.0;
-    X[622] = X[604] / 17.0;
-    X[623] = X[605] / 17.0;
-    X[624] = X[606] / 17.0;
-    X[625] = X[607] / 17.0;
-    X[626] = X[608] / 17.0;
-    X[627] = X[609] / 17.0;
-    X[628] = X[610] / 17.0;
-    X[629] = X[611] / 17.0;
-    X[630] = -W[6477] / W[138] / 17.0;
-    X[631] = -W[6492] / W[138] / 17.0;
-    X[632] = -W[6507] / W[138] / 17.0;
-    X[633] = -W[6528] / W[140] / 17.0;
-    X[634] = -W[6541] / W[140] / 17.0;
-    X[635] = -W[6554] / W[140] / 17.0;
-    X[636] = -W[6571] / W[141] / 17.0;
+    return 0;
+}
+
+/* Lines 340 .. 350 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_308(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[637] = -W[6582] / W[141] / 17.0;
     X[638] = -W[6593] / W[141] / 17.0;
     X[639] = -W[6606] / W[142] / 17.0;
@@ -11821,29 +9074,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[645] = -W[6652] / W[144] / 17.0;
     X[646] = -W[6657] / W[144] / 17.0;
     X[647] = -W[6662] / W[144] / 17.0;
-    if (K == 17)
-        goto out;
-    /* order 17 */
-    W[6683] = X[612] - X[615];
-    W[6687] = X[613] - X[616];
-    W[6692] = X[614] - X[617];
-    W[6696] = X[612] - X[618];
-    W[6699] = X[613] - X[619];
-    W[6703] = X[614] - X[620];
-    W[6707] = X[612] - X[621];
-    W[6710] = X[613] - X[622];
-    W[6714] = X[614] - X[623];
-    W[6718] = X[612] - X[624];
-    W[6721] = X[613] - X[625];
-    W[6725] = X[614] - X[626];
-    W[6729] = X[612] - X[627];
-    W[6732] = X[613] - X[628];
-    W[6736] = X[614] - X[629];
-    W[6739] = X[615] - X[618];
-    W[6741] = X[616] - X[619];
-    W[6744] = X[617] - X[620];
-    W[6747] = X[615] - X[621];
-    W[6749] = X[616] - X[622];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 17. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_310(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6752] = X[617] - X[623];
     W[6755] = X[615] - X[624];
     W[6757] = X[616] - X[625];
@@ -11864,41 +9104,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[6797] = X[622] - X[625];
     W[6800] = X[623] - X[626];
     W[6803] = X[621] - X[627];
-    W[6805] = X[622] - X[628];
-    W[6808] = X[623] - X[629];
-    W[6811] = X[624] - X[627];
-    W[6813] = X[625] - X[628];
-    W[6816] = X[626] - X[629];
-    W[6684] = (W[2] * W[6683] + W[395] * W[6290] + W[788] * W[5897] + W[1181] * W[5504] + W[1574] * W[5111]
-            + W[1967] * W[4718] + W[2360] * W[4325] + W[2753] * W[3932] + W[3146] * W[3539]) * 2.0;
-    W[6688] = (W[6] * W[6687] + W[399] * W[6294] + W[792] * W[5901] + W[1185] * W[5508] + W[1578] * W[5115]
-            + W[1971] * W[4722] + W[2364] * W[4329] + W[2757] * W[3936] + W[3150] * W[3543]) * 2.0;
-    W[6693] = (W[11] * W[6692] + W[404] * W[6299] + W[797] * W[5906] + W[1190] * W[5513] + W[1583] * W[5120]
-            + W[1976] * W[4727] + W[2369] * W[4334] + W[2762] * W[3941] + W[3155] * W[3548]) * 2.0;
-    W[6697] = (W[15] * W[6696] + W[408] * W[6303] + W[801] * W[5910] + W[1194] * W[5517] + W[1587] * W[5124]
-            + W[1980] * W[4731] + W[2373] * W[4338] + W[2766] * W[3945] + W[3159] * W[3552]) * 2.0;
-    W[6700] = (W[18] * W[6699] + W[411] * W[6306] + W[804] * W[5913] + W[1197] * W[5520] + W[1590] * W[5127]
-            + W[1983] * W[4734] + W[2376] * W[4341] + W[2769] * W[3948] + W[3162] * W[3555]) * 2.0;
-    W[6704] = (W[22] * W[6703] + W[415] * W[6310] + W[808] * W[5917] + W[1201] * W[5524] + W[1594] * W[5131]
-            + W[1987] * W[4738] + W[2380] * W[4345] + W[2773] * W[3952] + W[3166] * W[3559]) * 2.0;
-    W[6708] = (W[26] * W[6707] + W[419] * W[6314] + W[812] * W[5921] + W[1205] * W[5528] + W[1598] * W[5135]
-            + W[1991] * W[4742] + W[2384] * W[4349] + W[2777] * W[3956] + W[3170] * W[3563]) * 2.0;
-    W[6711] = (W[29] * W[6710] + W[422] * W[6317] + W[815] * W[5924] + W[1208] * W[5531] + W[1601] * W[5138]
-            + W[1994] * W[4745] + W[2387] * W[4352] + W[2780] * W[3959] + W[3173] * W[3566]) * 2.0;
-    W[6715] = (W[33] * W[6714] + W[426] * W[6321] + W[819] * W[5928] + W[1212] * W[5535] + W[1605] * W[5142]
-            + W[1998] * W[4749] + W[2391] * W[4356] + W[2784] * W[3963] + W[3177] * W[3570]) * 2.0;
-    W[6719] = (W[37] * W[6718] + W[430] * W[6325] + W[823] * W[5932] + W[1216] * W[5539] + W[1609] * W[5146]
-            + W[2002] * W[4753] + W[2395] * W[4360] + W[2788] * W[3967] + W[3181] * W[3574]) * 2.0;
-    W[6722] = (W[40] * W[6721] + W[433] * W[6328] + W[826] * W[5935] + W[1219] * W[5542] + W[1612] * W[5149]
-            + W[2005] * W[4756] + W[2398] * W[4363] + W[2791] * W[3970] + W[3184] * W[3577]) * 2.0;
-    W[6726] = (W[44] * W[6725] + W[437] * W[6332] + W[830] * W[5939] + W[1223] * W[5546] + W[1616] * W[5153]
-            + W[2009] * W[4760] + W[2402] * W[4367] + W[2795] * W[3974] + W[3188] * W[3581]) * 2.0;
-    W[6730] = (W[48] * W[6729] + W[441] * W[6336] + W[834] * W[5943] + W[1227] * W[5550] + W[1620] * W[5157]
-            + W[2013] * W[4764] + W[2406] * W[4371] + W[2799] * W[3978] + W[3192] * W[3585]) * 2.0;
-    W[6733] = (W[51] * W[6732] + W[444] * W[6339] + W[837] * W[5946] + W[1230] * W[5553] + W[1623] * W[5160]
-            + W[2016] * W[4767] + W[2409] * W[4374] + W[2802] * W[3981] + W[3195] * W[3588]) * 2.0;
-    W[6737] = (W[55] * W[6736] + W[448] * W[6343] + W[841] * W[5950] + W[1234] * W[5557] + W[1627] * W[5164]
-            + W[2020] * W[4771] + W[2413] * W[4378] + W[2806] * W[3985] + W[3199] * W[3592]) * 2.0;
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 17. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_312(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6740] = (W[58] * W[6739] + W[451] * W[6346] + W[844] * W[5953] + W[1237] * W[5560] + W[1630] * W[5167]
             + W[2023] * W[4774] + W[2416] * W[4381] + W[2809] * W[3988] + W[3202] * W[3595]) * 2.0;
     W[6742] = (W[60] * W[6741] + W[453] * W[6348] + W[846] * W[5955] + W[1239] * W[5562] + W[1632] * W[5169]
@@ -11939,36 +9154,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[2071] * W[4822] + W[2464] * W[4429] + W[2857] * W[4036] + W[3250] * W[3643]) * 2.0;
     W[6790] = (W[108] * W[6789] + W[501] * W[6396] + W[894] * W[6003] + W[1287] * W[5610] + W[1680] * W[5217]
             + W[2073] * W[4824] + W[2466] * W[4431] + W[2859] * W[4038] + W[3252] * W[3645]) * 2.0;
-    W[6793] = (W[111] * W[6792] + W[504] * W[6399] + W[897] * W[6006] + W[1290] * W[5613] + W[1683] * W[5220]
-            + W[2076] * W[4827] + W[2469] * W[4434] + W[2862] * W[4041] + W[3255] * W[3648]) * 2.0;
-    W[6796] = (W[114] * W[6795] + W[507] * W[6402] + W[900] * W[6009] + W[1293] * W[5616] + W[1686] * W[5223]
-            + W[2079] * W[4830] + W[2472] * W[4437] + W[2865] * W[4044] + W[3258] * W[3651]) * 2.0;
-    W[6798] = (W[116] * W[6797] + W[509] * W[6404] + W[902] * W[6011] + W[1295] * W[5618] + W[1688] * W[5225]
-            + W[2081] * W[4832] + W[2474] * W[4439] + W[2867] * W[4046] + W[3260] * W[3653]) * 2.0;
-    W[6801] = (W[119] * W[6800] + W[512] * W[6407] + W[905] * W[6014] + W[1298] * W[5621] + W[1691] * W[5228]
-            + W[2084] * W[4835] + W[2477] * W[4442] + W[2870] * W[4049] + W[3263] * W[3656]) * 2.0;
-    W[6804] = (W[122] * W[6803] + W[515] * W[6410] + W[908] * W[6017] + W[1301] * W[5624] + W[1694] * W[5231]
-            + W[2087] * W[4838] + W[2480] * W[4445] + W[2873] * W[4052] + W[3266] * W[3659]) * 2.0;
-    W[6806] = (W[124] * W[6805] + W[517] * W[6412] + W[910] * W[6019] + W[1303] * W[5626] + W[1696] * W[5233]
-            + W[2089] * W[4840] + W[2482] * W[4447] + W[2875] * W[4054] + W[3268] * W[3661]) * 2.0;
-    W[6809] = (W[127] * W[6808] + W[520] * W[6415] + W[913] * W[6022] + W[1306] * W[5629] + W[1699] * W[5236]
-            + W[2092] * W[4843] + W[2485] * W[4450] + W[2878] * W[4057] + W[3271] * W[3664]) * 2.0;
-    W[6812] = (W[130] * W[6811] + W[523] * W[6418] + W[916] * W[6025] + W[1309] * W[5632] + W[1702] * W[5239]
-            + W[2095] * W[4846] + W[2488] * W[4453] + W[2881] * W[4060] + W[3274] * W[3667]) * 2.0;
-    W[6814] = (W[132] * W[6813] + W[525] * W[6420] + W[918] * W[6027] + W[1311] * W[5634] + W[1704] * W[5241]
-            + W[2097] * W[4848] + W[2490] * W[4455] + W[2883] * W[4062] + W[3276] * W[3669]) * 2.0;
-    W[6817] = (W[135] * W[6816] + W[528] * W[6423] + W[921] * W[6030] + W[1314] * W[5637] + W[1707] * W[5244]
-            + W[2100] * W[4851] + W[2493] * W[4458] + W[2886] * W[4065] + W[3279] * W[3672]) * 2.0;
-    W[6689] = W[6684] + W[6688];
-    W[6701] = W[6697] + W[6700];
-    W[6712] = W[6708] + W[6711];
-    W[6723] = W[6719] + W[6722];
-    W[6734] = W[6730] + W[6733];
-    W[6743] = W[6740] + W[6742];
-    W[6751] = W[6748] + W[6750];
-    W[6759] = W[6756] + W[6758];
-    W[6767] = W[6764] + W[6766];
-    W[6775] = W[6772] + W[6774];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 17. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_314(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6783] = W[6780] + W[6782];
     W[6791] = W[6788] + W[6790];
     W[6799] = W[6796] + W[6798];
@@ -11989,6 +9184,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[6802] = W[6799] + W[6801];
     W[6810] = W[6807] + W[6809];
     W[6818] = W[6815] + W[6817];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 17. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_315(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6847] = (-25.5 * W[6738] * W[166] - 25.0 * W[6345] * W[559] - 24.5 * W[5952] * W[952] - 24.0 * W[5559] * W[1345]
             - 23.5 * W[5166] * W[1738] - 23.0 * W[4773] * W[2131] - 22.5 * W[4380] * W[2524] - 22.0 * W[3987] * W[2917]
             - 21.5 * W[3594] * W[3310] - 21.0 * W[3201] * W[3703] - 20.5 * W[2808] * W[4096] - 20.0 * W[2415] * W[4489]
@@ -12084,86 +9289,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[1967] * W[4901] + W[2360] * W[4508] + W[2753] * W[4115] + W[3146] * W[3722] + W[3539] * W[3329]
             + W[3932] * W[2936] + W[4325] * W[2543] + W[4718] * W[2150] + W[5111] * W[1757] + W[5504] * W[1364]
             + W[5897] * W[971] + W[6290] * W[578] + W[6683] * W[185];
-    W[6871] = W[51] * W[6847] + W[444] * W[6454] + W[837] * W[6061] + W[1230] * W[5668] + W[1623] * W[5275]
-            + W[2016] * W[4882] + W[2409] * W[4489] + W[2802] * W[4096] + W[3195] * W[3703] + W[3588] * W[3310]
-            + W[3981] * W[2917] + W[4374] * W[2524] + W[4767] * W[2131] + W[5160] * W[1738] + W[5553] * W[1345]
-            + W[5946] * W[952] + W[6339] * W[559] + W[6732] * W[166];
-    W[6873] = W[40] * W[6851] + W[433] * W[6458] + W[826] * W[6065] + W[1219] * W[5672] + W[1612] * W[5279]
-            + W[2005] * W[4886] + W[2398] * W[4493] + W[2791] * W[4100] + W[3184] * W[3707] + W[3577] * W[3314]
-            + W[3970] * W[2921] + W[4363] * W[2528] + W[4756] * W[2135] + W[5149] * W[1742] + W[5542] * W[1349]
-            + W[5935] * W[956] + W[6328] * W[563] + W[6721] * W[170];
-    W[6876] = W[29] * W[6856] + W[422] * W[6463] + W[815] * W[6070] + W[1208] * W[5677] + W[1601] * W[5284]
-            + W[1994] * W[4891] + W[2387] * W[4498] + W[2780] * W[4105] + W[3173] * W[3712] + W[3566] * W[3319]
-            + W[3959] * W[2926] + W[4352] * W[2533] + W[4745] * W[2140] + W[5138] * W[1747] + W[5531] * W[1354]
-            + W[5924] * W[961] + W[6317] * W[568] + W[6710] * W[175];
-    W[6879] = W[18] * W[6861] + W[411] * W[6468] + W[804] * W[6075] + W[1197] * W[5682] + W[1590] * W[5289]
-            + W[1983] * W[4896] + W[2376] * W[4503] + W[2769] * W[4110] + W[3162] * W[3717] + W[3555] * W[3324]
-            + W[3948] * W[2931] + W[4341] * W[2538] + W[4734] * W[2145] + W[5127] * W[1752] + W[5520] * W[1359]
-            + W[5913] * W[966] + W[6306] * W[573] + W[6699] * W[180];
-    W[6882] = W[6] * W[6866] + W[399] * W[6473] + W[792] * W[6080] + W[1185] * W[5687] + W[1578] * W[5294]
-            + W[1971] * W[4901] + W[2364] * W[4508] + W[2757] * W[4115] + W[3150] * W[3722] + W[3543] * W[3329]
-            + W[3936] * W[2936] + W[4329] * W[2543] + W[4722] * W[2150] + W[5115] * W[1757] + W[5508] * W[1364]
-            + W[5901] * W[971] + W[6294] * W[578] + W[6687] * W[185];
-    W[6886] = W[55] * W[6847] + W[448] * W[6454] + W[841] * W[6061] + W[1234] * W[5668] + W[1627] * W[5275]
-            + W[2020] * W[4882] + W[2413] * W[4489] + W[2806] * W[4096] + W[3199] * W[3703] + W[3592] * W[3310]
-            + W[3985] * W[2917] + W[4378] * W[2524] + W[4771] * W[2131] + W[5164] * W[1738] + W[5557] * W[1345]
-            + W[5950] * W[952] + W[6343] * W[559] + W[6736] * W[166];
-    W[6888] = W[44] * W[6851] + W[437] * W[6458] + W[830] * W[6065] + W[1223] * W[5672] + W[1616] * W[5279]
-            + W[2009] * W[4886] + W[2402] * W[4493] + W[2795] * W[4100] + W[3188] * W[3707] + W[3581] * W[3314]
-            + W[3974] * W[2921] + W[4367] * W[2528] + W[4760] * W[2135] + W[5153] * W[1742] + W[5546] * W[1349]
-            + W[5939] * W[956] + W[6332] * W[563] + W[6725] * W[170];
-    W[6891] = W[33] * W[6856] + W[426] * W[6463] + W[819] * W[6070] + W[1212] * W[5677] + W[1605] * W[5284]
-            + W[1998] * W[4891] + W[2391] * W[4498] + W[2784] * W[4105] + W[3177] * W[3712] + W[3570] * W[3319]
-            + W[3963] * W[2926] + W[4356] * W[2533] + W[4749] * W[2140] + W[5142] * W[1747] + W[5535] * W[1354]
-            + W[5928] * W[961] + W[6321] * W[568] + W[6714] * W[175];
-    W[6894] = W[22] * W[6861] + W[415] * W[6468] + W[808] * W[6075] + W[1201] * W[5682] + W[1594] * W[5289]
-            + W[1987] * W[4896] + W[2380] * W[4503] + W[2773] * W[4110] + W[3166] * W[3717] + W[3559] * W[3324]
-            + W[3952] * W[2931] + W[4345] * W[2538] + W[4738] * W[2145] + W[5131] * W[1752] + W[5524] * W[1359]
-            + W[5917] * W[966] + W[6310] * W[573] + W[6703] * W[180];
-    W[6897] = W[11] * W[6866] + W[404] * W[6473] + W[797] * W[6080] + W[1190] * W[5687] + W[1583] * W[5294]
-            + W[1976] * W[4901] + W[2369] * W[4508] + W[2762] * W[4115] + W[3155] * W[3722] + W[3548] * W[3329]
-            + W[3941] * W[2936] + W[4334] * W[2543] + W[4727] * W[2150] + W[5120] * W[1757] + W[5513] * W[1364]
-            + W[5906] * W[971] + W[6299] * W[578] + W[6692] * W[185];
-    W[6903] = W[82] * W[6902] + W[475] * W[6509] + W[868] * W[6116] + W[1261] * W[5723] + W[1654] * W[5330]
-            + W[2047] * W[4937] + W[2440] * W[4544] + W[2833] * W[4151] + W[3226] * W[3758] + W[3619] * W[3365]
-            + W[4012] * W[2972] + W[4405] * W[2579] + W[4798] * W[2186] + W[5191] * W[1793] + W[5584] * W[1400]
-            + W[5977] * W[1007] + W[6370] * W[614] + W[6763] * W[221];
-    W[6907] = W[74] * W[6906] + W[467] * W[6513] + W[860] * W[6120] + W[1253] * W[5727] + W[1646] * W[5334]
-            + W[2039] * W[4941] + W[2432] * W[4548] + W[2825] * W[4155] + W[3218] * W[3762] + W[3611] * W[3369]
-            + W[4004] * W[2976] + W[4397] * W[2583] + W[4790] * W[2190] + W[5183] * W[1797] + W[5576] * W[1404]
-            + W[5969] * W[1011] + W[6362] * W[618] + W[6755] * W[225];
-    W[6912] = W[66] * W[6911] + W[459] * W[6518] + W[852] * W[6125] + W[1245] * W[5732] + W[1638] * W[5339]
-            + W[2031] * W[4946] + W[2424] * W[4553] + W[2817] * W[4160] + W[3210] * W[3767] + W[3603] * W[3374]
-            + W[3996] * W[2981] + W[4389] * W[2588] + W[4782] * W[2195] + W[5175] * W[1802] + W[5568] * W[1409]
-            + W[5961] * W[1016] + W[6354] * W[623] + W[6747] * W[230];
-    W[6917] = W[58] * W[6916] + W[451] * W[6523] + W[844] * W[6130] + W[1237] * W[5737] + W[1630] * W[5344]
-            + W[2023] * W[4951] + W[2416] * W[4558] + W[2809] * W[4165] + W[3202] * W[3772] + W[3595] * W[3379]
-            + W[3988] * W[2986] + W[4381] * W[2593] + W[4774] * W[2200] + W[5167] * W[1807] + W[5560] * W[1414]
-            + W[5953] * W[1021] + W[6346] * W[628] + W[6739] * W[235];
-    W[6922] = W[84] * W[6902] + W[477] * W[6509] + W[870] * W[6116] + W[1263] * W[5723] + W[1656] * W[5330]
-            + W[2049] * W[4937] + W[2442] * W[4544] + W[2835] * W[4151] + W[3228] * W[3758] + W[3621] * W[3365]
-            + W[4014] * W[2972] + W[4407] * W[2579] + W[4800] * W[2186] + W[5193] * W[1793] + W[5586] * W[1400]
-            + W[5979] * W[1007] + W[6372] * W[614] + W[6765] * W[221];
-    W[6924] = W[76] * W[6906] + W[469] * W[6513] + W[862] * W[6120] + W[1255] * W[5727] + W[1648] * W[5334]
-            + W[2041] * W[4941] + W[2434] * W[4548] + W[2827] * W[4155] + W[3220] * W[3762] + W[3613] * W[3369]
-            + W[4006] * W[2976] + W[4399] * W[2583] + W[4792] * W[2190] + W[5185] * W[1797] + W[5578] * W[1404]
-            + W[5971] * W[1011] + W[6364] * W[618] + W[6757] * W[225];
-    W[6927] = W[68] * W[6911] + W[461] * W[6518] + W[854] * W[6125] + W[1247] * W[5732] + W[1640] * W[5339]
-            + W[2033] * W[4946] + W[2426] * W[4553] + W[2819] * W[4160] + W[3212] * W[3767] + W[3605] * W[3374]
-            + W[3998] * W[2981] + W[4391] * W[2588] + W[4784] * W[2195] + W[5177] * W[1802] + W[5570] * W[1409]
-            + W[5963] * W[1016] + W[6356] * W[623] + W[6749] * W[230];
-    W[6930] = W[60] * W[6916] + W[453] * W[6523] + W[846] * W[6130] + W[1239] * W[5737] + W[1632] * W[5344]
-            + W[2025] * W[4951] + W[2418] * W[4558] + W[2811] * W[4165] + W[3204] * W[3772] + W[3597] * W[3379]
-            + W[3990] * W[2986] + W[4383] * W[2593] + W[4776] * W[2200] + W[5169] * W[1807] + W[5562] * W[1414]
-            + W[5955] * W[1021] + W[6348] * W[628] + W[6741] * W[235];
-    W[6935] = W[87] * W[6902] + W[480] * W[6509] + W[873] * W[6116] + W[1266] * W[5723] + W[1659] * W[5330]
-            + W[2052] * W[4937] + W[2445] * W[4544] + W[2838] * W[4151] + W[3231] * W[3758] + W[3624] * W[3365]
-            + W[4017] * W[2972] + W[4410] * W[2579] + W[4803] * W[2186] + W[5196] * W[1793] + W[5589] * W[1400]
-            + W[5982] * W[1007] + W[6375] * W[614] + W[6768] * W[221];
-    W[6937] = W[79] * W[6906] + W[472] * W[6513] + W[865] * W[6120] + W[1258] * W[5727] + W[1651] * W[5334]
-            + W[2044] * W[4941] + W[2437] * W[4548] + W[2830] * W[4155] + W[3223] * W[3762] + W[3616] * W[3369]
-            + W[4009] * W[2976] + W[4402] * W[2583] + W[4795] * W[2190] + W[5188] * W[1797] + W[5581] * W[1404]
-            + W[5974] * W[1011] + W[6367] * W[618] + W[6760] * W[225];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 17. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_317(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6940] = W[71] * W[6911] + W[464] * W[6518] + W[857] * W[6125] + W[1250] * W[5732] + W[1643] * W[5339]
             + W[2036] * W[4946] + W[2429] * W[4553] + W[2822] * W[4160] + W[3215] * W[3767] + W[3608] * W[3374]
             + W[4001] * W[2981] + W[4394] * W[2588] + W[4787] * W[2195] + W[5180] * W[1802] + W[5573] * W[1409]
@@ -12244,146 +9379,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[2100] * W[5054] + W[2493] * W[4661] + W[2886] * W[4268] + W[3279] * W[3875] + W[3672] * W[3482]
             + W[4065] * W[3089] + W[4458] * W[2696] + W[4851] * W[2303] + W[5244] * W[1910] + W[5637] * W[1517]
             + W[6030] * W[1124] + W[6423] * W[731] + W[6816] * W[338];
-    W[6849] = W[164] * W[6848];
-    W[6853] = W[169] * W[6852];
-    W[6858] = W[174] * W[6857];
-    W[6863] = W[179] * W[6862];
-    W[6868] = W[184] * W[6867];
-    W[6872] = W[164] * W[6871];
-    W[6874] = W[169] * W[6873];
-    W[6877] = W[174] * W[6876];
-    W[6880] = W[179] * W[6879];
-    W[6883] = W[184] * W[6882];
-    W[6887] = W[164] * W[6886];
-    W[6889] = W[169] * W[6888];
-    W[6892] = W[174] * W[6891];
-    W[6895] = W[179] * W[6894];
-    W[6898] = W[184] * W[6897];
-    W[6904] = W[220] * W[6903];
-    W[6908] = W[224] * W[6907];
-    W[6913] = W[229] * W[6912];
-    W[6918] = W[234] * W[6917];
-    W[6923] = W[220] * W[6922];
-    W[6925] = W[224] * W[6924];
-    W[6928] = W[229] * W[6927];
-    W[6931] = W[234] * W[6930];
-    W[6936] = W[220] * W[6935];
-    W[6938] = W[224] * W[6937];
-    W[6941] = W[229] * W[6940];
-    W[6944] = W[234] * W[6943];
-    W[6951] = W[267] * W[6950];
-    W[6955] = W[271] * W[6954];
-    W[6960] = W[276] * W[6959];
-    W[6966] = W[267] * W[6965];
-    W[6968] = W[271] * W[6967];
-    W[6971] = W[276] * W[6970];
-    W[6977] = W[267] * W[6976];
-    W[6979] = W[271] * W[6978];
-    W[6982] = W[276] * W[6981];
-    W[6990] = W[306] * W[6989];
-    W[6994] = W[310] * W[6993];
-    W[7001] = W[306] * W[7000];
-    W[7003] = W[310] * W[7002];
-    W[7010] = W[306] * W[7009];
-    W[7012] = W[310] * W[7011];
-    W[7021] = W[337] * W[7020];
-    W[7028] = W[337] * W[7027];
-    W[7035] = W[337] * W[7034];
-    W[6854] = W[6849] + W[6853];
-    W[6875] = W[6872] + W[6874];
-    W[6890] = W[6887] + W[6889];
-    W[6909] = W[6904] + W[6908];
-    W[6926] = W[6923] + W[6925];
-    W[6939] = W[6936] + W[6938];
-    W[6956] = W[6951] + W[6955];
-    W[6969] = W[6966] + W[6968];
-    W[6980] = W[6977] + W[6979];
-    W[6995] = W[6990] + W[6994];
-    W[7004] = W[7001] + W[7003];
-    W[7013] = W[7010] + W[7012];
-    W[7022] = W[7021] - W[6994];
-    W[7029] = W[7028] - W[7003];
-    W[7036] = W[7035] - W[7012];
-    W[7041] = W[6990] + W[7021];
-    W[7046] = W[7001] + W[7028];
-    W[7051] = W[7010] + W[7035];
-    W[6859] = W[6854] + W[6858];
-    W[6878] = W[6875] + W[6877];
-    W[6893] = W[6890] + W[6892];
-    W[6914] = W[6909] + W[6913];
-    W[6929] = W[6926] + W[6928];
-    W[6942] = W[6939] + W[6941];
-    W[6961] = W[6956] + W[6960];
-    W[6972] = W[6969] + W[6971];
-    W[6983] = W[6980] + W[6982];
-    W[6996] = W[6995] - W[6960];
-    W[7005] = W[7004] - W[6971];
-    W[7014] = W[7013] - W[6982];
-    W[7023] = W[7022] - W[6955];
-    W[7030] = W[7029] - W[6968];
-    W[7037] = W[7036] - W[6979];
-    W[7042] = W[6951] + W[7041];
-    W[7047] = W[6966] + W[7046];
-    W[7052] = W[6977] + W[7051];
-    W[6864] = W[6859] + W[6863];
-    W[6881] = W[6878] + W[6880];
-    W[6896] = W[6893] + W[6895];
-    W[6919] = W[6914] + W[6918];
-    W[6932] = W[6929] + W[6931];
-    W[6945] = W[6942] + W[6944];
-    W[6962] = W[6961] - W[6918];
-    W[6973] = W[6972] - W[6931];
-    W[6984] = W[6983] - W[6944];
-    W[6997] = W[6996] - W[6913];
-    W[7006] = W[7005] - W[6928];
-    W[7015] = W[7014] - W[6941];
-    W[7024] = W[7023] - W[6908];
-    W[7031] = W[7030] - W[6925];
-    W[7038] = W[7037] - W[6938];
-    W[7043] = W[6904] + W[7042];
-    W[7048] = W[6923] + W[7047];
-    W[7053] = W[6936] + W[7052];
-    W[6869] = W[6864] + W[6868];
-    W[6884] = W[6881] + W[6883];
-    W[6899] = W[6896] + W[6898];
-    W[6920] = W[6919] - W[6868];
-    W[6933] = W[6932] - W[6883];
-    W[6946] = W[6945] - W[6898];
-    W[6963] = W[6962] - W[6863];
-    W[6974] = W[6973] - W[6880];
-    W[6985] = W[6984] - W[6895];
-    W[6998] = W[6997] - W[6858];
-    W[7007] = W[7006] - W[6877];
-    W[7016] = W[7015] - W[6892];
-    W[7025] = W[7024] - W[6853];
-    W[7032] = W[7031] - W[6874];
-    W[7039] = W[7038] - W[6889];
-    W[7044] = W[6849] + W[7043];
-    W[7049] = W[6872] + W[7048];
-    W[7054] = W[6887] + W[7053];
-    W[6870] = W[161] * W[6869];
-    W[6885] = W[161] * W[6884];
-    W[6900] = W[161] * W[6899];
-    W[6921] = W[161] * W[6920];
-    W[6934] = W[161] * W[6933];
-    W[6947] = W[161] * W[6946];
-    W[6964] = W[161] * W[6963];
-    W[6975] = W[161] * W[6974];
-    W[6986] = W[161] * W[6985];
-    W[6999] = W[161] * W[6998];
-    W[7008] = W[161] * W[7007];
-    W[7017] = W[161] * W[7016];
-    W[7026] = W[161] * W[7025];
-    W[7033] = W[161] * W[7032];
-    W[7040] = W[161] * W[7039];
-    W[7045] = W[163] * W[7044];
-    W[7050] = W[163] * W[7049];
-    W[7055] = W[163] * W[7054];
-    X[648] = X[630] / 18.0;
-    X[649] = X[631] / 18.0;
-    X[650] = X[632] / 18.0;
-    X[651] = X[633] / 18.0;
-    X[652] = X[634] / 18.0;
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 17. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_325(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[653] = X[635] / 18.0;
     X[654] = X[636] / 18.0;
     X[655] = X[637] / 18.0;
@@ -12404,40 +9409,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[670] = -W[6934] / W[140] / 18.0;
     X[671] = -W[6947] / W[140] / 18.0;
     X[672] = -W[6964] / W[141] / 18.0;
-    X[673] = -W[6975] / W[141] / 18.0;
-    X[674] = -W[6986] / W[141] / 18.0;
-    X[675] = -W[6999] / W[142] / 18.0;
-    X[676] = -W[7008] / W[142] / 18.0;
-    X[677] = -W[7017] / W[142] / 18.0;
-    X[678] = -W[7026] / W[143] / 18.0;
-    X[679] = -W[7033] / W[143] / 18.0;
-    X[680] = -W[7040] / W[143] / 18.0;
-    X[681] = -W[7045] / W[144] / 18.0;
-    X[682] = -W[7050] / W[144] / 18.0;
-    X[683] = -W[7055] / W[144] / 18.0;
-    if (K == 18)
-        goto out;
-    /* order 18 */
-    W[7076] = X[648] - X[651];
-    W[7080] = X[649] - X[652];
-    W[7085] = X[650] - X[653];
-    W[7089] = X[648] - X[654];
-    W[7092] = X[649] - X[655];
-    W[7096] = X[650] - X[656];
-    W[7100] = X[648] - X[657];
-    W[7103] = X[649] - X[658];
-    W[7107] = X[650] - X[659];
-    W[7111] = X[648] - X[660];
-    W[7114] = X[649] - X[661];
-    W[7118] = X[650] - X[662];
-    W[7122] = X[648] - X[663];
-    W[7125] = X[649] - X[664];
-    W[7129] = X[650] - X[665];
-    W[7132] = X[651] - X[654];
-    W[7134] = X[652] - X[655];
-    W[7137] = X[653] - X[656];
-    W[7140] = X[651] - X[657];
-    W[7142] = X[652] - X[658];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 18. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_328(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7145] = X[653] - X[659];
     W[7148] = X[651] - X[660];
     W[7150] = X[652] - X[661];
@@ -12458,56 +9439,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[7190] = X[658] - X[661];
     W[7193] = X[659] - X[662];
     W[7196] = X[657] - X[663];
-    W[7198] = X[658] - X[664];
-    W[7201] = X[659] - X[665];
-    W[7204] = X[660] - X[663];
-    W[7206] = X[661] - X[664];
-    W[7209] = X[662] - X[665];
-    W[7077] = (W[2] * W[7076] + W[395] * W[6683] + W[788] * W[6290] + W[1181] * W[5897] + W[1574] * W[5504]
-            + W[1967] * W[5111] + W[2360] * W[4718] + W[2753] * W[4325] + W[3146] * W[3932]) * 2.0
-            + W[3539] * W[3539];
-    W[7081] = (W[6] * W[7080] + W[399] * W[6687] + W[792] * W[6294] + W[1185] * W[5901] + W[1578] * W[5508]
-            + W[1971] * W[5115] + W[2364] * W[4722] + W[2757] * W[4329] + W[3150] * W[3936]) * 2.0
-            + W[3543] * W[3543];
-    W[7086] = (W[11] * W[7085] + W[404] * W[6692] + W[797] * W[6299] + W[1190] * W[5906] + W[1583] * W[5513]
-            + W[1976] * W[5120] + W[2369] * W[4727] + W[2762] * W[4334] + W[3155] * W[3941]) * 2.0
-            + W[3548] * W[3548];
-    W[7090] = (W[15] * W[7089] + W[408] * W[6696] + W[801] * W[6303] + W[1194] * W[5910] + W[1587] * W[5517]
-            + W[1980] * W[5124] + W[2373] * W[4731] + W[2766] * W[4338] + W[3159] * W[3945]) * 2.0
-            + W[3552] * W[3552];
-    W[7093] = (W[18] * W[7092] + W[411] * W[6699] + W[804] * W[6306] + W[1197] * W[5913] + W[1590] * W[5520]
-            + W[1983] * W[5127] + W[2376] * W[4734] + W[2769] * W[4341] + W[3162] * W[3948]) * 2.0
-            + W[3555] * W[3555];
-    W[7097] = (W[22] * W[7096] + W[415] * W[6703] + W[808] * W[6310] + W[1201] * W[5917] + W[1594] * W[5524]
-            + W[1987] * W[5131] + W[2380] * W[4738] + W[2773] * W[4345] + W[3166] * W[3952]) * 2.0
-            + W[3559] * W[3559];
-    W[7101] = (W[26] * W[7100] + W[419] * W[6707] + W[812] * W[6314] + W[1205] * W[5921] + W[1598] * W[5528]
-            + W[1991] * W[5135] + W[2384] * W[4742] + W[2777] * W[4349] + W[3170] * W[3956]) * 2.0
-            + W[3563] * W[3563];
-    W[7104] = (W[29] * W[7103] + W[422] * W[6710] + W[815] * W[6317] + W[1208] * W[5924] + W[1601] * W[5531]
-            + W[1994] * W[5138] + W[2387] * W[4745] + W[2780] * W[4352] + W[3173] * W[3959]) * 2.0
-            + W[3566] * W[3566];
-    W[7108] = (W[33] * W[7107] + W[426] * W[6714] + W[819] * W[6321] + W[1212] * W[5928] + W[1605] * W[5535]
-            + W[1998] * W[5142] + W[2391] * W[4749] + W[2784] * W[4356] + W[3177] * W[3963]) * 2.0
-            + W[3570] * W[3570];
-    W[7112] = (W[37] * W[7111] + W[430] * W[6718] + W[823] * W[6325] + W[1216] * W[5932] + W[1609] * W[5539]
-            + W[2002] * W[5146] + W[2395] * W[4753] + W[2788] * W[4360] + W[3181] * W[3967]) * 2.0
-            + W[3574] * W[3574];
-    W[7115] = (W[40] * W[7114] + W[433] * W[6721] + W[826] * W[6328] + W[1219] * W[5935] + W[1612] * W[5542]
-            + W[2005] * W[5149] + W[2398] * W[4756] + W[2791] * W[4363] + W[3184] * W[3970]) * 2.0
-            + W[3577] * W[3577];
-    W[7119] = (W[44] * W[7118] + W[437] * W[6725] + W[830] * W[6332] + W[1223] * W[5939] + W[1616] * W[5546]
-            + W[2009] * W[5153] + W[2402] * W[4760] + W[2795] * W[4367] + W[3188] * W[3974]) * 2.0
-            + W[3581] * W[3581];
-    W[7123] = (W[48] * W[7122] + W[441] * W[6729] + W[834] * W[6336] + W[1227] * W[5943] + W[1620] * W[5550]
-            + W[2013] * W[5157] + W[2406] * W[4764] + W[2799] * W[4371] + W[3192] * W[3978]) * 2.0
-            + W[3585] * W[3585];
-    W[7126] = (W[51] * W[7125] + W[444] * W[6732] + W[837] * W[6339] + W[1230] * W[5946] + W[1623] * W[5553]
-            + W[2016] * W[5160] + W[2409] * W[4767] + W[2802] * W[4374] + W[3195] * W[3981]) * 2.0
-            + W[3588] * W[3588];
-    W[7130] = (W[55] * W[7129] + W[448] * W[6736] + W[841] * W[6343] + W[1234] * W[5950] + W[1627] * W[5557]
-            + W[2020] * W[5164] + W[2413] * W[4771] + W[2806] * W[4378] + W[3199] * W[3985]) * 2.0
-            + W[3592] * W[3592];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 18. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_330(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7133] = (W[58] * W[7132] + W[451] * W[6739] + W[844] * W[6346] + W[1237] * W[5953] + W[1630] * W[5560]
             + W[2023] * W[5167] + W[2416] * W[4774] + W[2809] * W[4381] + W[3202] * W[3988]) * 2.0
             + W[3595] * W[3595];
@@ -12568,46 +9509,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[7183] = (W[108] * W[7182] + W[501] * W[6789] + W[894] * W[6396] + W[1287] * W[6003] + W[1680] * W[5610]
             + W[2073] * W[5217] + W[2466] * W[4824] + W[2859] * W[4431] + W[3252] * W[4038]) * 2.0
             + W[3645] * W[3645];
-    W[7186] = (W[111] * W[7185] + W[504] * W[6792] + W[897] * W[6399] + W[1290] * W[6006] + W[1683] * W[5613]
-            + W[2076] * W[5220] + W[2469] * W[4827] + W[2862] * W[4434] + W[3255] * W[4041]) * 2.0
-            + W[3648] * W[3648];
-    W[7189] = (W[114] * W[7188] + W[507] * W[6795] + W[900] * W[6402] + W[1293] * W[6009] + W[1686] * W[5616]
-            + W[2079] * W[5223] + W[2472] * W[4830] + W[2865] * W[4437] + W[3258] * W[4044]) * 2.0
-            + W[3651] * W[3651];
-    W[7191] = (W[116] * W[7190] + W[509] * W[6797] + W[902] * W[6404] + W[1295] * W[6011] + W[1688] * W[5618]
-            + W[2081] * W[5225] + W[2474] * W[4832] + W[2867] * W[4439] + W[3260] * W[4046]) * 2.0
-            + W[3653] * W[3653];
-    W[7194] = (W[119] * W[7193] + W[512] * W[6800] + W[905] * W[6407] + W[1298] * W[6014] + W[1691] * W[5621]
-            + W[2084] * W[5228] + W[2477] * W[4835] + W[2870] * W[4442] + W[3263] * W[4049]) * 2.0
-            + W[3656] * W[3656];
-    W[7197] = (W[122] * W[7196] + W[515] * W[6803] + W[908] * W[6410] + W[1301] * W[6017] + W[1694] * W[5624]
-            + W[2087] * W[5231] + W[2480] * W[4838] + W[2873] * W[4445] + W[3266] * W[4052]) * 2.0
-            + W[3659] * W[3659];
-    W[7199] = (W[124] * W[7198] + W[517] * W[6805] + W[910] * W[6412] + W[1303] * W[6019] + W[1696] * W[5626]
-            + W[2089] * W[5233] + W[2482] * W[4840] + W[2875] * W[4447] + W[3268] * W[4054]) * 2.0
-            + W[3661] * W[3661];
-    W[7202] = (W[127] * W[7201] + W[520] * W[6808] + W[913] * W[6415] + W[1306] * W[6022] + W[1699] * W[5629]
-            + W[2092] * W[5236] + W[2485] * W[4843] + W[2878] * W[4450] + W[3271] * W[4057]) * 2.0
-            + W[3664] * W[3664];
-    W[7205] = (W[130] * W[7204] + W[523] * W[6811] + W[916] * W[6418] + W[1309] * W[6025] + W[1702] * W[5632]
-            + W[2095] * W[5239] + W[2488] * W[4846] + W[2881] * W[4453] + W[3274] * W[4060]) * 2.0
-            + W[3667] * W[3667];
-    W[7207] = (W[132] * W[7206] + W[525] * W[6813] + W[918] * W[6420] + W[1311] * W[6027] + W[1704] * W[5634]
-            + W[2097] * W[5241] + W[2490] * W[4848] + W[2883] * W[4455] + W[3276] * W[4062]) * 2.0
-            + W[3669] * W[3669];
-    W[7210] = (W[135] * W[7209] + W[528] * W[6816] + W[921] * W[6423] + W[1314] * W[6030] + W[1707] * W[5637]
-            + W[2100] * W[5244] + W[2493] * W[4851] + W[2886] * W[4458] + W[3279] * W[4065]) * 2.0
-            + W[3672] * W[3672];
-    W[7082] = W[7077] + W[7081];
-    W[7094] = W[7090] + W[7093];
-    W[7105] = W[7101] + W[7104];
-    W[7116] = W[7112] + W[7115];
-    W[7127] = W[7123] + W[7126];
-    W[7136] = W[7133] + W[7135];
-    W[7144] = W[7141] + W[7143];
-    W[7152] = W[7149] + W[7151];
-    W[7160] = W[7157] + W[7159];
-    W[7168] = W[7165] + W[7167];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 18. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_332(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7176] = W[7173] + W[7175];
     W[7184] = W[7181] + W[7183];
     W[7192] = W[7189] + W[7191];
@@ -12628,6 +9539,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[7195] = W[7192] + W[7194];
     W[7203] = W[7200] + W[7202];
     W[7211] = W[7208] + W[7210];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 18. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_333(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7240] = (-27.0 * W[7131] * W[166] - 26.5 * W[6738] * W[559] - 26.0 * W[6345] * W[952] - 25.5 * W[5952] * W[1345]
             - 25.0 * W[5559] * W[1738] - 24.5 * W[5166] * W[2131] - 24.0 * W[4773] * W[2524] - 23.5 * W[4380] * W[2917]
             - 23.0 * W[3987] * W[3310] - 22.5 * W[3594] * W[3703] - 22.0 * W[3201] * W[4096] - 21.5 * W[2808] * W[4489]
@@ -12723,86 +9644,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[1967] * W[5294] + W[2360] * W[4901] + W[2753] * W[4508] + W[3146] * W[4115] + W[3539] * W[3722]
             + W[3932] * W[3329] + W[4325] * W[2936] + W[4718] * W[2543] + W[5111] * W[2150] + W[5504] * W[1757]
             + W[5897] * W[1364] + W[6290] * W[971] + W[6683] * W[578] + W[7076] * W[185];
-    W[7264] = W[51] * W[7240] + W[444] * W[6847] + W[837] * W[6454] + W[1230] * W[6061] + W[1623] * W[5668]
-            + W[2016] * W[5275] + W[2409] * W[4882] + W[2802] * W[4489] + W[3195] * W[4096] + W[3588] * W[3703]
-            + W[3981] * W[3310] + W[4374] * W[2917] + W[4767] * W[2524] + W[5160] * W[2131] + W[5553] * W[1738]
-            + W[5946] * W[1345] + W[6339] * W[952] + W[6732] * W[559] + W[7125] * W[166];
-    W[7266] = W[40] * W[7244] + W[433] * W[6851] + W[826] * W[6458] + W[1219] * W[6065] + W[1612] * W[5672]
-            + W[2005] * W[5279] + W[2398] * W[4886] + W[2791] * W[4493] + W[3184] * W[4100] + W[3577] * W[3707]
-            + W[3970] * W[3314] + W[4363] * W[2921] + W[4756] * W[2528] + W[5149] * W[2135] + W[5542] * W[1742]
-            + W[5935] * W[1349] + W[6328] * W[956] + W[6721] * W[563] + W[7114] * W[170];
-    W[7269] = W[29] * W[7249] + W[422] * W[6856] + W[815] * W[6463] + W[1208] * W[6070] + W[1601] * W[5677]
-            + W[1994] * W[5284] + W[2387] * W[4891] + W[2780] * W[4498] + W[3173] * W[4105] + W[3566] * W[3712]
-            + W[3959] * W[3319] + W[4352] * W[2926] + W[4745] * W[2533] + W[5138] * W[2140] + W[5531] * W[1747]
-            + W[5924] * W[1354] + W[6317] * W[961] + W[6710] * W[568] + W[7103] * W[175];
-    W[7272] = W[18] * W[7254] + W[411] * W[6861] + W[804] * W[6468] + W[1197] * W[6075] + W[1590] * W[5682]
-            + W[1983] * W[5289] + W[2376] * W[4896] + W[2769] * W[4503] + W[3162] * W[4110] + W[3555] * W[3717]
-            + W[3948] * W[3324] + W[4341] * W[2931] + W[4734] * W[2538] + W[5127] * W[2145] + W[5520] * W[1752]
-            + W[5913] * W[1359] + W[6306] * W[966] + W[6699] * W[573] + W[7092] * W[180];
-    W[7275] = W[6] * W[7259] + W[399] * W[6866] + W[792] * W[6473] + W[1185] * W[6080] + W[1578] * W[5687]
-            + W[1971] * W[5294] + W[2364] * W[4901] + W[2757] * W[4508] + W[3150] * W[4115] + W[3543] * W[3722]
-            + W[3936] * W[3329] + W[4329] * W[2936] + W[4722] * W[2543] + W[5115] * W[2150] + W[5508] * W[1757]
-            + W[5901] * W[1364] + W[6294] * W[971] + W[6687] * W[578] + W[7080] * W[185];
-    W[7279] = W[55] * W[7240] + W[448] * W[6847] + W[841] * W[6454] + W[1234] * W[6061] + W[1627] * W[5668]
-            + W[2020] * W[5275] + W[2413] * W[4882] + W[2806] * W[4489] + W[3199] * W[4096] + W[3592] * W[3703]
-            + W[3985] * W[3310] + W[4378] * W[2917] + W[4771] * W[2524] + W[5164] * W[2131] + W[5557] * W[1738]
-            + W[5950] * W[1345] + W[6343] * W[952] + W[6736] * W[559] + W[7129] * W[166];
-    W[7281] = W[44] * W[7244] + W[437] * W[6851] + W[830] * W[6458] + W[1223] * W[6065] + W[1616] * W[5672]
-            + W[2009] * W[5279] + W[2402] * W[4886] + W[2795] * W[4493] + W[3188] * W[4100] + W[3581] * W[3707]
-            + W[3974] * W[3314] + W[4367] * W[2921] + W[4760] * W[2528] + W[5153] * W[2135] + W[5546] * W[1742]
-            + W[5939] * W[1349] + W[6332] * W[956] + W[6725] * W[563] + W[7118] * W[170];
-    W[7284] = W[33] * W[7249] + W[426] * W[6856] + W[819] * W[6463] + W[1212] * W[6070] + W[1605] * W[5677]
-            + W[1998] * W[5284] + W[2391] * W[4891] + W[2784] * W[4498] + W[3177] * W[4105] + W[3570] * W[3712]
-            + W[3963] * W[3319] + W[4356] * W[2926] + W[4749] * W[2533] + W[5142] * W[2140] + W[5535] * W[1747]
-            + W[5928] * W[1354] + W[6321] * W[961] + W[6714] * W[568] + W[7107] * W[175];
-    W[7287] = W[22] * W[7254] + W[415] * W[6861] + W[808] * W[6468] + W[1201] * W[6075] + W[1594] * W[5682]
-            + W[1987] * W[5289] + W[2380] * W[4896] + W[2773] * W[4503] + W[3166] * W[4110] + W[3559] * W[3717]
-            + W[3952] * W[3324] + W[4345] * W[2931] + W[4738] * W[2538] + W[5131] * W[2145] + W[5524] * W[1752]
-            + W[5917] * W[1359] + W[6310] * W[966] + W[6703] * W[573] + W[7096] * W[180];
-    W[7290] = W[11] * W[7259] + W[404] * W[6866] + W[797] * W[6473] + W[1190] * W[6080] + W[1583] * W[5687]
-            + W[1976] * W[5294] + W[2369] * W[4901] + W[2762] * W[4508] + W[3155] * W[4115] + W[3548] * W[3722]
-            + W[3941] * W[3329] + W[4334] * W[2936] + W[4727] * W[2543] + W[5120] * W[2150] + W[5513] * W[1757]
-            + W[5906] * W[1364] + W[6299] * W[971] + W[6692] * W[578] + W[7085] * W[185];
-    W[7296] = W[82] * W[7295] + W[475] * W[6902] + W[868] * W[6509] + W[1261] * W[6116] + W[1654] * W[5723]
-            + W[2047] * W[5330] + W[2440] * W[4937] + W[2833] * W[4544] + W[3226] * W[4151] + W[3619] * W[3758]
-            + W[4012] * W[3365] + W[4405] * W[2972] + W[4798] * W[2579] + W[5191] * W[2186] + W[5584] * W[1793]
-            + W[5977] * W[1400] + W[6370] * W[1007] + W[6763] * W[614] + W[7156] * W[221];
-    W[7300] = W[74] * W[7299] + W[467] * W[6906] + W[860] * W[6513] + W[1253] * W[6120] + W[1646] * W[5727]
-            + W[2039] * W[5334] + W[2432] * W[4941] + W[2825] * W[4548] + W[3218] * W[4155] + W[3611] * W[3762]
-            + W[4004] * W[3369] + W[4397] * W[2976] + W[4790] * W[2583] + W[5183] * W[2190] + W[5576] * W[1797]
-            + W[5969] * W[1404] + W[6362] * W[1011] + W[6755] * W[618] + W[7148] * W[225];
-    W[7305] = W[66] * W[7304] + W[459] * W[6911] + W[852] * W[6518] + W[1245] * W[6125] + W[1638] * W[5732]
-            + W[2031] * W[5339] + W[2424] * W[4946] + W[2817] * W[4553] + W[3210] * W[4160] + W[3603] * W[3767]
-            + W[3996] * W[3374] + W[4389] * W[2981] + W[4782] * W[2588] + W[5175] * W[2195] + W[5568] * W[1802]
-            + W[5961] * W[1409] + W[6354] * W[1016] + W[6747] * W[623] + W[7140] * W[230];
-    W[7310] = W[58] * W[7309] + W[451] * W[6916] + W[844] * W[6523] + W[1237] * W[6130] + W[1630] * W[5737]
-            + W[2023] * W[5344] + W[2416] * W[4951] + W[2809] * W[4558] + W[3202] * W[4165] + W[3595] * W[3772]
-            + W[3988] * W[3379] + W[4381] * W[2986] + W[4774] * W[2593] + W[5167] * W[2200] + W[5560] * W[1807]
-            + W[5953] * W[1414] + W[6346] * W[1021] + W[6739] * W[628] + W[7132] * W[235];
-    W[7315] = W[84] * W[7295] + W[477] * W[6902] + W[870] * W[6509] + W[1263] * W[6116] + W[1656] * W[5723]
-            + W[2049] * W[5330] + W[2442] * W[4937] + W[2835] * W[4544] + W[3228] * W[4151] + W[3621] * W[3758]
-            + W[4014] * W[3365] + W[4407] * W[2972] + W[4800] * W[2579] + W[5193] * W[2186] + W[5586] * W[1793]
-            + W[5979] * W[1400] + W[6372] * W[1007] + W[6765] * W[614] + W[7158] * W[221];
-    W[7317] = W[76] * W[7299] + W[469] * W[6906] + W[862] * W[6513] + W[1255] * W[6120] + W[1648] * W[5727]
-            + W[2041] * W[5334] + W[2434] * W[4941] + W[2827] * W[4548] + W[3220] * W[4155] + W[3613] * W[3762]
-            + W[4006] * W[3369] + W[4399] * W[2976] + W[4792] * W[2583] + W[5185] * W[2190] + W[5578] * W[1797]
-            + W[5971] * W[1404] + W[6364] * W[1011] + W[6757] * W[618] + W[7150] * W[225];
-    W[7320] = W[68] * W[7304] + W[461] * W[6911] + W[854] * W[6518] + W[1247] * W[6125] + W[1640] * W[5732]
-            + W[2033] * W[5339] + W[2426] * W[4946] + W[2819] * W[4553] + W[3212] * W[4160] + W[3605] * W[3767]
-            + W[3998] * W[3374] + W[4391] * W[2981] + W[4784] * W[2588] + W[5177] * W[2195] + W[5570] * W[1802]
-            + W[5963] * W[1409] + W[6356] * W[1016] + W[6749] * W[623] + W[7142] * W[230];
-    W[7323] = W[60] * W[7309] + W[453] * W[6916] + W[846] * W[6523] + W[1239] * W[6130] + W[1632] * W[5737]
-            + W[2025] * W[5344] + W[2418] * W[4951] + W[2811] * W[4558] + W[3204] * W[4165] + W[3597] * W[3772]
-            + W[3990] * W[3379] + W[4383] * W[2986] + W[4776] * W[2593] + W[5169] * W[2200] + W[5562] * W[1807]
-            + W[5955] * W[1414] + W[6348] * W[1021] + W[6741] * W[628] + W[7134] * W[235];
-    W[7328] = W[87] * W[7295] + W[480] * W[6902] + W[873] * W[6509] + W[1266] * W[6116] + W[1659] * W[5723]
-            + W[2052] * W[5330] + W[2445] * W[4937] + W[2838] * W[4544] + W[3231] * W[4151] + W[3624] * W[3758]
-            + W[4017] * W[3365] + W[4410] * W[2972] + W[4803] * W[2579] + W[5196] * W[2186] + W[5589] * W[1793]
-            + W[5982] * W[1400] + W[6375] * W[1007] + W[6768] * W[614] + W[7161] * W[221];
-    W[7330] = W[79] * W[7299] + W[472] * W[6906] + W[865] * W[6513] + W[1258] * W[6120] + W[1651] * W[5727]
-            + W[2044] * W[5334] + W[2437] * W[4941] + W[2830] * W[4548] + W[3223] * W[4155] + W[3616] * W[3762]
-            + W[4009] * W[3369] + W[4402] * W[2976] + W[4795] * W[2583] + W[5188] * W[2190] + W[5581] * W[1797]
-            + W[5974] * W[1404] + W[6367] * W[1011] + W[6760] * W[618] + W[7153] * W[225];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 18. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_335(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7333] = W[71] * W[7304] + W[464] * W[6911] + W[857] * W[6518] + W[1250] * W[6125] + W[1643] * W[5732]
             + W[2036] * W[5339] + W[2429] * W[4946] + W[2822] * W[4553] + W[3215] * W[4160] + W[3608] * W[3767]
             + W[4001] * W[3374] + W[4394] * W[2981] + W[4787] * W[2588] + W[5180] * W[2195] + W[5573] * W[1802]
@@ -12883,166 +9734,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[2100] * W[5447] + W[2493] * W[5054] + W[2886] * W[4661] + W[3279] * W[4268] + W[3672] * W[3875]
             + W[4065] * W[3482] + W[4458] * W[3089] + W[4851] * W[2696] + W[5244] * W[2303] + W[5637] * W[1910]
             + W[6030] * W[1517] + W[6423] * W[1124] + W[6816] * W[731] + W[7209] * W[338];
-    W[7242] = W[164] * W[7241];
-    W[7246] = W[169] * W[7245];
-    W[7251] = W[174] * W[7250];
-    W[7256] = W[179] * W[7255];
-    W[7261] = W[184] * W[7260];
-    W[7265] = W[164] * W[7264];
-    W[7267] = W[169] * W[7266];
-    W[7270] = W[174] * W[7269];
-    W[7273] = W[179] * W[7272];
-    W[7276] = W[184] * W[7275];
-    W[7280] = W[164] * W[7279];
-    W[7282] = W[169] * W[7281];
-    W[7285] = W[174] * W[7284];
-    W[7288] = W[179] * W[7287];
-    W[7291] = W[184] * W[7290];
-    W[7297] = W[220] * W[7296];
-    W[7301] = W[224] * W[7300];
-    W[7306] = W[229] * W[7305];
-    W[7311] = W[234] * W[7310];
-    W[7316] = W[220] * W[7315];
-    W[7318] = W[224] * W[7317];
-    W[7321] = W[229] * W[7320];
-    W[7324] = W[234] * W[7323];
-    W[7329] = W[220] * W[7328];
-    W[7331] = W[224] * W[7330];
-    W[7334] = W[229] * W[7333];
-    W[7337] = W[234] * W[7336];
-    W[7344] = W[267] * W[7343];
-    W[7348] = W[271] * W[7347];
-    W[7353] = W[276] * W[7352];
-    W[7359] = W[267] * W[7358];
-    W[7361] = W[271] * W[7360];
-    W[7364] = W[276] * W[7363];
-    W[7370] = W[267] * W[7369];
-    W[7372] = W[271] * W[7371];
-    W[7375] = W[276] * W[7374];
-    W[7383] = W[306] * W[7382];
-    W[7387] = W[310] * W[7386];
-    W[7394] = W[306] * W[7393];
-    W[7396] = W[310] * W[7395];
-    W[7403] = W[306] * W[7402];
-    W[7405] = W[310] * W[7404];
-    W[7414] = W[337] * W[7413];
-    W[7421] = W[337] * W[7420];
-    W[7428] = W[337] * W[7427];
-    W[7247] = W[7242] + W[7246];
-    W[7268] = W[7265] + W[7267];
-    W[7283] = W[7280] + W[7282];
-    W[7302] = W[7297] + W[7301];
-    W[7319] = W[7316] + W[7318];
-    W[7332] = W[7329] + W[7331];
-    W[7349] = W[7344] + W[7348];
-    W[7362] = W[7359] + W[7361];
-    W[7373] = W[7370] + W[7372];
-    W[7388] = W[7383] + W[7387];
-    W[7397] = W[7394] + W[7396];
-    W[7406] = W[7403] + W[7405];
-    W[7415] = W[7414] - W[7387];
-    W[7422] = W[7421] - W[7396];
-    W[7429] = W[7428] - W[7405];
-    W[7434] = W[7383] + W[7414];
-    W[7439] = W[7394] + W[7421];
-    W[7444] = W[7403] + W[7428];
-    W[7252] = W[7247] + W[7251];
-    W[7271] = W[7268] + W[7270];
-    W[7286] = W[7283] + W[7285];
-    W[7307] = W[7302] + W[7306];
-    W[7322] = W[7319] + W[7321];
-    W[7335] = W[7332] + W[7334];
-    W[7354] = W[7349] + W[7353];
-    W[7365] = W[7362] + W[7364];
-    W[7376] = W[7373] + W[7375];
-    W[7389] = W[7388] - W[7353];
-    W[7398] = W[7397] - W[7364];
-    W[7407] = W[7406] - W[7375];
-    W[7416] = W[7415] - W[7348];
-    W[7423] = W[7422] - W[7361];
-    W[7430] = W[7429] - W[7372];
-    W[7435] = W[7344] + W[7434];
-    W[7440] = W[7359] + W[7439];
-    W[7445] = W[7370] + W[7444];
-    W[7257] = W[7252] + W[7256];
-    W[7274] = W[7271] + W[7273];
-    W[7289] = W[7286] + W[7288];
-    W[7312] = W[7307] + W[7311];
-    W[7325] = W[7322] + W[7324];
-    W[7338] = W[7335] + W[7337];
-    W[7355] = W[7354] - W[7311];
-    W[7366] = W[7365] - W[7324];
-    W[7377] = W[7376] - W[7337];
-    W[7390] = W[7389] - W[7306];
-    W[7399] = W[7398] - W[7321];
-    W[7408] = W[7407] - W[7334];
-    W[7417] = W[7416] - W[7301];
-    W[7424] = W[7423] - W[7318];
-    W[7431] = W[7430] - W[7331];
-    W[7436] = W[7297] + W[7435];
-    W[7441] = W[7316] + W[7440];
-    W[7446] = W[7329] + W[7445];
-    W[7262] = W[7257] + W[7261];
-    W[7277] = W[7274] + W[7276];
-    W[7292] = W[7289] + W[7291];
-    W[7313] = W[7312] - W[7261];
-    W[7326] = W[7325] - W[7276];
-    W[7339] = W[7338] - W[7291];
-    W[7356] = W[7355] - W[7256];
-    W[7367] = W[7366] - W[7273];
-    W[7378] = W[7377] - W[7288];
-    W[7391] = W[7390] - W[7251];
-    W[7400] = W[7399] - W[7270];
-    W[7409] = W[7408] - W[7285];
-    W[7418] = W[7417] - W[7246];
-    W[7425] = W[7424] - W[7267];
-    W[7432] = W[7431] - W[7282];
-    W[7437] = W[7242] + W[7436];
-    W[7442] = W[7265] + W[7441];
-    W[7447] = W[7280] + W[7446];
-    W[7263] = W[161] * W[7262];
-    W[7278] = W[161] * W[7277];
-    W[7293] = W[161] * W[7292];
-    W[7314] = W[161] * W[7313];
-    W[7327] = W[161] * W[7326];
-    W[7340] = W[161] * W[7339];
-    W[7357] = W[161] * W[7356];
-    W[7368] = W[161] * W[7367];
-    W[7379] = W[161] * W[7378];
-    W[7392] = W[161] * W[7391];
-    W[7401] = W[161] * W[7400];
-    W[7410] = W[161] * W[7409];
-    W[7419] = W[161] * W[7418];
-    W[7426] = W[161] * W[7425];
-    W[7433] = W[161] * W[7432];
-    W[7438] = W[163] * W[7437];
-    W[7443] = W[163] * W[7442];
-    W[7448] = W[163] * W[7447];
-    X[684] = X[666] / 19.0;
-    X[685] = X[667] / 19.0;
-    X[686] = X[668] / 19.0;
-    X[687] = X[669] / 19.0;
-    X[688] = X[670] / 19.0;
-    X[689] = X[671] / 19.0;
-    X[690] = X[672] / 19.0;
-    X[691] = X[673] / 19.0;
-    X[692] = X[674] / 19.0;
-    X[693] = X[675] / 19.0;
-    X[694] = X[676] / 19.0;
-    X[695] = X[677] / 19.0;
-    X[696] = X[678] / 19.0;
-    X[697] = X[679] / 19.0;
-    X[698] = X[680] / 19.0;
-    X[699] = X[681] / 19.0;
-    X[700] = X[682] / 19.0;
-    X[701] = X[683] / 19.0;
-    X[702] = -W[7263] / W[138] / 19.0;
-    X[703] = -W[7278] / W[138] / 19.0;
-    X[704] = -W[7293] / W[138] / 19.0;
-    X[705] = -W[7314] / W[140] / 19.0;
-    X[706] = -W[7327] / W[140] / 19.0;
-    X[707] = -W[7340] / W[140] / 19.0;
-    X[708] = -W[7357] / W[141] / 19.0;
+    return 0;
+}
+
+/* Lines 340 .. 350 of taylor_run's order 18. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_344(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[709] = -W[7368] / W[141] / 19.0;
     X[710] = -W[7379] / W[141] / 19.0;
     X[711] = -W[7392] / W[142] / 19.0;
@@ -13054,9 +9755,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[717] = -W[7438] / W[144] / 19.0;
     X[718] = -W[7443] / W[144] / 19.0;
     X[719] = -W[7448] / W[144] / 19.0;
-    if (K == 19)
-        goto out;
-    /* order 19 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_345(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7469] = X[684] - X[687];
     W[7473] = X[685] - X[688];
     W[7478] = X[686] - X[689];
@@ -13077,26 +9785,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[7530] = X[689] - X[692];
     W[7533] = X[687] - X[693];
     W[7535] = X[688] - X[694];
-    W[7538] = X[689] - X[695];
-    W[7541] = X[687] - X[696];
-    W[7543] = X[688] - X[697];
-    W[7546] = X[689] - X[698];
-    W[7549] = X[687] - X[699];
-    W[7551] = X[688] - X[700];
-    W[7554] = X[689] - X[701];
-    W[7557] = X[690] - X[693];
-    W[7559] = X[691] - X[694];
-    W[7562] = X[692] - X[695];
-    W[7565] = X[690] - X[696];
-    W[7567] = X[691] - X[697];
-    W[7570] = X[692] - X[698];
-    W[7573] = X[690] - X[699];
-    W[7575] = X[691] - X[700];
-    W[7578] = X[692] - X[701];
-    W[7581] = X[693] - X[696];
-    W[7583] = X[694] - X[697];
-    W[7586] = X[695] - X[698];
-    W[7589] = X[693] - X[699];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_347(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7591] = X[694] - X[700];
     W[7594] = X[695] - X[701];
     W[7597] = X[696] - X[699];
@@ -13132,46 +9830,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[2016] * W[5553] + W[2409] * W[5160] + W[2802] * W[4767] + W[3195] * W[4374] + W[3588] * W[3981]) * 2.0;
     W[7523] = (W[55] * W[7522] + W[448] * W[7129] + W[841] * W[6736] + W[1234] * W[6343] + W[1627] * W[5950]
             + W[2020] * W[5557] + W[2413] * W[5164] + W[2806] * W[4771] + W[3199] * W[4378] + W[3592] * W[3985]) * 2.0;
-    W[7526] = (W[58] * W[7525] + W[451] * W[7132] + W[844] * W[6739] + W[1237] * W[6346] + W[1630] * W[5953]
-            + W[2023] * W[5560] + W[2416] * W[5167] + W[2809] * W[4774] + W[3202] * W[4381] + W[3595] * W[3988]) * 2.0;
-    W[7528] = (W[60] * W[7527] + W[453] * W[7134] + W[846] * W[6741] + W[1239] * W[6348] + W[1632] * W[5955]
-            + W[2025] * W[5562] + W[2418] * W[5169] + W[2811] * W[4776] + W[3204] * W[4383] + W[3597] * W[3990]) * 2.0;
-    W[7531] = (W[63] * W[7530] + W[456] * W[7137] + W[849] * W[6744] + W[1242] * W[6351] + W[1635] * W[5958]
-            + W[2028] * W[5565] + W[2421] * W[5172] + W[2814] * W[4779] + W[3207] * W[4386] + W[3600] * W[3993]) * 2.0;
-    W[7534] = (W[66] * W[7533] + W[459] * W[7140] + W[852] * W[6747] + W[1245] * W[6354] + W[1638] * W[5961]
-            + W[2031] * W[5568] + W[2424] * W[5175] + W[2817] * W[4782] + W[3210] * W[4389] + W[3603] * W[3996]) * 2.0;
-    W[7536] = (W[68] * W[7535] + W[461] * W[7142] + W[854] * W[6749] + W[1247] * W[6356] + W[1640] * W[5963]
-            + W[2033] * W[5570] + W[2426] * W[5177] + W[2819] * W[4784] + W[3212] * W[4391] + W[3605] * W[3998]) * 2.0;
-    W[7539] = (W[71] * W[7538] + W[464] * W[7145] + W[857] * W[6752] + W[1250] * W[6359] + W[1643] * W[5966]
-            + W[2036] * W[5573] + W[2429] * W[5180] + W[2822] * W[4787] + W[3215] * W[4394] + W[3608] * W[4001]) * 2.0;
-    W[7542] = (W[74] * W[7541] + W[467] * W[7148] + W[860] * W[6755] + W[1253] * W[6362] + W[1646] * W[5969]
-            + W[2039] * W[5576] + W[2432] * W[5183] + W[2825] * W[4790] + W[3218] * W[4397] + W[3611] * W[4004]) * 2.0;
-    W[7544] = (W[76] * W[7543] + W[469] * W[7150] + W[862] * W[6757] + W[1255] * W[6364] + W[1648] * W[5971]
-            + W[2041] * W[5578] + W[2434] * W[5185] + W[2827] * W[4792] + W[3220] * W[4399] + W[3613] * W[4006]) * 2.0;
-    W[7547] = (W[79] * W[7546] + W[472] * W[7153] + W[865] * W[6760] + W[1258] * W[6367] + W[1651] * W[5974]
-            + W[2044] * W[5581] + W[2437] * W[5188] + W[2830] * W[4795] + W[3223] * W[4402] + W[3616] * W[4009]) * 2.0;
-    W[7550] = (W[82] * W[7549] + W[475] * W[7156] + W[868] * W[6763] + W[1261] * W[6370] + W[1654] * W[5977]
-            + W[2047] * W[5584] + W[2440] * W[5191] + W[2833] * W[4798] + W[3226] * W[4405] + W[3619] * W[4012]) * 2.0;
-    W[7552] = (W[84] * W[7551] + W[477] * W[7158] + W[870] * W[6765] + W[1263] * W[6372] + W[1656] * W[5979]
-            + W[2049] * W[5586] + W[2442] * W[5193] + W[2835] * W[4800] + W[3228] * W[4407] + W[3621] * W[4014]) * 2.0;
-    W[7555] = (W[87] * W[7554] + W[480] * W[7161] + W[873] * W[6768] + W[1266] * W[6375] + W[1659] * W[5982]
-            + W[2052] * W[5589] + W[2445] * W[5196] + W[2838] * W[4803] + W[3231] * W[4410] + W[3624] * W[4017]) * 2.0;
-    W[7558] = (W[90] * W[7557] + W[483] * W[7164] + W[876] * W[6771] + W[1269] * W[6378] + W[1662] * W[5985]
-            + W[2055] * W[5592] + W[2448] * W[5199] + W[2841] * W[4806] + W[3234] * W[4413] + W[3627] * W[4020]) * 2.0;
-    W[7560] = (W[92] * W[7559] + W[485] * W[7166] + W[878] * W[6773] + W[1271] * W[6380] + W[1664] * W[5987]
-            + W[2057] * W[5594] + W[2450] * W[5201] + W[2843] * W[4808] + W[3236] * W[4415] + W[3629] * W[4022]) * 2.0;
-    W[7563] = (W[95] * W[7562] + W[488] * W[7169] + W[881] * W[6776] + W[1274] * W[6383] + W[1667] * W[5990]
-            + W[2060] * W[5597] + W[2453] * W[5204] + W[2846] * W[4811] + W[3239] * W[4418] + W[3632] * W[4025]) * 2.0;
-    W[7566] = (W[98] * W[7565] + W[491] * W[7172] + W[884] * W[6779] + W[1277] * W[6386] + W[1670] * W[5993]
-            + W[2063] * W[5600] + W[2456] * W[5207] + W[2849] * W[4814] + W[3242] * W[4421] + W[3635] * W[4028]) * 2.0;
-    W[7568] = (W[100] * W[7567] + W[493] * W[7174] + W[886] * W[6781] + W[1279] * W[6388] + W[1672] * W[5995]
-            + W[2065] * W[5602] + W[2458] * W[5209] + W[2851] * W[4816] + W[3244] * W[4423] + W[3637] * W[4030]) * 2.0;
-    W[7571] = (W[103] * W[7570] + W[496] * W[7177] + W[889] * W[6784] + W[1282] * W[6391] + W[1675] * W[5998]
-            + W[2068] * W[5605] + W[2461] * W[5212] + W[2854] * W[4819] + W[3247] * W[4426] + W[3640] * W[4033]) * 2.0;
-    W[7574] = (W[106] * W[7573] + W[499] * W[7180] + W[892] * W[6787] + W[1285] * W[6394] + W[1678] * W[6001]
-            + W[2071] * W[5608] + W[2464] * W[5215] + W[2857] * W[4822] + W[3250] * W[4429] + W[3643] * W[4036]) * 2.0;
-    W[7576] = (W[108] * W[7575] + W[501] * W[7182] + W[894] * W[6789] + W[1287] * W[6396] + W[1680] * W[6003]
-            + W[2073] * W[5610] + W[2466] * W[5217] + W[2859] * W[4824] + W[3252] * W[4431] + W[3645] * W[4038]) * 2.0;
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_349(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7579] = (W[111] * W[7578] + W[504] * W[7185] + W[897] * W[6792] + W[1290] * W[6399] + W[1683] * W[6006]
             + W[2076] * W[5613] + W[2469] * W[5220] + W[2862] * W[4827] + W[3255] * W[4434] + W[3648] * W[4041]) * 2.0;
     W[7582] = (W[114] * W[7581] + W[507] * W[7188] + W[900] * W[6795] + W[1293] * W[6402] + W[1686] * W[6009]
@@ -13202,121 +9870,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[7545] = W[7542] + W[7544];
     W[7553] = W[7550] + W[7552];
     W[7561] = W[7558] + W[7560];
-    W[7569] = W[7566] + W[7568];
-    W[7577] = W[7574] + W[7576];
-    W[7585] = W[7582] + W[7584];
-    W[7593] = W[7590] + W[7592];
-    W[7601] = W[7598] + W[7600];
-    W[7480] = W[7475] + W[7479];
-    W[7491] = W[7487] + W[7490];
-    W[7502] = W[7498] + W[7501];
-    W[7513] = W[7509] + W[7512];
-    W[7524] = W[7520] + W[7523];
-    W[7532] = W[7529] + W[7531];
-    W[7540] = W[7537] + W[7539];
-    W[7548] = W[7545] + W[7547];
-    W[7556] = W[7553] + W[7555];
-    W[7564] = W[7561] + W[7563];
-    W[7572] = W[7569] + W[7571];
-    W[7580] = W[7577] + W[7579];
-    W[7588] = W[7585] + W[7587];
-    W[7596] = W[7593] + W[7595];
-    W[7604] = W[7601] + W[7603];
-    W[7633] = (-28.5 * W[7524] * W[166] - 28.0 * W[7131] * W[559] - 27.5 * W[6738] * W[952] - 27.0 * W[6345] * W[1345]
-            - 26.5 * W[5952] * W[1738] - 26.0 * W[5559] * W[2131] - 25.5 * W[5166] * W[2524] - 25.0 * W[4773] * W[2917]
-            - 24.5 * W[4380] * W[3310] - 24.0 * W[3987] * W[3703] - 23.5 * W[3594] * W[4096] - 23.0 * W[3201] * W[4489]
-            - 22.5 * W[2808] * W[4882] - 22.0 * W[2415] * W[5275] - 21.5 * W[2022] * W[5668] - 21.0 * W[1629] * W[6061]
-            - 20.5 * W[1236] * W[6454] - 20.0 * W[843] * W[6847] - 19.5 * W[450] * W[7240]) / (19.0 * W[57]);
-    W[7637] = (-28.5 * W[7513] * W[170] - 28.0 * W[7120] * W[563] - 27.5 * W[6727] * W[956] - 27.0 * W[6334] * W[1349]
-            - 26.5 * W[5941] * W[1742] - 26.0 * W[5548] * W[2135] - 25.5 * W[5155] * W[2528] - 25.0 * W[4762] * W[2921]
-            - 24.5 * W[4369] * W[3314] - 24.0 * W[3976] * W[3707] - 23.5 * W[3583] * W[4100] - 23.0 * W[3190] * W[4493]
-            - 22.5 * W[2797] * W[4886] - 22.0 * W[2404] * W[5279] - 21.5 * W[2011] * W[5672] - 21.0 * W[1618] * W[6065]
-            - 20.5 * W[1225] * W[6458] - 20.0 * W[832] * W[6851] - 19.5 * W[439] * W[7244]) / (19.0 * W[46]);
-    W[7642] = (-28.5 * W[7502] * W[175] - 28.0 * W[7109] * W[568] - 27.5 * W[6716] * W[961] - 27.0 * W[6323] * W[1354]
-            - 26.5 * W[5930] * W[1747] - 26.0 * W[5537] * W[2140] - 25.5 * W[5144] * W[2533] - 25.0 * W[4751] * W[2926]
-            - 24.5 * W[4358] * W[3319] - 24.0 * W[3965] * W[3712] - 23.5 * W[3572] * W[4105] - 23.0 * W[3179] * W[4498]
-            - 22.5 * W[2786] * W[4891] - 22.0 * W[2393] * W[5284] - 21.5 * W[2000] * W[5677] - 21.0 * W[1607] * W[6070]
-            - 20.5 * W[1214] * W[6463] - 20.0 * W[821] * W[6856] - 19.5 * W[428] * W[7249]) / (19.0 * W[35]);
-    W[7647] = (-28.5 * W[7491] * W[180] - 28.0 * W[7098] * W[573] - 27.5 * W[6705] * W[966] - 27.0 * W[6312] * W[1359]
-            - 26.5 * W[5919] * W[1752] - 26.0 * W[5526] * W[2145] - 25.5 * W[5133] * W[2538] - 25.0 * W[4740] * W[2931]
-            - 24.5 * W[4347] * W[3324] - 24.0 * W[3954] * W[3717] - 23.5 * W[3561] * W[4110] - 23.0 * W[3168] * W[4503]
-            - 22.5 * W[2775] * W[4896] - 22.0 * W[2382] * W[5289] - 21.5 * W[1989] * W[5682] - 21.0 * W[1596] * W[6075]
-            - 20.5 * W[1203] * W[6468] - 20.0 * W[810] * W[6861] - 19.5 * W[417] * W[7254]) / (19.0 * W[24]);
-    W[7652] = (-28.5 * W[7480] * W[185] - 28.0 * W[7087] * W[578] - 27.5 * W[6694] * W[971] - 27.0 * W[6301] * W[1364]
-            - 26.5 * W[5908] * W[1757] - 26.0 * W[5515] * W[2150] - 25.5 * W[5122] * W[2543] - 25.0 * W[4729] * W[2936]
-            - 24.5 * W[4336] * W[3329] - 24.0 * W[3943] * W[3722] - 23.5 * W[3550] * W[4115] - 23.0 * W[3157] * W[4508]
-            - 22.5 * W[2764] * W[4901] - 22.0 * W[2371] * W[5294] - 21.5 * W[1978] * W[5687] - 21.0 * W[1585] * W[6080]
-            - 20.5 * W[1192] * W[6473] - 20.0 * W[799] * W[6866] - 19.5 * W[406] * W[7259]) / (19.0 * W[13]);
-    W[7688] = (-28.5 * W[7556] * W[221] - 28.0 * W[7163] * W[614] - 27.5 * W[6770] * W[1007] - 27.0 * W[6377] * W[1400]
-            - 26.5 * W[5984] * W[1793] - 26.0 * W[5591] * W[2186] - 25.5 * W[5198] * W[2579] - 25.0 * W[4805] * W[2972]
-            - 24.5 * W[4412] * W[3365] - 24.0 * W[4019] * W[3758] - 23.5 * W[3626] * W[4151] - 23.0 * W[3233] * W[4544]
-            - 22.5 * W[2840] * W[4937] - 22.0 * W[2447] * W[5330] - 21.5 * W[2054] * W[5723] - 21.0 * W[1661] * W[6116]
-            - 20.5 * W[1268] * W[6509] - 20.0 * W[875] * W[6902] - 19.5 * W[482] * W[7295]) / (19.0 * W[89]);
-    W[7692] = (-28.5 * W[7548] * W[225] - 28.0 * W[7155] * W[618] - 27.5 * W[6762] * W[1011] - 27.0 * W[6369] * W[1404]
-            - 26.5 * W[5976] * W[1797] - 26.0 * W[5583] * W[2190] - 25.5 * W[5190] * W[2583] - 25.0 * W[4797] * W[2976]
-            - 24.5 * W[4404] * W[3369] - 24.0 * W[4011] * W[3762] - 23.5 * W[3618] * W[4155] - 23.0 * W[3225] * W[4548]
-            - 22.5 * W[2832] * W[4941] - 22.0 * W[2439] * W[5334] - 21.5 * W[2046] * W[5727] - 21.0 * W[1653] * W[6120]
-            - 20.5 * W[1260] * W[6513] - 20.0 * W[867] * W[6906] - 19.5 * W[474] * W[7299]) / (19.0 * W[81]);
-    W[7697] = (-28.5 * W[7540] * W[230] - 28.0 * W[7147] * W[623] - 27.5 * W[6754] * W[1016] - 27.0 * W[6361] * W[1409]
-            - 26.5 * W[5968] * W[1802] - 26.0 * W[5575] * W[2195] - 25.5 * W[5182] * W[2588] - 25.0 * W[4789] * W[2981]
-            - 24.5 * W[4396] * W[3374] - 24.0 * W[4003] * W[3767] - 23.5 * W[3610] * W[4160] - 23.0 * W[3217] * W[4553]
-            - 22.5 * W[2824] * W[4946] - 22.0 * W[2431] * W[5339] - 21.5 * W[2038] * W[5732] - 21.0 * W[1645] * W[6125]
-            - 20.5 * W[1252] * W[6518] - 20.0 * W[859] * W[6911] - 19.5 * W[466] * W[7304]) / (19.0 * W[73]);
-    W[7702] = (-28.5 * W[7532] * W[235] - 28.0 * W[7139] * W[628] - 27.5 * W[6746] * W[1021] - 27.0 * W[6353] * W[1414]
-            - 26.5 * W[5960] * W[1807] - 26.0 * W[5567] * W[2200] - 25.5 * W[5174] * W[2593] - 25.0 * W[4781] * W[2986]
-            - 24.5 * W[4388] * W[3379] - 24.0 * W[3995] * W[3772] - 23.5 * W[3602] * W[4165] - 23.0 * W[3209] * W[4558]
-            - 22.5 * W[2816] * W[4951] - 22.0 * W[2423] * W[5344] - 21.5 * W[2030] * W[5737] - 21.0 * W[1637] * W[6130]
-            - 20.5 * W[1244] * W[6523] - 20.0 * W[851] * W[6916] - 19.5 * W[458] * W[7309]) / (19.0 * W[65]);
-    W[7735] = (-28.5 * W[7580] * W[268] - 28.0 * W[7187] * W[661] - 27.5 * W[6794] * W[1054] - 27.0 * W[6401] * W[1447]
-            - 26.5 * W[6008] * W[1840] - 26.0 * W[5615] * W[2233] - 25.5 * W[5222] * W[2626] - 25.0 * W[4829] * W[3019]
-            - 24.5 * W[4436] * W[3412] - 24.0 * W[4043] * W[3805] - 23.5 * W[3650] * W[4198] - 23.0 * W[3257] * W[4591]
-            - 22.5 * W[2864] * W[4984] - 22.0 * W[2471] * W[5377] - 21.5 * W[2078] * W[5770] - 21.0 * W[1685] * W[6163]
-            - 20.5 * W[1292] * W[6556] - 20.0 * W[899] * W[6949] - 19.5 * W[506] * W[7342]) / (19.0 * W[113]);
-    W[7739] = (-28.5 * W[7572] * W[272] - 28.0 * W[7179] * W[665] - 27.5 * W[6786] * W[1058] - 27.0 * W[6393] * W[1451]
-            - 26.5 * W[6000] * W[1844] - 26.0 * W[5607] * W[2237] - 25.5 * W[5214] * W[2630] - 25.0 * W[4821] * W[3023]
-            - 24.5 * W[4428] * W[3416] - 24.0 * W[4035] * W[3809] - 23.5 * W[3642] * W[4202] - 23.0 * W[3249] * W[4595]
-            - 22.5 * W[2856] * W[4988] - 22.0 * W[2463] * W[5381] - 21.5 * W[2070] * W[5774] - 21.0 * W[1677] * W[6167]
-            - 20.5 * W[1284] * W[6560] - 20.0 * W[891] * W[6953] - 19.5 * W[498] * W[7346]) / (19.0 * W[105]);
-    W[7744] = (-28.5 * W[7564] * W[277] - 28.0 * W[7171] * W[670] - 27.5 * W[6778] * W[1063] - 27.0 * W[6385] * W[1456]
-            - 26.5 * W[5992] * W[1849] - 26.0 * W[5599] * W[2242] - 25.5 * W[5206] * W[2635] - 25.0 * W[4813] * W[3028]
-            - 24.5 * W[4420] * W[3421] - 24.0 * W[4027] * W[3814] - 23.5 * W[3634] * W[4207] - 23.0 * W[3241] * W[4600]
-            - 22.5 * W[2848] * W[4993] - 22.0 * W[2455] * W[5386] - 21.5 * W[2062] * W[5779] - 21.0 * W[1669] * W[6172]
-            - 20.5 * W[1276] * W[6565] - 20.0 * W[883] * W[6958] - 19.5 * W[490] * W[7351]) / (19.0 * W[97]);
-    W[7774] = (-28.5 * W[7596] * W[307] - 28.0 * W[7203] * W[700] - 27.5 * W[6810] * W[1093] - 27.0 * W[6417] * W[1486]
-            - 26.5 * W[6024] * W[1879] - 26.0 * W[5631] * W[2272] - 25.5 * W[5238] * W[2665] - 25.0 * W[4845] * W[3058]
-            - 24.5 * W[4452] * W[3451] - 24.0 * W[4059] * W[3844] - 23.5 * W[3666] * W[4237] - 23.0 * W[3273] * W[4630]
-            - 22.5 * W[2880] * W[5023] - 22.0 * W[2487] * W[5416] - 21.5 * W[2094] * W[5809] - 21.0 * W[1701] * W[6202]
-            - 20.5 * W[1308] * W[6595] - 20.0 * W[915] * W[6988] - 19.5 * W[522] * W[7381]) / (19.0 * W[129]);
-    W[7778] = (-28.5 * W[7588] * W[311] - 28.0 * W[7195] * W[704] - 27.5 * W[6802] * W[1097] - 27.0 * W[6409] * W[1490]
-            - 26.5 * W[6016] * W[1883] - 26.0 * W[5623] * W[2276] - 25.5 * W[5230] * W[2669] - 25.0 * W[4837] * W[3062]
-            - 24.5 * W[4444] * W[3455] - 24.0 * W[4051] * W[3848] - 23.5 * W[3658] * W[4241] - 23.0 * W[3265] * W[4634]
-            - 22.5 * W[2872] * W[5027] - 22.0 * W[2479] * W[5420] - 21.5 * W[2086] * W[5813] - 21.0 * W[1693] * W[6206]
-            - 20.5 * W[1300] * W[6599] - 20.0 * W[907] * W[6992] - 19.5 * W[514] * W[7385]) / (19.0 * W[121]);
-    W[7805] = (-28.5 * W[7604] * W[338] - 28.0 * W[7211] * W[731] - 27.5 * W[6818] * W[1124] - 27.0 * W[6425] * W[1517]
-            - 26.5 * W[6032] * W[1910] - 26.0 * W[5639] * W[2303] - 25.5 * W[5246] * W[2696] - 25.0 * W[4853] * W[3089]
-            - 24.5 * W[4460] * W[3482] - 24.0 * W[4067] * W[3875] - 23.5 * W[3674] * W[4268] - 23.0 * W[3281] * W[4661]
-            - 22.5 * W[2888] * W[5054] - 22.0 * W[2495] * W[5447] - 21.5 * W[2102] * W[5840] - 21.0 * W[1709] * W[6233]
-            - 20.5 * W[1316] * W[6626] - 20.0 * W[923] * W[7019] - 19.5 * W[530] * W[7412]) / (19.0 * W[137]);
-    W[7634] = W[48] * W[7633] + W[441] * W[7240] + W[834] * W[6847] + W[1227] * W[6454] + W[1620] * W[6061]
-            + W[2013] * W[5668] + W[2406] * W[5275] + W[2799] * W[4882] + W[3192] * W[4489] + W[3585] * W[4096]
-            + W[3978] * W[3703] + W[4371] * W[3310] + W[4764] * W[2917] + W[5157] * W[2524] + W[5550] * W[2131]
-            + W[5943] * W[1738] + W[6336] * W[1345] + W[6729] * W[952] + W[7122] * W[559] + W[7515] * W[166];
-    W[7638] = W[37] * W[7637] + W[430] * W[7244] + W[823] * W[6851] + W[1216] * W[6458] + W[1609] * W[6065]
-            + W[2002] * W[5672] + W[2395] * W[5279] + W[2788] * W[4886] + W[3181] * W[4493] + W[3574] * W[4100]
-            + W[3967] * W[3707] + W[4360] * W[3314] + W[4753] * W[2921] + W[5146] * W[2528] + W[5539] * W[2135]
-            + W[5932] * W[1742] + W[6325] * W[1349] + W[6718] * W[956] + W[7111] * W[563] + W[7504] * W[170];
-    W[7643] = W[26] * W[7642] + W[419] * W[7249] + W[812] * W[6856] + W[1205] * W[6463] + W[1598] * W[6070]
-            + W[1991] * W[5677] + W[2384] * W[5284] + W[2777] * W[4891] + W[3170] * W[4498] + W[3563] * W[4105]
-            + W[3956] * W[3712] + W[4349] * W[3319] + W[4742] * W[2926] + W[5135] * W[2533] + W[5528] * W[2140]
-            + W[5921] * W[1747] + W[6314] * W[1354] + W[6707] * W[961] + W[7100] * W[568] + W[7493] * W[175];
-    W[7648] = W[15] * W[7647] + W[408] * W[7254] + W[801] * W[6861] + W[1194] * W[6468] + W[1587] * W[6075]
-            + W[1980] * W[5682] + W[2373] * W[5289] + W[2766] * W[4896] + W[3159] * W[4503] + W[3552] * W[4110]
-            + W[3945] * W[3717] + W[4338] * W[3324] + W[4731] * W[2931] + W[5124] * W[2538] + W[5517] * W[2145]
-            + W[5910] * W[1752] + W[6303] * W[1359] + W[6696] * W[966] + W[7089] * W[573] + W[7482] * W[180];
-    W[7653] = W[2] * W[7652] + W[395] * W[7259] + W[788] * W[6866] + W[1181] * W[6473] + W[1574] * W[6080]
-            + W[1967] * W[5687] + W[2360] * W[5294] + W[2753] * W[4901] + W[3146] * W[4508] + W[3539] * W[4115]
-            + W[3932] * W[3722] + W[4325] * W[3329] + W[4718] * W[2936] + W[5111] * W[2543] + W[5504] * W[2150]
-            + W[5897] * W[1757] + W[6290] * W[1364] + W[6683] * W[971] + W[7076] * W[578] + W[7469] * W[185];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_352(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7657] = W[51] * W[7633] + W[444] * W[7240] + W[837] * W[6847] + W[1230] * W[6454] + W[1623] * W[6061]
             + W[2016] * W[5668] + W[2409] * W[5275] + W[2802] * W[4882] + W[3195] * W[4489] + W[3588] * W[4096]
             + W[3981] * W[3703] + W[4374] * W[3310] + W[4767] * W[2917] + W[5160] * W[2524] + W[5553] * W[2131]
@@ -13397,86 +9960,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[2044] * W[5727] + W[2437] * W[5334] + W[2830] * W[4941] + W[3223] * W[4548] + W[3616] * W[4155]
             + W[4009] * W[3762] + W[4402] * W[3369] + W[4795] * W[2976] + W[5188] * W[2583] + W[5581] * W[2190]
             + W[5974] * W[1797] + W[6367] * W[1404] + W[6760] * W[1011] + W[7153] * W[618] + W[7546] * W[225];
-    W[7726] = W[71] * W[7697] + W[464] * W[7304] + W[857] * W[6911] + W[1250] * W[6518] + W[1643] * W[6125]
-            + W[2036] * W[5732] + W[2429] * W[5339] + W[2822] * W[4946] + W[3215] * W[4553] + W[3608] * W[4160]
-            + W[4001] * W[3767] + W[4394] * W[3374] + W[4787] * W[2981] + W[5180] * W[2588] + W[5573] * W[2195]
-            + W[5966] * W[1802] + W[6359] * W[1409] + W[6752] * W[1016] + W[7145] * W[623] + W[7538] * W[230];
-    W[7729] = W[63] * W[7702] + W[456] * W[7309] + W[849] * W[6916] + W[1242] * W[6523] + W[1635] * W[6130]
-            + W[2028] * W[5737] + W[2421] * W[5344] + W[2814] * W[4951] + W[3207] * W[4558] + W[3600] * W[4165]
-            + W[3993] * W[3772] + W[4386] * W[3379] + W[4779] * W[2986] + W[5172] * W[2593] + W[5565] * W[2200]
-            + W[5958] * W[1807] + W[6351] * W[1414] + W[6744] * W[1021] + W[7137] * W[628] + W[7530] * W[235];
-    W[7736] = W[106] * W[7735] + W[499] * W[7342] + W[892] * W[6949] + W[1285] * W[6556] + W[1678] * W[6163]
-            + W[2071] * W[5770] + W[2464] * W[5377] + W[2857] * W[4984] + W[3250] * W[4591] + W[3643] * W[4198]
-            + W[4036] * W[3805] + W[4429] * W[3412] + W[4822] * W[3019] + W[5215] * W[2626] + W[5608] * W[2233]
-            + W[6001] * W[1840] + W[6394] * W[1447] + W[6787] * W[1054] + W[7180] * W[661] + W[7573] * W[268];
-    W[7740] = W[98] * W[7739] + W[491] * W[7346] + W[884] * W[6953] + W[1277] * W[6560] + W[1670] * W[6167]
-            + W[2063] * W[5774] + W[2456] * W[5381] + W[2849] * W[4988] + W[3242] * W[4595] + W[3635] * W[4202]
-            + W[4028] * W[3809] + W[4421] * W[3416] + W[4814] * W[3023] + W[5207] * W[2630] + W[5600] * W[2237]
-            + W[5993] * W[1844] + W[6386] * W[1451] + W[6779] * W[1058] + W[7172] * W[665] + W[7565] * W[272];
-    W[7745] = W[90] * W[7744] + W[483] * W[7351] + W[876] * W[6958] + W[1269] * W[6565] + W[1662] * W[6172]
-            + W[2055] * W[5779] + W[2448] * W[5386] + W[2841] * W[4993] + W[3234] * W[4600] + W[3627] * W[4207]
-            + W[4020] * W[3814] + W[4413] * W[3421] + W[4806] * W[3028] + W[5199] * W[2635] + W[5592] * W[2242]
-            + W[5985] * W[1849] + W[6378] * W[1456] + W[6771] * W[1063] + W[7164] * W[670] + W[7557] * W[277];
-    W[7751] = W[108] * W[7735] + W[501] * W[7342] + W[894] * W[6949] + W[1287] * W[6556] + W[1680] * W[6163]
-            + W[2073] * W[5770] + W[2466] * W[5377] + W[2859] * W[4984] + W[3252] * W[4591] + W[3645] * W[4198]
-            + W[4038] * W[3805] + W[4431] * W[3412] + W[4824] * W[3019] + W[5217] * W[2626] + W[5610] * W[2233]
-            + W[6003] * W[1840] + W[6396] * W[1447] + W[6789] * W[1054] + W[7182] * W[661] + W[7575] * W[268];
-    W[7753] = W[100] * W[7739] + W[493] * W[7346] + W[886] * W[6953] + W[1279] * W[6560] + W[1672] * W[6167]
-            + W[2065] * W[5774] + W[2458] * W[5381] + W[2851] * W[4988] + W[3244] * W[4595] + W[3637] * W[4202]
-            + W[4030] * W[3809] + W[4423] * W[3416] + W[4816] * W[3023] + W[5209] * W[2630] + W[5602] * W[2237]
-            + W[5995] * W[1844] + W[6388] * W[1451] + W[6781] * W[1058] + W[7174] * W[665] + W[7567] * W[272];
-    W[7756] = W[92] * W[7744] + W[485] * W[7351] + W[878] * W[6958] + W[1271] * W[6565] + W[1664] * W[6172]
-            + W[2057] * W[5779] + W[2450] * W[5386] + W[2843] * W[4993] + W[3236] * W[4600] + W[3629] * W[4207]
-            + W[4022] * W[3814] + W[4415] * W[3421] + W[4808] * W[3028] + W[5201] * W[2635] + W[5594] * W[2242]
-            + W[5987] * W[1849] + W[6380] * W[1456] + W[6773] * W[1063] + W[7166] * W[670] + W[7559] * W[277];
-    W[7762] = W[111] * W[7735] + W[504] * W[7342] + W[897] * W[6949] + W[1290] * W[6556] + W[1683] * W[6163]
-            + W[2076] * W[5770] + W[2469] * W[5377] + W[2862] * W[4984] + W[3255] * W[4591] + W[3648] * W[4198]
-            + W[4041] * W[3805] + W[4434] * W[3412] + W[4827] * W[3019] + W[5220] * W[2626] + W[5613] * W[2233]
-            + W[6006] * W[1840] + W[6399] * W[1447] + W[6792] * W[1054] + W[7185] * W[661] + W[7578] * W[268];
-    W[7764] = W[103] * W[7739] + W[496] * W[7346] + W[889] * W[6953] + W[1282] * W[6560] + W[1675] * W[6167]
-            + W[2068] * W[5774] + W[2461] * W[5381] + W[2854] * W[4988] + W[3247] * W[4595] + W[3640] * W[4202]
-            + W[4033] * W[3809] + W[4426] * W[3416] + W[4819] * W[3023] + W[5212] * W[2630] + W[5605] * W[2237]
-            + W[5998] * W[1844] + W[6391] * W[1451] + W[6784] * W[1058] + W[7177] * W[665] + W[7570] * W[272];
-    W[7767] = W[95] * W[7744] + W[488] * W[7351] + W[881] * W[6958] + W[1274] * W[6565] + W[1667] * W[6172]
-            + W[2060] * W[5779] + W[2453] * W[5386] + W[2846] * W[4993] + W[3239] * W[4600] + W[3632] * W[4207]
-            + W[4025] * W[3814] + W[4418] * W[3421] + W[4811] * W[3028] + W[5204] * W[2635] + W[5597] * W[2242]
-            + W[5990] * W[1849] + W[6383] * W[1456] + W[6776] * W[1063] + W[7169] * W[670] + W[7562] * W[277];
-    W[7775] = W[122] * W[7774] + W[515] * W[7381] + W[908] * W[6988] + W[1301] * W[6595] + W[1694] * W[6202]
-            + W[2087] * W[5809] + W[2480] * W[5416] + W[2873] * W[5023] + W[3266] * W[4630] + W[3659] * W[4237]
-            + W[4052] * W[3844] + W[4445] * W[3451] + W[4838] * W[3058] + W[5231] * W[2665] + W[5624] * W[2272]
-            + W[6017] * W[1879] + W[6410] * W[1486] + W[6803] * W[1093] + W[7196] * W[700] + W[7589] * W[307];
-    W[7779] = W[114] * W[7778] + W[507] * W[7385] + W[900] * W[6992] + W[1293] * W[6599] + W[1686] * W[6206]
-            + W[2079] * W[5813] + W[2472] * W[5420] + W[2865] * W[5027] + W[3258] * W[4634] + W[3651] * W[4241]
-            + W[4044] * W[3848] + W[4437] * W[3455] + W[4830] * W[3062] + W[5223] * W[2669] + W[5616] * W[2276]
-            + W[6009] * W[1883] + W[6402] * W[1490] + W[6795] * W[1097] + W[7188] * W[704] + W[7581] * W[311];
-    W[7786] = W[124] * W[7774] + W[517] * W[7381] + W[910] * W[6988] + W[1303] * W[6595] + W[1696] * W[6202]
-            + W[2089] * W[5809] + W[2482] * W[5416] + W[2875] * W[5023] + W[3268] * W[4630] + W[3661] * W[4237]
-            + W[4054] * W[3844] + W[4447] * W[3451] + W[4840] * W[3058] + W[5233] * W[2665] + W[5626] * W[2272]
-            + W[6019] * W[1879] + W[6412] * W[1486] + W[6805] * W[1093] + W[7198] * W[700] + W[7591] * W[307];
-    W[7788] = W[116] * W[7778] + W[509] * W[7385] + W[902] * W[6992] + W[1295] * W[6599] + W[1688] * W[6206]
-            + W[2081] * W[5813] + W[2474] * W[5420] + W[2867] * W[5027] + W[3260] * W[4634] + W[3653] * W[4241]
-            + W[4046] * W[3848] + W[4439] * W[3455] + W[4832] * W[3062] + W[5225] * W[2669] + W[5618] * W[2276]
-            + W[6011] * W[1883] + W[6404] * W[1490] + W[6797] * W[1097] + W[7190] * W[704] + W[7583] * W[311];
-    W[7795] = W[127] * W[7774] + W[520] * W[7381] + W[913] * W[6988] + W[1306] * W[6595] + W[1699] * W[6202]
-            + W[2092] * W[5809] + W[2485] * W[5416] + W[2878] * W[5023] + W[3271] * W[4630] + W[3664] * W[4237]
-            + W[4057] * W[3844] + W[4450] * W[3451] + W[4843] * W[3058] + W[5236] * W[2665] + W[5629] * W[2272]
-            + W[6022] * W[1879] + W[6415] * W[1486] + W[6808] * W[1093] + W[7201] * W[700] + W[7594] * W[307];
-    W[7797] = W[119] * W[7778] + W[512] * W[7385] + W[905] * W[6992] + W[1298] * W[6599] + W[1691] * W[6206]
-            + W[2084] * W[5813] + W[2477] * W[5420] + W[2870] * W[5027] + W[3263] * W[4634] + W[3656] * W[4241]
-            + W[4049] * W[3848] + W[4442] * W[3455] + W[4835] * W[3062] + W[5228] * W[2669] + W[5621] * W[2276]
-            + W[6014] * W[1883] + W[6407] * W[1490] + W[6800] * W[1097] + W[7193] * W[704] + W[7586] * W[311];
-    W[7806] = W[130] * W[7805] + W[523] * W[7412] + W[916] * W[7019] + W[1309] * W[6626] + W[1702] * W[6233]
-            + W[2095] * W[5840] + W[2488] * W[5447] + W[2881] * W[5054] + W[3274] * W[4661] + W[3667] * W[4268]
-            + W[4060] * W[3875] + W[4453] * W[3482] + W[4846] * W[3089] + W[5239] * W[2696] + W[5632] * W[2303]
-            + W[6025] * W[1910] + W[6418] * W[1517] + W[6811] * W[1124] + W[7204] * W[731] + W[7597] * W[338];
-    W[7813] = W[132] * W[7805] + W[525] * W[7412] + W[918] * W[7019] + W[1311] * W[6626] + W[1704] * W[6233]
-            + W[2097] * W[5840] + W[2490] * W[5447] + W[2883] * W[5054] + W[3276] * W[4661] + W[3669] * W[4268]
-            + W[4062] * W[3875] + W[4455] * W[3482] + W[4848] * W[3089] + W[5241] * W[2696] + W[5634] * W[2303]
-            + W[6027] * W[1910] + W[6420] * W[1517] + W[6813] * W[1124] + W[7206] * W[731] + W[7599] * W[338];
-    W[7820] = W[135] * W[7805] + W[528] * W[7412] + W[921] * W[7019] + W[1314] * W[6626] + W[1707] * W[6233]
-            + W[2100] * W[5840] + W[2493] * W[5447] + W[2886] * W[5054] + W[3279] * W[4661] + W[3672] * W[4268]
-            + W[4065] * W[3875] + W[4458] * W[3482] + W[4851] * W[3089] + W[5244] * W[2696] + W[5637] * W[2303]
-            + W[6030] * W[1910] + W[6423] * W[1517] + W[6816] * W[1124] + W[7209] * W[731] + W[7602] * W[338];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_354(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7635] = W[164] * W[7634];
     W[7639] = W[169] * W[7638];
     W[7644] = W[174] * W[7643];
@@ -13497,6 +9990,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[7699] = W[229] * W[7698];
     W[7704] = W[234] * W[7703];
     W[7709] = W[220] * W[7708];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_355(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7711] = W[224] * W[7710];
     W[7714] = W[229] * W[7713];
     W[7717] = W[234] * W[7716];
@@ -13517,6 +10020,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[7780] = W[310] * W[7779];
     W[7787] = W[306] * W[7786];
     W[7789] = W[310] * W[7788];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_356(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7796] = W[306] * W[7795];
     W[7798] = W[310] * W[7797];
     W[7807] = W[337] * W[7806];
@@ -13537,6 +10050,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[7808] = W[7807] - W[7780];
     W[7815] = W[7814] - W[7789];
     W[7822] = W[7821] - W[7798];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_357(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7827] = W[7776] + W[7807];
     W[7832] = W[7787] + W[7814];
     W[7837] = W[7796] + W[7821];
@@ -13557,6 +10080,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[7823] = W[7822] - W[7765];
     W[7828] = W[7737] + W[7827];
     W[7833] = W[7752] + W[7832];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_358(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7838] = W[7763] + W[7837];
     W[7650] = W[7645] + W[7649];
     W[7667] = W[7664] + W[7666];
@@ -13577,6 +10110,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[7834] = W[7709] + W[7833];
     W[7839] = W[7722] + W[7838];
     W[7655] = W[7650] + W[7654];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_359(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7670] = W[7667] + W[7669];
     W[7685] = W[7682] + W[7684];
     W[7706] = W[7705] - W[7654];
@@ -13597,6 +10140,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[7656] = W[161] * W[7655];
     W[7671] = W[161] * W[7670];
     W[7686] = W[161] * W[7685];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_360(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7707] = W[161] * W[7706];
     W[7720] = W[161] * W[7719];
     W[7733] = W[161] * W[7732];
@@ -13617,6 +10170,16 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[722] = X[704] / 20.0;
     X[723] = X[705] / 20.0;
     X[724] = X[706] / 20.0;
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+outer_solar_system_taylor_run_361(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[725] = X[707] / 20.0;
     X[726] = X[708] / 20.0;
     X[727] = X[709] / 20.0;
@@ -13637,17 +10200,1626 @@ outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[742] = -W[7720] / W[140] / 20.0;
     X[743] = -W[7733] / W[140] / 20.0;
     X[744] = -W[7750] / W[141] / 20.0;
-    X[745] = -W[7761] / W[141] / 20.0;
-    X[746] = -W[7772] / W[141] / 20.0;
-    X[747] = -W[7785] / W[142] / 20.0;
-    X[748] = -W[7794] / W[142] / 20.0;
-    X[749] = -W[7803] / W[142] / 20.0;
-    X[750] = -W[7812] / W[143] / 20.0;
-    X[751] = -W[7819] / W[143] / 20.0;
-    X[752] = -W[7826] / W[143] / 20.0;
-    X[753] = -W[7831] / W[144] / 20.0;
-    X[754] = -W[7836] / W[144] / 20.0;
-    X[755] = -W[7841] / W[144] / 20.0;
+    return 0;
+}
+
+EOMC_PART int
+outer_solar_system_taylor_run_1(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_2(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_3(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_4(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_5(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_6(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_7(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_8(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_9(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_10(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_11(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_12(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_13(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_14(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_15(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_16(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_17(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_18(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_19(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_20(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_21(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_22(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_23(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_24(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_25(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_26(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_27(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_28(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_29(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_30(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_31(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_32(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_33(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_34(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_35(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_36(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_37(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_39(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_41(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_43(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_45(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_47(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_50(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_52(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_54(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_56(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_57(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_59(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_61(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_63(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_65(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_68(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_70(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_72(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_74(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_76(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_78(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_80(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_82(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_84(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_85(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_86(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_88(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_90(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_92(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_94(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_96(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_98(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_100(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_102(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_103(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_104(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_106(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_108(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_109(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_112(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_114(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_116(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_118(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_120(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_121(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_122(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_124(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_126(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_127(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_130(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_132(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_134(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_135(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_137(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_142(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_144(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_146(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_147(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_149(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_151(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_153(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_155(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_160(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_162(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_164(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_166(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_168(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_170(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_171(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_173(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_179(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_181(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_183(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_185(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_187(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_189(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_191(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_197(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_199(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_202(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_204(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_206(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_207(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_209(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_215(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_217(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_220(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_222(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_224(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_225(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_227(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_233(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_236(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_237(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_239(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_241(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_244(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_246(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_247(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_248(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_249(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_250(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_251(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_254(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_255(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_257(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_259(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_262(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_264(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_265(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_266(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_267(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_268(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_269(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_271(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_274(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_276(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_278(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_279(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_281(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_288(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_290(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_292(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_294(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_296(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_297(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_299(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_307(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_309(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_311(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_313(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_316(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_318(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_319(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_320(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_321(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_322(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_323(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_324(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_326(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_327(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_329(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_331(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_334(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_336(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_337(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_338(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_339(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_340(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_341(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_342(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_343(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_346(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_348(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_350(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_351(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_353(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+outer_solar_system_taylor_run_362(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+static int
+outer_solar_system_taylor_run(int K, eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *T, eomc_real *X, eomc_tay_solve solve,
+    void *ctx)
+{
+    const int S = K + 1;
+    (void)solve, (void)ctx;
+    if (K > 20) {
+        static const int state[36] = {0, 4, 9, 1, 5, 10, 14, 17, 21, 25, 28, 32, 36, 39, 43, 47,
+            50, 54, 375, 376, 377, 378, 379, 380, 381, 382, 383, 384, 385, 386, 387, 388,
+            389, 390, 391, 392};
+        for (int i = 0; i < 36; i++)
+            T[state[i] * S] = X[i];
+        for (int k = 0; k < K; k++) {
+            outer_solar_system_taylor(k, K, t0, p, u, T);
+            eomc_tay_integ(T, T + 375 * S, k);
+            eomc_tay_integ(T + 4 * S, T + 376 * S, k);
+            eomc_tay_integ(T + 9 * S, T + 377 * S, k);
+            eomc_tay_integ(T + 1 * S, T + 378 * S, k);
+            eomc_tay_integ(T + 5 * S, T + 379 * S, k);
+            eomc_tay_integ(T + 10 * S, T + 380 * S, k);
+            eomc_tay_integ(T + 14 * S, T + 381 * S, k);
+            eomc_tay_integ(T + 17 * S, T + 382 * S, k);
+            eomc_tay_integ(T + 21 * S, T + 383 * S, k);
+            eomc_tay_integ(T + 25 * S, T + 384 * S, k);
+            eomc_tay_integ(T + 28 * S, T + 385 * S, k);
+            eomc_tay_integ(T + 32 * S, T + 386 * S, k);
+            eomc_tay_integ(T + 36 * S, T + 387 * S, k);
+            eomc_tay_integ(T + 39 * S, T + 388 * S, k);
+            eomc_tay_integ(T + 43 * S, T + 389 * S, k);
+            eomc_tay_integ(T + 47 * S, T + 390 * S, k);
+            eomc_tay_integ(T + 50 * S, T + 391 * S, k);
+            eomc_tay_integ(T + 54 * S, T + 392 * S, k);
+            eomc_tay_accel(T + 375 * S, T + 189 * S, T + 138 * S, k);
+            eomc_tay_accel(T + 376 * S, T + 204 * S, T + 138 * S, k);
+            eomc_tay_accel(T + 377 * S, T + 219 * S, T + 138 * S, k);
+            eomc_tay_accel(T + 378 * S, T + 240 * S, T + 140 * S, k);
+            eomc_tay_accel(T + 379 * S, T + 253 * S, T + 140 * S, k);
+            eomc_tay_accel(T + 380 * S, T + 266 * S, T + 140 * S, k);
+            eomc_tay_accel(T + 381 * S, T + 283 * S, T + 141 * S, k);
+            eomc_tay_accel(T + 382 * S, T + 294 * S, T + 141 * S, k);
+            eomc_tay_accel(T + 383 * S, T + 305 * S, T + 141 * S, k);
+            eomc_tay_accel(T + 384 * S, T + 318 * S, T + 142 * S, k);
+            eomc_tay_accel(T + 385 * S, T + 327 * S, T + 142 * S, k);
+            eomc_tay_accel(T + 386 * S, T + 336 * S, T + 142 * S, k);
+            eomc_tay_accel(T + 387 * S, T + 345 * S, T + 143 * S, k);
+            eomc_tay_accel(T + 388 * S, T + 352 * S, T + 143 * S, k);
+            eomc_tay_accel(T + 389 * S, T + 359 * S, T + 143 * S, k);
+            eomc_tay_accel(T + 390 * S, T + 364 * S, T + 144 * S, k);
+            eomc_tay_accel(T + 391 * S, T + 369 * S, T + 144 * S, k);
+            eomc_tay_accel(T + 392 * S, T + 374 * S, T + 144 * S, k);
+        }
+        for (int j = 1; j <= K; j++)
+            for (int i = 0; i < 36; i++)
+                X[j * 36 + i] = T[state[i] * S + j];
+        return 0;
+    }
+    eomc_real W[8253]; /* slot s's coefficient j at W[j * 393 + s], but the
+                   * state's: X[j * 36 + i], q's then v's */
+    /* order 0 */
+    if (outer_solar_system_taylor_run_1(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_2(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_3(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_4(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_5(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_6(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_7(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_8(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_9(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_10(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_11(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_12(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_13(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_14(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_15(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_16(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_17(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_18(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_19(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_20(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 1)
+        goto out;
+    /* order 1 */
+    if (outer_solar_system_taylor_run_21(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_22(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_23(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_24(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_25(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_26(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_27(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_28(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_29(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_30(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_31(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_32(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_33(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_34(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_35(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_36(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_37(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_38(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 2)
+        goto out;
+    /* order 2 */
+    if (outer_solar_system_taylor_run_39(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_40(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_41(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_42(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_43(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_44(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_45(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_46(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_47(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_48(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_49(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_50(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_51(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_52(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_53(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_54(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_55(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_56(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 3)
+        goto out;
+    /* order 3 */
+    if (outer_solar_system_taylor_run_57(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_58(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_59(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_60(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_61(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_62(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_63(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_64(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_65(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_66(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_67(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_68(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_69(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_70(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_71(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_72(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_73(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_74(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 4)
+        goto out;
+    /* order 4 */
+    if (outer_solar_system_taylor_run_75(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_76(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_77(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_78(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_79(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_80(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_81(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_82(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_83(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_84(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_85(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_86(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_87(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_88(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_89(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_90(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_91(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_92(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 5)
+        goto out;
+    /* order 5 */
+    if (outer_solar_system_taylor_run_93(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_94(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_95(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_96(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_97(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_98(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_99(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_100(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_101(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_102(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_103(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_104(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_105(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_106(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_107(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_108(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_109(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_110(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 6)
+        goto out;
+    /* order 6 */
+    if (outer_solar_system_taylor_run_111(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_112(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_113(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_114(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_115(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_116(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_117(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_118(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_119(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_120(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_121(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_122(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_123(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_124(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_125(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_126(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_127(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_128(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 7)
+        goto out;
+    /* order 7 */
+    if (outer_solar_system_taylor_run_129(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_130(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_131(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_132(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_133(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_134(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_135(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_136(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_137(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_138(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_139(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_140(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_141(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_142(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_143(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_144(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_145(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_146(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 8)
+        goto out;
+    /* order 8 */
+    if (outer_solar_system_taylor_run_147(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_148(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_149(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_150(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_151(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_152(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_153(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_154(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_155(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_156(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_157(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_158(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_159(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_160(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_161(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_162(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_163(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_164(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 9)
+        goto out;
+    /* order 9 */
+    if (outer_solar_system_taylor_run_165(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_166(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_167(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_168(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_169(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_170(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_171(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_172(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_173(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_174(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_175(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_176(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_177(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_178(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_179(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_180(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_181(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_182(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 10)
+        goto out;
+    /* order 10 */
+    if (outer_solar_system_taylor_run_183(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_184(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_185(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_186(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_187(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_188(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_189(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_190(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_191(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_192(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_193(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_194(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_195(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_196(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_197(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_198(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_199(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_200(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 11)
+        goto out;
+    /* order 11 */
+    if (outer_solar_system_taylor_run_201(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_202(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_203(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_204(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_205(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_206(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_207(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_208(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_209(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_210(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_211(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_212(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_213(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_214(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_215(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_216(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_217(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_218(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 12)
+        goto out;
+    /* order 12 */
+    if (outer_solar_system_taylor_run_219(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_220(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_221(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_222(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_223(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_224(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_225(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_226(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_227(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_228(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_229(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_230(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_231(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_232(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_233(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_234(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_235(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_236(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 13)
+        goto out;
+    /* order 13 */
+    if (outer_solar_system_taylor_run_237(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_238(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_239(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_240(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_241(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_242(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_243(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_244(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_245(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_246(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_247(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_248(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_249(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_250(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_251(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_252(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_253(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_254(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 14)
+        goto out;
+    /* order 14 */
+    if (outer_solar_system_taylor_run_255(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_256(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_257(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_258(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_259(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_260(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_261(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_262(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_263(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_264(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_265(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_266(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_267(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_268(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_269(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_270(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_271(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_272(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 15)
+        goto out;
+    /* order 15 */
+    if (outer_solar_system_taylor_run_273(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_274(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_275(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_276(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_277(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_278(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_279(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_280(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_281(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_282(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_283(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_284(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_285(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_286(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_287(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_288(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_289(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_290(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 16)
+        goto out;
+    /* order 16 */
+    if (outer_solar_system_taylor_run_291(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_292(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_293(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_294(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_295(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_296(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_297(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_298(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_299(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_300(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_301(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_302(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_303(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_304(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_305(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_306(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_307(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_308(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 17)
+        goto out;
+    /* order 17 */
+    if (outer_solar_system_taylor_run_309(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_310(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_311(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_312(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_313(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_314(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_315(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_316(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_317(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_318(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_319(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_320(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_321(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_322(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_323(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_324(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_325(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_326(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 18)
+        goto out;
+    /* order 18 */
+    if (outer_solar_system_taylor_run_327(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_328(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_329(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_330(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_331(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_332(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_333(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_334(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_335(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_336(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_337(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_338(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_339(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_340(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_341(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_342(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_343(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_344(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 19)
+        goto out;
+    /* order 19 */
+    if (outer_solar_system_taylor_run_345(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_346(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_347(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_348(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_349(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_350(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_351(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_352(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_353(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_354(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_355(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_356(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_357(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_358(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_359(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_360(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_361(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (outer_solar_system_taylor_run_362(t0, p, u, W, X, solve, ctx))
+        return -1;
 out:
     T[138 * S] = W[138]; /* M's diagonal, entry 0 */
     T[140 * S] = W[140]; /* M's diagonal, entry 3 */
@@ -13781,3 +11953,7348 @@ const eomc_model_ext outer_solar_system_model_ext = {
 };
 #endif /* EOMC_EXTENDED */
 #endif /* EOMC_UNIT 3 */
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 4
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define outer_solar_system_jacobian_part2 outer_solar_system_jacobian_part2_ext
+#define outer_solar_system_taylor_run_1 outer_solar_system_taylor_run_1_ext
+#define outer_solar_system_taylor_run_2 outer_solar_system_taylor_run_2_ext
+#define outer_solar_system_taylor_run_3 outer_solar_system_taylor_run_3_ext
+#define outer_solar_system_taylor_run_4 outer_solar_system_taylor_run_4_ext
+#define outer_solar_system_taylor_run_5 outer_solar_system_taylor_run_5_ext
+#define outer_solar_system_taylor_run_6 outer_solar_system_taylor_run_6_ext
+#define outer_solar_system_taylor_run_7 outer_solar_system_taylor_run_7_ext
+#define outer_solar_system_taylor_run_8 outer_solar_system_taylor_run_8_ext
+#define outer_solar_system_taylor_run_9 outer_solar_system_taylor_run_9_ext
+#define outer_solar_system_taylor_run_10 outer_solar_system_taylor_run_10_ext
+#define outer_solar_system_taylor_run_11 outer_solar_system_taylor_run_11_ext
+#define outer_solar_system_taylor_run_12 outer_solar_system_taylor_run_12_ext
+#define outer_solar_system_taylor_run_13 outer_solar_system_taylor_run_13_ext
+#define outer_solar_system_taylor_run_14 outer_solar_system_taylor_run_14_ext
+#define outer_solar_system_taylor_run_15 outer_solar_system_taylor_run_15_ext
+#define outer_solar_system_taylor_run_16 outer_solar_system_taylor_run_16_ext
+#define outer_solar_system_taylor_run_17 outer_solar_system_taylor_run_17_ext
+#define outer_solar_system_taylor_run_18 outer_solar_system_taylor_run_18_ext
+#define outer_solar_system_taylor_run_19 outer_solar_system_taylor_run_19_ext
+#define outer_solar_system_taylor_run_20 outer_solar_system_taylor_run_20_ext
+#define outer_solar_system_taylor_run_21 outer_solar_system_taylor_run_21_ext
+#define outer_solar_system_taylor_run_22 outer_solar_system_taylor_run_22_ext
+#define outer_solar_system_taylor_run_23 outer_solar_system_taylor_run_23_ext
+#define outer_solar_system_taylor_run_24 outer_solar_system_taylor_run_24_ext
+#define outer_solar_system_taylor_run_25 outer_solar_system_taylor_run_25_ext
+#define outer_solar_system_taylor_run_26 outer_solar_system_taylor_run_26_ext
+#define outer_solar_system_taylor_run_27 outer_solar_system_taylor_run_27_ext
+#define outer_solar_system_taylor_run_28 outer_solar_system_taylor_run_28_ext
+#define outer_solar_system_taylor_run_29 outer_solar_system_taylor_run_29_ext
+#define outer_solar_system_taylor_run_30 outer_solar_system_taylor_run_30_ext
+#define outer_solar_system_taylor_run_31 outer_solar_system_taylor_run_31_ext
+#define outer_solar_system_taylor_run_32 outer_solar_system_taylor_run_32_ext
+#define outer_solar_system_taylor_run_33 outer_solar_system_taylor_run_33_ext
+#define outer_solar_system_taylor_run_34 outer_solar_system_taylor_run_34_ext
+#define outer_solar_system_taylor_run_35 outer_solar_system_taylor_run_35_ext
+#define outer_solar_system_taylor_run_36 outer_solar_system_taylor_run_36_ext
+#define outer_solar_system_taylor_run_37 outer_solar_system_taylor_run_37_ext
+#define outer_solar_system_taylor_run_39 outer_solar_system_taylor_run_39_ext
+#define outer_solar_system_taylor_run_41 outer_solar_system_taylor_run_41_ext
+#define outer_solar_system_taylor_run_43 outer_solar_system_taylor_run_43_ext
+#define outer_solar_system_taylor_run_45 outer_solar_system_taylor_run_45_ext
+#define outer_solar_system_taylor_run_47 outer_solar_system_taylor_run_47_ext
+#define outer_solar_system_taylor_run_50 outer_solar_system_taylor_run_50_ext
+#define outer_solar_system_taylor_run_52 outer_solar_system_taylor_run_52_ext
+#define outer_solar_system_taylor_run_54 outer_solar_system_taylor_run_54_ext
+#define outer_solar_system_taylor_run_56 outer_solar_system_taylor_run_56_ext
+#define outer_solar_system_taylor_run_57 outer_solar_system_taylor_run_57_ext
+#define outer_solar_system_taylor_run_59 outer_solar_system_taylor_run_59_ext
+#define outer_solar_system_taylor_run_61 outer_solar_system_taylor_run_61_ext
+#define outer_solar_system_taylor_run_63 outer_solar_system_taylor_run_63_ext
+#define outer_solar_system_taylor_run_65 outer_solar_system_taylor_run_65_ext
+#define outer_solar_system_taylor_run_68 outer_solar_system_taylor_run_68_ext
+#define outer_solar_system_taylor_run_70 outer_solar_system_taylor_run_70_ext
+#define outer_solar_system_taylor_run_72 outer_solar_system_taylor_run_72_ext
+#define outer_solar_system_taylor_run_74 outer_solar_system_taylor_run_74_ext
+#define outer_solar_system_taylor_run_76 outer_solar_system_taylor_run_76_ext
+#define outer_solar_system_taylor_run_78 outer_solar_system_taylor_run_78_ext
+#define outer_solar_system_taylor_run_80 outer_solar_system_taylor_run_80_ext
+#define outer_solar_system_taylor_run_82 outer_solar_system_taylor_run_82_ext
+#define outer_solar_system_taylor_run_84 outer_solar_system_taylor_run_84_ext
+#define outer_solar_system_taylor_run_85 outer_solar_system_taylor_run_85_ext
+#define outer_solar_system_taylor_run_86 outer_solar_system_taylor_run_86_ext
+#define outer_solar_system_taylor_run_88 outer_solar_system_taylor_run_88_ext
+#define outer_solar_system_taylor_run_90 outer_solar_system_taylor_run_90_ext
+#define outer_solar_system_taylor_run_92 outer_solar_system_taylor_run_92_ext
+#define outer_solar_system_taylor_run_94 outer_solar_system_taylor_run_94_ext
+#define outer_solar_system_taylor_run_96 outer_solar_system_taylor_run_96_ext
+#define outer_solar_system_taylor_run_98 outer_solar_system_taylor_run_98_ext
+#define outer_solar_system_taylor_run_100 outer_solar_system_taylor_run_100_ext
+#define outer_solar_system_taylor_run_102 outer_solar_system_taylor_run_102_ext
+#define outer_solar_system_taylor_run_103 outer_solar_system_taylor_run_103_ext
+#define outer_solar_system_taylor_run_104 outer_solar_system_taylor_run_104_ext
+#define outer_solar_system_taylor_run_106 outer_solar_system_taylor_run_106_ext
+#define outer_solar_system_taylor_run_108 outer_solar_system_taylor_run_108_ext
+#define outer_solar_system_taylor_run_109 outer_solar_system_taylor_run_109_ext
+#define outer_solar_system_taylor_run_112 outer_solar_system_taylor_run_112_ext
+#define outer_solar_system_taylor_run_114 outer_solar_system_taylor_run_114_ext
+#define outer_solar_system_taylor_run_116 outer_solar_system_taylor_run_116_ext
+#define outer_solar_system_taylor_run_118 outer_solar_system_taylor_run_118_ext
+#define outer_solar_system_taylor_run_120 outer_solar_system_taylor_run_120_ext
+#define outer_solar_system_taylor_run_121 outer_solar_system_taylor_run_121_ext
+#define outer_solar_system_taylor_run_122 outer_solar_system_taylor_run_122_ext
+#define outer_solar_system_taylor_run_124 outer_solar_system_taylor_run_124_ext
+#define outer_solar_system_taylor_run_126 outer_solar_system_taylor_run_126_ext
+#define outer_solar_system_taylor_run_127 outer_solar_system_taylor_run_127_ext
+#define outer_solar_system_taylor_run_130 outer_solar_system_taylor_run_130_ext
+#define outer_solar_system_taylor_run_132 outer_solar_system_taylor_run_132_ext
+#define outer_solar_system_taylor_run_134 outer_solar_system_taylor_run_134_ext
+#define outer_solar_system_taylor_run_135 outer_solar_system_taylor_run_135_ext
+#define outer_solar_system_taylor_run_137 outer_solar_system_taylor_run_137_ext
+#define outer_solar_system_taylor_run_142 outer_solar_system_taylor_run_142_ext
+#define outer_solar_system_taylor_run_144 outer_solar_system_taylor_run_144_ext
+#define outer_solar_system_taylor_run_146 outer_solar_system_taylor_run_146_ext
+#define outer_solar_system_taylor_run_147 outer_solar_system_taylor_run_147_ext
+#define outer_solar_system_taylor_run_149 outer_solar_system_taylor_run_149_ext
+#define outer_solar_system_taylor_run_151 outer_solar_system_taylor_run_151_ext
+#define outer_solar_system_taylor_run_153 outer_solar_system_taylor_run_153_ext
+#define outer_solar_system_taylor_run_155 outer_solar_system_taylor_run_155_ext
+#define outer_solar_system_taylor_run_160 outer_solar_system_taylor_run_160_ext
+#define outer_solar_system_taylor_run_162 outer_solar_system_taylor_run_162_ext
+#define outer_solar_system_taylor_run_164 outer_solar_system_taylor_run_164_ext
+#define outer_solar_system_taylor_run_166 outer_solar_system_taylor_run_166_ext
+#define outer_solar_system_taylor_run_168 outer_solar_system_taylor_run_168_ext
+#define outer_solar_system_taylor_run_170 outer_solar_system_taylor_run_170_ext
+#define outer_solar_system_taylor_run_171 outer_solar_system_taylor_run_171_ext
+#define outer_solar_system_taylor_run_173 outer_solar_system_taylor_run_173_ext
+#define outer_solar_system_taylor_run_179 outer_solar_system_taylor_run_179_ext
+#define outer_solar_system_taylor_run_181 outer_solar_system_taylor_run_181_ext
+#define outer_solar_system_taylor_run_183 outer_solar_system_taylor_run_183_ext
+#define outer_solar_system_taylor_run_185 outer_solar_system_taylor_run_185_ext
+#define outer_solar_system_taylor_run_187 outer_solar_system_taylor_run_187_ext
+#define outer_solar_system_taylor_run_189 outer_solar_system_taylor_run_189_ext
+#define outer_solar_system_taylor_run_191 outer_solar_system_taylor_run_191_ext
+#define outer_solar_system_taylor_run_197 outer_solar_system_taylor_run_197_ext
+#define outer_solar_system_taylor_run_199 outer_solar_system_taylor_run_199_ext
+#define outer_solar_system_taylor_run_202 outer_solar_system_taylor_run_202_ext
+#define outer_solar_system_taylor_run_204 outer_solar_system_taylor_run_204_ext
+#define outer_solar_system_taylor_run_206 outer_solar_system_taylor_run_206_ext
+#define outer_solar_system_taylor_run_207 outer_solar_system_taylor_run_207_ext
+#define outer_solar_system_taylor_run_209 outer_solar_system_taylor_run_209_ext
+#define outer_solar_system_taylor_run_215 outer_solar_system_taylor_run_215_ext
+#define outer_solar_system_taylor_run_217 outer_solar_system_taylor_run_217_ext
+#define outer_solar_system_taylor_run_220 outer_solar_system_taylor_run_220_ext
+#define outer_solar_system_taylor_run_222 outer_solar_system_taylor_run_222_ext
+#define outer_solar_system_taylor_run_224 outer_solar_system_taylor_run_224_ext
+#define outer_solar_system_taylor_run_225 outer_solar_system_taylor_run_225_ext
+#define outer_solar_system_taylor_run_227 outer_solar_system_taylor_run_227_ext
+#define outer_solar_system_taylor_run_233 outer_solar_system_taylor_run_233_ext
+#define outer_solar_system_taylor_run_236 outer_solar_system_taylor_run_236_ext
+#define outer_solar_system_taylor_run_237 outer_solar_system_taylor_run_237_ext
+#define outer_solar_system_taylor_run_239 outer_solar_system_taylor_run_239_ext
+#define outer_solar_system_taylor_run_241 outer_solar_system_taylor_run_241_ext
+#define outer_solar_system_taylor_run_244 outer_solar_system_taylor_run_244_ext
+#define outer_solar_system_taylor_run_246 outer_solar_system_taylor_run_246_ext
+#define outer_solar_system_taylor_run_247 outer_solar_system_taylor_run_247_ext
+#define outer_solar_system_taylor_run_248 outer_solar_system_taylor_run_248_ext
+#define outer_solar_system_taylor_run_249 outer_solar_system_taylor_run_249_ext
+#define outer_solar_system_taylor_run_250 outer_solar_system_taylor_run_250_ext
+#define outer_solar_system_taylor_run_251 outer_solar_system_taylor_run_251_ext
+#define outer_solar_system_taylor_run_254 outer_solar_system_taylor_run_254_ext
+#define outer_solar_system_taylor_run_255 outer_solar_system_taylor_run_255_ext
+#define outer_solar_system_taylor_run_257 outer_solar_system_taylor_run_257_ext
+#define outer_solar_system_taylor_run_259 outer_solar_system_taylor_run_259_ext
+#define outer_solar_system_taylor_run_262 outer_solar_system_taylor_run_262_ext
+#define outer_solar_system_taylor_run_264 outer_solar_system_taylor_run_264_ext
+#define outer_solar_system_taylor_run_265 outer_solar_system_taylor_run_265_ext
+#define outer_solar_system_taylor_run_266 outer_solar_system_taylor_run_266_ext
+#define outer_solar_system_taylor_run_267 outer_solar_system_taylor_run_267_ext
+#define outer_solar_system_taylor_run_268 outer_solar_system_taylor_run_268_ext
+#define outer_solar_system_taylor_run_269 outer_solar_system_taylor_run_269_ext
+#define outer_solar_system_taylor_run_271 outer_solar_system_taylor_run_271_ext
+#define outer_solar_system_taylor_run_274 outer_solar_system_taylor_run_274_ext
+#define outer_solar_system_taylor_run_276 outer_solar_system_taylor_run_276_ext
+#define outer_solar_system_taylor_run_278 outer_solar_system_taylor_run_278_ext
+#define outer_solar_system_taylor_run_279 outer_solar_system_taylor_run_279_ext
+#define outer_solar_system_taylor_run_281 outer_solar_system_taylor_run_281_ext
+#define outer_solar_system_taylor_run_288 outer_solar_system_taylor_run_288_ext
+#define outer_solar_system_taylor_run_290 outer_solar_system_taylor_run_290_ext
+#define outer_solar_system_taylor_run_292 outer_solar_system_taylor_run_292_ext
+#define outer_solar_system_taylor_run_294 outer_solar_system_taylor_run_294_ext
+#define outer_solar_system_taylor_run_296 outer_solar_system_taylor_run_296_ext
+#define outer_solar_system_taylor_run_297 outer_solar_system_taylor_run_297_ext
+#define outer_solar_system_taylor_run_299 outer_solar_system_taylor_run_299_ext
+#define outer_solar_system_taylor_run_307 outer_solar_system_taylor_run_307_ext
+#define outer_solar_system_taylor_run_309 outer_solar_system_taylor_run_309_ext
+#define outer_solar_system_taylor_run_311 outer_solar_system_taylor_run_311_ext
+#define outer_solar_system_taylor_run_313 outer_solar_system_taylor_run_313_ext
+#define outer_solar_system_taylor_run_316 outer_solar_system_taylor_run_316_ext
+#define outer_solar_system_taylor_run_318 outer_solar_system_taylor_run_318_ext
+#define outer_solar_system_taylor_run_319 outer_solar_system_taylor_run_319_ext
+#define outer_solar_system_taylor_run_320 outer_solar_system_taylor_run_320_ext
+#define outer_solar_system_taylor_run_321 outer_solar_system_taylor_run_321_ext
+#define outer_solar_system_taylor_run_322 outer_solar_system_taylor_run_322_ext
+#define outer_solar_system_taylor_run_323 outer_solar_system_taylor_run_323_ext
+#define outer_solar_system_taylor_run_324 outer_solar_system_taylor_run_324_ext
+#define outer_solar_system_taylor_run_326 outer_solar_system_taylor_run_326_ext
+#define outer_solar_system_taylor_run_327 outer_solar_system_taylor_run_327_ext
+#define outer_solar_system_taylor_run_329 outer_solar_system_taylor_run_329_ext
+#define outer_solar_system_taylor_run_331 outer_solar_system_taylor_run_331_ext
+#define outer_solar_system_taylor_run_334 outer_solar_system_taylor_run_334_ext
+#define outer_solar_system_taylor_run_336 outer_solar_system_taylor_run_336_ext
+#define outer_solar_system_taylor_run_337 outer_solar_system_taylor_run_337_ext
+#define outer_solar_system_taylor_run_338 outer_solar_system_taylor_run_338_ext
+#define outer_solar_system_taylor_run_339 outer_solar_system_taylor_run_339_ext
+#define outer_solar_system_taylor_run_340 outer_solar_system_taylor_run_340_ext
+#define outer_solar_system_taylor_run_341 outer_solar_system_taylor_run_341_ext
+#define outer_solar_system_taylor_run_342 outer_solar_system_taylor_run_342_ext
+#define outer_solar_system_taylor_run_343 outer_solar_system_taylor_run_343_ext
+#define outer_solar_system_taylor_run_346 outer_solar_system_taylor_run_346_ext
+#define outer_solar_system_taylor_run_348 outer_solar_system_taylor_run_348_ext
+#define outer_solar_system_taylor_run_350 outer_solar_system_taylor_run_350_ext
+#define outer_solar_system_taylor_run_351 outer_solar_system_taylor_run_351_ext
+#define outer_solar_system_taylor_run_353 outer_solar_system_taylor_run_353_ext
+#define outer_solar_system_taylor_run_362 outer_solar_system_taylor_run_362_ext
+#endif
+#ifndef EOMC_EXTENDED
+/* jacobian: part 2 of 2, in the fourth unit */
+EOMC_PART void
+outer_solar_system_jacobian_part2(eomc_real t, const eomc_real *q,
+    const eomc_real *v, const eomc_real *a, const eomc_real *p,
+    const eomc_real *u, eomc_real *dEdq, eomc_real *dEdv, eomc_real *dEdu,
+    eomc_real *dEdt, eomc_real *s)
+{
+    (void)s; (void)t; (void)q; (void)v; (void)a; (void)p; (void)u; (void)dEdq; (void)dEdv; (void)dEdu; (void)dEdt;
+    const eomc_real w1500 = s[0] + s[1];
+    const eomc_real w1501 = s[2] * w1500;
+    dEdq[286] = w1501;
+    const eomc_real w1502 = s[3] + s[4];
+    const eomc_real w1503 = s[5] + w1502;
+    const eomc_real w1504 = s[6] + w1503;
+    const eomc_real w1505 = s[7] + w1504;
+    const eomc_real w1506 = s[2] * w1505;
+    dEdq[287] = w1506;
+    const eomc_real w1507 = s[2] * s[8];
+    const eomc_real w1508 = -w1507;
+    dEdq[288] = w1508;
+    const eomc_real w1509 = s[2] * s[9];
+    const eomc_real w1510 = s[10] - w1509;
+    dEdq[289] = w1510;
+    const eomc_real w1511 = s[2] * s[11];
+    const eomc_real w1512 = -w1511;
+    dEdq[290] = w1512;
+    const eomc_real w1513 = s[2] * s[12];
+    const eomc_real w1514 = -w1513;
+    dEdq[291] = w1514;
+    const eomc_real w1515 = s[2] * s[13];
+    const eomc_real w1516 = s[14] - w1515;
+    dEdq[292] = w1516;
+    const eomc_real w1517 = s[2] * s[15];
+    const eomc_real w1518 = -w1517;
+    dEdq[293] = w1518;
+    const eomc_real w1519 = s[2] * s[16];
+    const eomc_real w1520 = -w1519;
+    dEdq[294] = w1520;
+    const eomc_real w1521 = s[2] * s[17];
+    const eomc_real w1522 = s[18] - w1521;
+    dEdq[295] = w1522;
+    const eomc_real w1523 = s[2] * s[19];
+    const eomc_real w1524 = -w1523;
+    dEdq[296] = w1524;
+    const eomc_real w1525 = s[2] * s[20];
+    const eomc_real w1526 = -w1525;
+    dEdq[297] = w1526;
+    const eomc_real w1527 = s[2] * s[21];
+    const eomc_real w1528 = s[22] - w1527;
+    dEdq[298] = w1528;
+    const eomc_real w1529 = s[2] * s[23];
+    const eomc_real w1530 = -w1529;
+    dEdq[299] = w1530;
+    const eomc_real w1531 = s[2] * s[24];
+    const eomc_real w1532 = -w1531;
+    dEdq[300] = w1532;
+    const eomc_real w1533 = s[2] * s[25];
+    const eomc_real w1534 = s[26] - w1533;
+    dEdq[301] = w1534;
+    const eomc_real w1535 = s[2] * s[27];
+    const eomc_real w1536 = -w1535;
+    dEdq[302] = w1536;
+    const eomc_real w1537 = s[20] + s[24];
+    const eomc_real w1538 = s[16] + w1537;
+    const eomc_real w1539 = s[12] + w1538;
+    const eomc_real w1540 = s[8] + w1539;
+    const eomc_real w1541 = s[2] * w1540;
+    dEdq[303] = w1541;
+    const eomc_real w1542 = w1533 - s[26];
+    const eomc_real w1543 = w1527 - s[22];
+    const eomc_real w1544 = w1542 + w1543;
+    const eomc_real w1545 = w1521 - s[18];
+    const eomc_real w1546 = w1544 + w1545;
+    const eomc_real w1547 = w1515 - s[14];
+    const eomc_real w1548 = w1546 + w1547;
+    const eomc_real w1549 = w1509 - s[10];
+    const eomc_real w1550 = w1548 + w1549;
+    dEdq[304] = w1550;
+    const eomc_real w1551 = s[23] + s[27];
+    const eomc_real w1552 = s[19] + w1551;
+    const eomc_real w1553 = s[15] + w1552;
+    const eomc_real w1554 = s[11] + w1553;
+    const eomc_real w1555 = s[2] * w1554;
+    dEdq[305] = w1555;
+    const eomc_real w1556 = s[2] * s[28];
+    const eomc_real w1557 = -w1556;
+    dEdq[306] = w1557;
+    const eomc_real w1558 = s[2] * s[29];
+    const eomc_real w1559 = -w1558;
+    dEdq[307] = w1559;
+    const eomc_real w1560 = s[2] * s[30];
+    const eomc_real w1561 = s[10] - w1560;
+    dEdq[308] = w1561;
+    const eomc_real w1562 = s[2] * s[31];
+    const eomc_real w1563 = -w1562;
+    dEdq[309] = w1563;
+    const eomc_real w1564 = s[2] * s[32];
+    const eomc_real w1565 = -w1564;
+    dEdq[310] = w1565;
+    const eomc_real w1566 = s[2] * s[33];
+    const eomc_real w1567 = s[14] - w1566;
+    dEdq[311] = w1567;
+    const eomc_real w1568 = s[2] * s[34];
+    const eomc_real w1569 = -w1568;
+    dEdq[312] = w1569;
+    const eomc_real w1570 = s[2] * s[35];
+    const eomc_real w1571 = -w1570;
+    dEdq[313] = w1571;
+    const eomc_real w1572 = s[2] * s[36];
+    const eomc_real w1573 = s[18] - w1572;
+    dEdq[314] = w1573;
+    const eomc_real w1574 = s[2] * s[37];
+    const eomc_real w1575 = -w1574;
+    dEdq[315] = w1575;
+    const eomc_real w1576 = s[2] * s[38];
+    const eomc_real w1577 = -w1576;
+    dEdq[316] = w1577;
+    const eomc_real w1578 = s[2] * s[39];
+    const eomc_real w1579 = s[22] - w1578;
+    dEdq[317] = w1579;
+    const eomc_real w1580 = s[2] * s[40];
+    const eomc_real w1581 = -w1580;
+    dEdq[318] = w1581;
+    const eomc_real w1582 = s[2] * s[41];
+    const eomc_real w1583 = -w1582;
+    dEdq[319] = w1583;
+    const eomc_real w1584 = s[2] * s[42];
+    const eomc_real w1585 = s[26] - w1584;
+    dEdq[320] = w1585;
+    const eomc_real w1586 = s[37] + s[40];
+    const eomc_real w1587 = s[34] + w1586;
+    const eomc_real w1588 = s[31] + w1587;
+    const eomc_real w1589 = s[28] + w1588;
+    const eomc_real w1590 = s[2] * w1589;
+    dEdq[321] = w1590;
+    const eomc_real w1591 = s[38] + s[41];
+    const eomc_real w1592 = s[35] + w1591;
+    const eomc_real w1593 = s[32] + w1592;
+    const eomc_real w1594 = s[29] + w1593;
+    const eomc_real w1595 = s[2] * w1594;
+    dEdq[322] = w1595;
+    const eomc_real w1596 = w1584 - s[26];
+    const eomc_real w1597 = w1578 - s[22];
+    const eomc_real w1598 = w1596 + w1597;
+    const eomc_real w1599 = w1572 - s[18];
+    const eomc_real w1600 = w1598 + w1599;
+    const eomc_real w1601 = w1566 - s[14];
+    const eomc_real w1602 = w1600 + w1601;
+    const eomc_real w1603 = w1560 - s[10];
+    const eomc_real w1604 = w1602 + w1603;
+    dEdq[323] = w1604;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_1(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2] = X[0] - X[3];
+    W[6] = X[1] - X[4];
+    W[11] = X[2] - X[5];
+    W[15] = X[0] - X[6];
+    W[18] = X[1] - X[7];
+    W[22] = X[2] - X[8];
+    W[26] = X[0] - X[9];
+    W[29] = X[1] - X[10];
+    W[33] = X[2] - X[11];
+    W[37] = X[0] - X[12];
+    W[40] = X[1] - X[13];
+    W[44] = X[2] - X[14];
+    W[48] = X[0] - X[15];
+    W[51] = X[1] - X[16];
+    W[55] = X[2] - X[17];
+    W[58] = X[3] - X[6];
+    W[60] = X[4] - X[7];
+    W[63] = X[5] - X[8];
+    W[66] = X[3] - X[9];
+    W[68] = X[4] - X[10];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_2(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[71] = X[5] - X[11];
+    W[74] = X[3] - X[12];
+    W[76] = X[4] - X[13];
+    W[79] = X[5] - X[14];
+    W[82] = X[3] - X[15];
+    W[84] = X[4] - X[16];
+    W[87] = X[5] - X[17];
+    W[90] = X[6] - X[9];
+    W[92] = X[7] - X[10];
+    W[95] = X[8] - X[11];
+    W[98] = X[6] - X[12];
+    W[100] = X[7] - X[13];
+    W[103] = X[8] - X[14];
+    W[106] = X[6] - X[15];
+    W[108] = X[7] - X[16];
+    W[111] = X[8] - X[17];
+    W[114] = X[9] - X[12];
+    W[116] = X[10] - X[13];
+    W[119] = X[11] - X[14];
+    W[122] = X[9] - X[15];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_3(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[124] = X[10] - X[16];
+    W[127] = X[11] - X[17];
+    W[130] = X[12] - X[15];
+    W[132] = X[13] - X[16];
+    W[135] = X[14] - X[17];
+    W[138] = p[1];
+    W[139] = p[0];
+    W[140] = p[2];
+    W[141] = p[3];
+    W[142] = p[4];
+    W[143] = p[5];
+    W[144] = p[6];
+    W[145] = p[7];
+    W[146] = p[8];
+    W[147] = p[9];
+    W[148] = p[10];
+    W[149] = p[11];
+    W[150] = p[12];
+    W[151] = p[13];
+    W[152] = p[14];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_4(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[153] = p[15];
+    W[154] = p[16];
+    W[155] = p[17];
+    W[156] = p[18];
+    W[157] = p[19];
+    W[158] = p[20];
+    W[159] = p[21];
+    W[160] = 0.5;
+    W[161] = p[28];
+    W[162] = -2.0;
+    W[165] = -1.5;
+    W[3] = W[2] * W[2];
+    W[7] = W[6] * W[6];
+    W[12] = W[11] * W[11];
+    W[16] = W[15] * W[15];
+    W[19] = W[18] * W[18];
+    W[23] = W[22] * W[22];
+    W[27] = W[26] * W[26];
+    W[30] = W[29] * W[29];
+    W[34] = W[33] * W[33];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_5(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[38] = W[37] * W[37];
+    W[41] = W[40] * W[40];
+    W[45] = W[44] * W[44];
+    W[49] = W[48] * W[48];
+    W[52] = W[51] * W[51];
+    W[56] = W[55] * W[55];
+    W[59] = W[58] * W[58];
+    W[61] = W[60] * W[60];
+    W[64] = W[63] * W[63];
+    W[67] = W[66] * W[66];
+    W[69] = W[68] * W[68];
+    W[72] = W[71] * W[71];
+    W[75] = W[74] * W[74];
+    W[77] = W[76] * W[76];
+    W[80] = W[79] * W[79];
+    W[83] = W[82] * W[82];
+    W[85] = W[84] * W[84];
+    W[88] = W[87] * W[87];
+    W[91] = W[90] * W[90];
+    W[93] = W[92] * W[92];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_6(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[96] = W[95] * W[95];
+    W[99] = W[98] * W[98];
+    W[101] = W[100] * W[100];
+    W[104] = W[103] * W[103];
+    W[107] = W[106] * W[106];
+    W[109] = W[108] * W[108];
+    W[112] = W[111] * W[111];
+    W[115] = W[114] * W[114];
+    W[117] = W[116] * W[116];
+    W[120] = W[119] * W[119];
+    W[123] = W[122] * W[122];
+    W[125] = W[124] * W[124];
+    W[128] = W[127] * W[127];
+    W[131] = W[130] * W[130];
+    W[133] = W[132] * W[132];
+    W[136] = W[135] * W[135];
+    W[163] = W[162] * W[139];
+    W[164] = W[160] * W[149];
+    W[169] = W[160] * W[148];
+    W[174] = W[160] * W[147];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_7(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[179] = W[160] * W[146];
+    W[184] = W[160] * W[145];
+    W[220] = W[160] * W[153];
+    W[224] = W[160] * W[152];
+    W[229] = W[160] * W[151];
+    W[234] = W[160] * W[150];
+    W[267] = W[160] * W[156];
+    W[271] = W[160] * W[155];
+    W[276] = W[160] * W[154];
+    W[306] = W[160] * W[158];
+    W[310] = W[160] * W[157];
+    W[337] = W[160] * W[159];
+    W[8] = W[3] + W[7];
+    W[20] = W[16] + W[19];
+    W[31] = W[27] + W[30];
+    W[42] = W[38] + W[41];
+    W[53] = W[49] + W[52];
+    W[62] = W[59] + W[61];
+    W[70] = W[67] + W[69];
+    W[78] = W[75] + W[77];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_8(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[86] = W[83] + W[85];
+    W[94] = W[91] + W[93];
+    W[102] = W[99] + W[101];
+    W[110] = W[107] + W[109];
+    W[118] = W[115] + W[117];
+    W[126] = W[123] + W[125];
+    W[134] = W[131] + W[133];
+    W[13] = W[8] + W[12];
+    W[24] = W[20] + W[23];
+    W[35] = W[31] + W[34];
+    W[46] = W[42] + W[45];
+    W[57] = W[53] + W[56];
+    W[65] = W[62] + W[64];
+    W[73] = W[70] + W[72];
+    W[81] = W[78] + W[80];
+    W[89] = W[86] + W[88];
+    W[97] = W[94] + W[96];
+    W[105] = W[102] + W[104];
+    W[113] = W[110] + W[112];
+    W[121] = W[118] + W[120];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_9(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[129] = W[126] + W[128];
+    W[137] = W[134] + W[136];
+    W[166] = pow(W[57], W[165]);
+    W[170] = pow(W[46], W[165]);
+    W[175] = pow(W[35], W[165]);
+    W[180] = pow(W[24], W[165]);
+    W[185] = pow(W[13], W[165]);
+    W[221] = pow(W[89], W[165]);
+    W[225] = pow(W[81], W[165]);
+    W[230] = pow(W[73], W[165]);
+    W[235] = pow(W[65], W[165]);
+    W[268] = pow(W[113], W[165]);
+    W[272] = pow(W[105], W[165]);
+    W[277] = pow(W[97], W[165]);
+    W[307] = pow(W[129], W[165]);
+    W[311] = pow(W[121], W[165]);
+    W[338] = pow(W[137], W[165]);
+    W[167] = W[48] * W[166];
+    W[171] = W[37] * W[170];
+    W[176] = W[26] * W[175];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_10(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[181] = W[15] * W[180];
+    W[186] = W[2] * W[185];
+    W[190] = W[51] * W[166];
+    W[192] = W[40] * W[170];
+    W[195] = W[29] * W[175];
+    W[198] = W[18] * W[180];
+    W[201] = W[6] * W[185];
+    W[205] = W[55] * W[166];
+    W[207] = W[44] * W[170];
+    W[210] = W[33] * W[175];
+    W[213] = W[22] * W[180];
+    W[216] = W[11] * W[185];
+    W[222] = W[82] * W[221];
+    W[226] = W[74] * W[225];
+    W[231] = W[66] * W[230];
+    W[236] = W[58] * W[235];
+    W[241] = W[84] * W[221];
+    W[243] = W[76] * W[225];
+    W[246] = W[68] * W[230];
+    W[249] = W[60] * W[235];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_11(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[254] = W[87] * W[221];
+    W[256] = W[79] * W[225];
+    W[259] = W[71] * W[230];
+    W[262] = W[63] * W[235];
+    W[269] = W[106] * W[268];
+    W[273] = W[98] * W[272];
+    W[278] = W[90] * W[277];
+    W[284] = W[108] * W[268];
+    W[286] = W[100] * W[272];
+    W[289] = W[92] * W[277];
+    W[295] = W[111] * W[268];
+    W[297] = W[103] * W[272];
+    W[300] = W[95] * W[277];
+    W[308] = W[122] * W[307];
+    W[312] = W[114] * W[311];
+    W[319] = W[124] * W[307];
+    W[321] = W[116] * W[311];
+    W[328] = W[127] * W[307];
+    W[330] = W[119] * W[311];
+    W[339] = W[130] * W[338];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_12(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[346] = W[132] * W[338];
+    W[353] = W[135] * W[338];
+    W[168] = W[164] * W[167];
+    W[172] = W[169] * W[171];
+    W[177] = W[174] * W[176];
+    W[182] = W[179] * W[181];
+    W[187] = W[184] * W[186];
+    W[191] = W[164] * W[190];
+    W[193] = W[169] * W[192];
+    W[196] = W[174] * W[195];
+    W[199] = W[179] * W[198];
+    W[202] = W[184] * W[201];
+    W[206] = W[164] * W[205];
+    W[208] = W[169] * W[207];
+    W[211] = W[174] * W[210];
+    W[214] = W[179] * W[213];
+    W[217] = W[184] * W[216];
+    W[223] = W[220] * W[222];
+    W[227] = W[224] * W[226];
+    W[232] = W[229] * W[231];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_13(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[237] = W[234] * W[236];
+    W[242] = W[220] * W[241];
+    W[244] = W[224] * W[243];
+    W[247] = W[229] * W[246];
+    W[250] = W[234] * W[249];
+    W[255] = W[220] * W[254];
+    W[257] = W[224] * W[256];
+    W[260] = W[229] * W[259];
+    W[263] = W[234] * W[262];
+    W[270] = W[267] * W[269];
+    W[274] = W[271] * W[273];
+    W[279] = W[276] * W[278];
+    W[285] = W[267] * W[284];
+    W[287] = W[271] * W[286];
+    W[290] = W[276] * W[289];
+    W[296] = W[267] * W[295];
+    W[298] = W[271] * W[297];
+    W[301] = W[276] * W[300];
+    W[309] = W[306] * W[308];
+    W[313] = W[310] * W[312];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_14(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[320] = W[306] * W[319];
+    W[322] = W[310] * W[321];
+    W[329] = W[306] * W[328];
+    W[331] = W[310] * W[330];
+    W[340] = W[337] * W[339];
+    W[347] = W[337] * W[346];
+    W[354] = W[337] * W[353];
+    W[173] = W[168] + W[172];
+    W[194] = W[191] + W[193];
+    W[209] = W[206] + W[208];
+    W[228] = W[223] + W[227];
+    W[245] = W[242] + W[244];
+    W[258] = W[255] + W[257];
+    W[275] = W[270] + W[274];
+    W[288] = W[285] + W[287];
+    W[299] = W[296] + W[298];
+    W[314] = W[309] + W[313];
+    W[323] = W[320] + W[322];
+    W[332] = W[329] + W[331];
+    W[341] = W[340] - W[313];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_15(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[348] = W[347] - W[322];
+    W[355] = W[354] - W[331];
+    W[360] = W[309] + W[340];
+    W[365] = W[320] + W[347];
+    W[370] = W[329] + W[354];
+    W[178] = W[173] + W[177];
+    W[197] = W[194] + W[196];
+    W[212] = W[209] + W[211];
+    W[233] = W[228] + W[232];
+    W[248] = W[245] + W[247];
+    W[261] = W[258] + W[260];
+    W[280] = W[275] + W[279];
+    W[291] = W[288] + W[290];
+    W[302] = W[299] + W[301];
+    W[315] = W[314] - W[279];
+    W[324] = W[323] - W[290];
+    W[333] = W[332] - W[301];
+    W[342] = W[341] - W[274];
+    W[349] = W[348] - W[287];
+    W[356] = W[355] - W[298];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_16(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[361] = W[270] + W[360];
+    W[366] = W[285] + W[365];
+    W[371] = W[296] + W[370];
+    W[183] = W[178] + W[182];
+    W[200] = W[197] + W[199];
+    W[215] = W[212] + W[214];
+    W[238] = W[233] + W[237];
+    W[251] = W[248] + W[250];
+    W[264] = W[261] + W[263];
+    W[281] = W[280] - W[237];
+    W[292] = W[291] - W[250];
+    W[303] = W[302] - W[263];
+    W[316] = W[315] - W[232];
+    W[325] = W[324] - W[247];
+    W[334] = W[333] - W[260];
+    W[343] = W[342] - W[227];
+    W[350] = W[349] - W[244];
+    W[357] = W[356] - W[257];
+    W[362] = W[223] + W[361];
+    W[367] = W[242] + W[366];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_17(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[372] = W[255] + W[371];
+    W[188] = W[183] + W[187];
+    W[203] = W[200] + W[202];
+    W[218] = W[215] + W[217];
+    W[239] = W[238] - W[187];
+    W[252] = W[251] - W[202];
+    W[265] = W[264] - W[217];
+    W[282] = W[281] - W[182];
+    W[293] = W[292] - W[199];
+    W[304] = W[303] - W[214];
+    W[317] = W[316] - W[177];
+    W[326] = W[325] - W[196];
+    W[335] = W[334] - W[211];
+    W[344] = W[343] - W[172];
+    W[351] = W[350] - W[193];
+    W[358] = W[357] - W[208];
+    W[363] = W[168] + W[362];
+    W[368] = W[191] + W[367];
+    W[373] = W[206] + W[372];
+    W[189] = W[161] * W[188];
+    return 0;
+}
+
+/* Lines 340 .. 359 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_18(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[204] = W[161] * W[203];
+    W[219] = W[161] * W[218];
+    W[240] = W[161] * W[239];
+    W[253] = W[161] * W[252];
+    W[266] = W[161] * W[265];
+    W[283] = W[161] * W[282];
+    W[294] = W[161] * W[293];
+    W[305] = W[161] * W[304];
+    W[318] = W[161] * W[317];
+    W[327] = W[161] * W[326];
+    W[336] = W[161] * W[335];
+    W[345] = W[161] * W[344];
+    W[352] = W[161] * W[351];
+    W[359] = W[161] * W[358];
+    W[364] = W[163] * W[363];
+    W[369] = W[163] * W[368];
+    W[374] = W[163] * W[373];
+    X[36] = X[18];
+    X[37] = X[19];
+    X[38] = X[20];
+    return 0;
+}
+
+/* Lines 360 .. 379 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_19(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[39] = X[21];
+    X[40] = X[22];
+    X[41] = X[23];
+    X[42] = X[24];
+    X[43] = X[25];
+    X[44] = X[26];
+    X[45] = X[27];
+    X[46] = X[28];
+    X[47] = X[29];
+    X[48] = X[30];
+    X[49] = X[31];
+    X[50] = X[32];
+    X[51] = X[33];
+    X[52] = X[34];
+    X[53] = X[35];
+    X[54] = -W[189] / W[138];
+    X[55] = -W[204] / W[138];
+    X[56] = -W[219] / W[138];
+    X[57] = -W[240] / W[140];
+    X[58] = -W[253] / W[140];
+    return 0;
+}
+
+/* Lines 380 .. 392 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_20(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[59] = -W[266] / W[140];
+    X[60] = -W[283] / W[141];
+    X[61] = -W[294] / W[141];
+    X[62] = -W[305] / W[141];
+    X[63] = -W[318] / W[142];
+    X[64] = -W[327] / W[142];
+    X[65] = -W[336] / W[142];
+    X[66] = -W[345] / W[143];
+    X[67] = -W[352] / W[143];
+    X[68] = -W[359] / W[143];
+    X[69] = -W[364] / W[144];
+    X[70] = -W[369] / W[144];
+    X[71] = -W[374] / W[144];
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_21(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[395] = X[36] - X[39];
+    W[399] = X[37] - X[40];
+    W[404] = X[38] - X[41];
+    W[408] = X[36] - X[42];
+    W[411] = X[37] - X[43];
+    W[415] = X[38] - X[44];
+    W[419] = X[36] - X[45];
+    W[422] = X[37] - X[46];
+    W[426] = X[38] - X[47];
+    W[430] = X[36] - X[48];
+    W[433] = X[37] - X[49];
+    W[437] = X[38] - X[50];
+    W[441] = X[36] - X[51];
+    W[444] = X[37] - X[52];
+    W[448] = X[38] - X[53];
+    W[451] = X[39] - X[42];
+    W[453] = X[40] - X[43];
+    W[456] = X[41] - X[44];
+    W[459] = X[39] - X[45];
+    W[461] = X[40] - X[46];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_22(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[464] = X[41] - X[47];
+    W[467] = X[39] - X[48];
+    W[469] = X[40] - X[49];
+    W[472] = X[41] - X[50];
+    W[475] = X[39] - X[51];
+    W[477] = X[40] - X[52];
+    W[480] = X[41] - X[53];
+    W[483] = X[42] - X[45];
+    W[485] = X[43] - X[46];
+    W[488] = X[44] - X[47];
+    W[491] = X[42] - X[48];
+    W[493] = X[43] - X[49];
+    W[496] = X[44] - X[50];
+    W[499] = X[42] - X[51];
+    W[501] = X[43] - X[52];
+    W[504] = X[44] - X[53];
+    W[507] = X[45] - X[48];
+    W[509] = X[46] - X[49];
+    W[512] = X[47] - X[50];
+    W[515] = X[45] - X[51];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_23(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[517] = X[46] - X[52];
+    W[520] = X[47] - X[53];
+    W[523] = X[48] - X[51];
+    W[525] = X[49] - X[52];
+    W[528] = X[50] - X[53];
+    W[396] = W[2] * W[395] * 2.0;
+    W[400] = W[6] * W[399] * 2.0;
+    W[405] = W[11] * W[404] * 2.0;
+    W[409] = W[15] * W[408] * 2.0;
+    W[412] = W[18] * W[411] * 2.0;
+    W[416] = W[22] * W[415] * 2.0;
+    W[420] = W[26] * W[419] * 2.0;
+    W[423] = W[29] * W[422] * 2.0;
+    W[427] = W[33] * W[426] * 2.0;
+    W[431] = W[37] * W[430] * 2.0;
+    W[434] = W[40] * W[433] * 2.0;
+    W[438] = W[44] * W[437] * 2.0;
+    W[442] = W[48] * W[441] * 2.0;
+    W[445] = W[51] * W[444] * 2.0;
+    W[449] = W[55] * W[448] * 2.0;
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_24(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[452] = W[58] * W[451] * 2.0;
+    W[454] = W[60] * W[453] * 2.0;
+    W[457] = W[63] * W[456] * 2.0;
+    W[460] = W[66] * W[459] * 2.0;
+    W[462] = W[68] * W[461] * 2.0;
+    W[465] = W[71] * W[464] * 2.0;
+    W[468] = W[74] * W[467] * 2.0;
+    W[470] = W[76] * W[469] * 2.0;
+    W[473] = W[79] * W[472] * 2.0;
+    W[476] = W[82] * W[475] * 2.0;
+    W[478] = W[84] * W[477] * 2.0;
+    W[481] = W[87] * W[480] * 2.0;
+    W[484] = W[90] * W[483] * 2.0;
+    W[486] = W[92] * W[485] * 2.0;
+    W[489] = W[95] * W[488] * 2.0;
+    W[492] = W[98] * W[491] * 2.0;
+    W[494] = W[100] * W[493] * 2.0;
+    W[497] = W[103] * W[496] * 2.0;
+    W[500] = W[106] * W[499] * 2.0;
+    W[502] = W[108] * W[501] * 2.0;
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_25(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[505] = W[111] * W[504] * 2.0;
+    W[508] = W[114] * W[507] * 2.0;
+    W[510] = W[116] * W[509] * 2.0;
+    W[513] = W[119] * W[512] * 2.0;
+    W[516] = W[122] * W[515] * 2.0;
+    W[518] = W[124] * W[517] * 2.0;
+    W[521] = W[127] * W[520] * 2.0;
+    W[524] = W[130] * W[523] * 2.0;
+    W[526] = W[132] * W[525] * 2.0;
+    W[529] = W[135] * W[528] * 2.0;
+    W[401] = W[396] + W[400];
+    W[413] = W[409] + W[412];
+    W[424] = W[420] + W[423];
+    W[435] = W[431] + W[434];
+    W[446] = W[442] + W[445];
+    W[455] = W[452] + W[454];
+    W[463] = W[460] + W[462];
+    W[471] = W[468] + W[470];
+    W[479] = W[476] + W[478];
+    W[487] = W[484] + W[486];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_26(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[495] = W[492] + W[494];
+    W[503] = W[500] + W[502];
+    W[511] = W[508] + W[510];
+    W[519] = W[516] + W[518];
+    W[527] = W[524] + W[526];
+    W[406] = W[401] + W[405];
+    W[417] = W[413] + W[416];
+    W[428] = W[424] + W[427];
+    W[439] = W[435] + W[438];
+    W[450] = W[446] + W[449];
+    W[458] = W[455] + W[457];
+    W[466] = W[463] + W[465];
+    W[474] = W[471] + W[473];
+    W[482] = W[479] + W[481];
+    W[490] = W[487] + W[489];
+    W[498] = W[495] + W[497];
+    W[506] = W[503] + W[505];
+    W[514] = W[511] + W[513];
+    W[522] = W[519] + W[521];
+    W[530] = W[527] + W[529];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_27(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[559] = -1.5 * W[450] * W[166] / W[57];
+    W[563] = -1.5 * W[439] * W[170] / W[46];
+    W[568] = -1.5 * W[428] * W[175] / W[35];
+    W[573] = -1.5 * W[417] * W[180] / W[24];
+    W[578] = -1.5 * W[406] * W[185] / W[13];
+    W[614] = -1.5 * W[482] * W[221] / W[89];
+    W[618] = -1.5 * W[474] * W[225] / W[81];
+    W[623] = -1.5 * W[466] * W[230] / W[73];
+    W[628] = -1.5 * W[458] * W[235] / W[65];
+    W[661] = -1.5 * W[506] * W[268] / W[113];
+    W[665] = -1.5 * W[498] * W[272] / W[105];
+    W[670] = -1.5 * W[490] * W[277] / W[97];
+    W[700] = -1.5 * W[522] * W[307] / W[129];
+    W[704] = -1.5 * W[514] * W[311] / W[121];
+    W[731] = -1.5 * W[530] * W[338] / W[137];
+    W[560] = W[48] * W[559] + W[441] * W[166];
+    W[564] = W[37] * W[563] + W[430] * W[170];
+    W[569] = W[26] * W[568] + W[419] * W[175];
+    W[574] = W[15] * W[573] + W[408] * W[180];
+    W[579] = W[2] * W[578] + W[395] * W[185];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_28(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[583] = W[51] * W[559] + W[444] * W[166];
+    W[585] = W[40] * W[563] + W[433] * W[170];
+    W[588] = W[29] * W[568] + W[422] * W[175];
+    W[591] = W[18] * W[573] + W[411] * W[180];
+    W[594] = W[6] * W[578] + W[399] * W[185];
+    W[598] = W[55] * W[559] + W[448] * W[166];
+    W[600] = W[44] * W[563] + W[437] * W[170];
+    W[603] = W[33] * W[568] + W[426] * W[175];
+    W[606] = W[22] * W[573] + W[415] * W[180];
+    W[609] = W[11] * W[578] + W[404] * W[185];
+    W[615] = W[82] * W[614] + W[475] * W[221];
+    W[619] = W[74] * W[618] + W[467] * W[225];
+    W[624] = W[66] * W[623] + W[459] * W[230];
+    W[629] = W[58] * W[628] + W[451] * W[235];
+    W[634] = W[84] * W[614] + W[477] * W[221];
+    W[636] = W[76] * W[618] + W[469] * W[225];
+    W[639] = W[68] * W[623] + W[461] * W[230];
+    W[642] = W[60] * W[628] + W[453] * W[235];
+    W[647] = W[87] * W[614] + W[480] * W[221];
+    W[649] = W[79] * W[618] + W[472] * W[225];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_29(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[652] = W[71] * W[623] + W[464] * W[230];
+    W[655] = W[63] * W[628] + W[456] * W[235];
+    W[662] = W[106] * W[661] + W[499] * W[268];
+    W[666] = W[98] * W[665] + W[491] * W[272];
+    W[671] = W[90] * W[670] + W[483] * W[277];
+    W[677] = W[108] * W[661] + W[501] * W[268];
+    W[679] = W[100] * W[665] + W[493] * W[272];
+    W[682] = W[92] * W[670] + W[485] * W[277];
+    W[688] = W[111] * W[661] + W[504] * W[268];
+    W[690] = W[103] * W[665] + W[496] * W[272];
+    W[693] = W[95] * W[670] + W[488] * W[277];
+    W[701] = W[122] * W[700] + W[515] * W[307];
+    W[705] = W[114] * W[704] + W[507] * W[311];
+    W[712] = W[124] * W[700] + W[517] * W[307];
+    W[714] = W[116] * W[704] + W[509] * W[311];
+    W[721] = W[127] * W[700] + W[520] * W[307];
+    W[723] = W[119] * W[704] + W[512] * W[311];
+    W[732] = W[130] * W[731] + W[523] * W[338];
+    W[739] = W[132] * W[731] + W[525] * W[338];
+    W[746] = W[135] * W[731] + W[528] * W[338];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_30(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[561] = W[164] * W[560];
+    W[565] = W[169] * W[564];
+    W[570] = W[174] * W[569];
+    W[575] = W[179] * W[574];
+    W[580] = W[184] * W[579];
+    W[584] = W[164] * W[583];
+    W[586] = W[169] * W[585];
+    W[589] = W[174] * W[588];
+    W[592] = W[179] * W[591];
+    W[595] = W[184] * W[594];
+    W[599] = W[164] * W[598];
+    W[601] = W[169] * W[600];
+    W[604] = W[174] * W[603];
+    W[607] = W[179] * W[606];
+    W[610] = W[184] * W[609];
+    W[616] = W[220] * W[615];
+    W[620] = W[224] * W[619];
+    W[625] = W[229] * W[624];
+    W[630] = W[234] * W[629];
+    W[635] = W[220] * W[634];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_31(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[637] = W[224] * W[636];
+    W[640] = W[229] * W[639];
+    W[643] = W[234] * W[642];
+    W[648] = W[220] * W[647];
+    W[650] = W[224] * W[649];
+    W[653] = W[229] * W[652];
+    W[656] = W[234] * W[655];
+    W[663] = W[267] * W[662];
+    W[667] = W[271] * W[666];
+    W[672] = W[276] * W[671];
+    W[678] = W[267] * W[677];
+    W[680] = W[271] * W[679];
+    W[683] = W[276] * W[682];
+    W[689] = W[267] * W[688];
+    W[691] = W[271] * W[690];
+    W[694] = W[276] * W[693];
+    W[702] = W[306] * W[701];
+    W[706] = W[310] * W[705];
+    W[713] = W[306] * W[712];
+    W[715] = W[310] * W[714];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_32(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[722] = W[306] * W[721];
+    W[724] = W[310] * W[723];
+    W[733] = W[337] * W[732];
+    W[740] = W[337] * W[739];
+    W[747] = W[337] * W[746];
+    W[566] = W[561] + W[565];
+    W[587] = W[584] + W[586];
+    W[602] = W[599] + W[601];
+    W[621] = W[616] + W[620];
+    W[638] = W[635] + W[637];
+    W[651] = W[648] + W[650];
+    W[668] = W[663] + W[667];
+    W[681] = W[678] + W[680];
+    W[692] = W[689] + W[691];
+    W[707] = W[702] + W[706];
+    W[716] = W[713] + W[715];
+    W[725] = W[722] + W[724];
+    W[734] = W[733] - W[706];
+    W[741] = W[740] - W[715];
+    W[748] = W[747] - W[724];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_33(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[753] = W[702] + W[733];
+    W[758] = W[713] + W[740];
+    W[763] = W[722] + W[747];
+    W[571] = W[566] + W[570];
+    W[590] = W[587] + W[589];
+    W[605] = W[602] + W[604];
+    W[626] = W[621] + W[625];
+    W[641] = W[638] + W[640];
+    W[654] = W[651] + W[653];
+    W[673] = W[668] + W[672];
+    W[684] = W[681] + W[683];
+    W[695] = W[692] + W[694];
+    W[708] = W[707] - W[672];
+    W[717] = W[716] - W[683];
+    W[726] = W[725] - W[694];
+    W[735] = W[734] - W[667];
+    W[742] = W[741] - W[680];
+    W[749] = W[748] - W[691];
+    W[754] = W[663] + W[753];
+    W[759] = W[678] + W[758];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_34(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[764] = W[689] + W[763];
+    W[576] = W[571] + W[575];
+    W[593] = W[590] + W[592];
+    W[608] = W[605] + W[607];
+    W[631] = W[626] + W[630];
+    W[644] = W[641] + W[643];
+    W[657] = W[654] + W[656];
+    W[674] = W[673] - W[630];
+    W[685] = W[684] - W[643];
+    W[696] = W[695] - W[656];
+    W[709] = W[708] - W[625];
+    W[718] = W[717] - W[640];
+    W[727] = W[726] - W[653];
+    W[736] = W[735] - W[620];
+    W[743] = W[742] - W[637];
+    W[750] = W[749] - W[650];
+    W[755] = W[616] + W[754];
+    W[760] = W[635] + W[759];
+    W[765] = W[648] + W[764];
+    W[581] = W[576] + W[580];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_35(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[596] = W[593] + W[595];
+    W[611] = W[608] + W[610];
+    W[632] = W[631] - W[580];
+    W[645] = W[644] - W[595];
+    W[658] = W[657] - W[610];
+    W[675] = W[674] - W[575];
+    W[686] = W[685] - W[592];
+    W[697] = W[696] - W[607];
+    W[710] = W[709] - W[570];
+    W[719] = W[718] - W[589];
+    W[728] = W[727] - W[604];
+    W[737] = W[736] - W[565];
+    W[744] = W[743] - W[586];
+    W[751] = W[750] - W[601];
+    W[756] = W[561] + W[755];
+    W[761] = W[584] + W[760];
+    W[766] = W[599] + W[765];
+    W[582] = W[161] * W[581];
+    W[597] = W[161] * W[596];
+    W[612] = W[161] * W[611];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_36(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[633] = W[161] * W[632];
+    W[646] = W[161] * W[645];
+    W[659] = W[161] * W[658];
+    W[676] = W[161] * W[675];
+    W[687] = W[161] * W[686];
+    W[698] = W[161] * W[697];
+    W[711] = W[161] * W[710];
+    W[720] = W[161] * W[719];
+    W[729] = W[161] * W[728];
+    W[738] = W[161] * W[737];
+    W[745] = W[161] * W[744];
+    W[752] = W[161] * W[751];
+    W[757] = W[163] * W[756];
+    W[762] = W[163] * W[761];
+    W[767] = W[163] * W[766];
+    X[72] = X[54] / 2.0;
+    X[73] = X[55] / 2.0;
+    X[74] = X[56] / 2.0;
+    X[75] = X[57] / 2.0;
+    X[76] = X[58] / 2.0;
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_37(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[77] = X[59] / 2.0;
+    X[78] = X[60] / 2.0;
+    X[79] = X[61] / 2.0;
+    X[80] = X[62] / 2.0;
+    X[81] = X[63] / 2.0;
+    X[82] = X[64] / 2.0;
+    X[83] = X[65] / 2.0;
+    X[84] = X[66] / 2.0;
+    X[85] = X[67] / 2.0;
+    X[86] = X[68] / 2.0;
+    X[87] = X[69] / 2.0;
+    X[88] = X[70] / 2.0;
+    X[89] = X[71] / 2.0;
+    X[90] = -W[582] / W[138] / 2.0;
+    X[91] = -W[597] / W[138] / 2.0;
+    X[92] = -W[612] / W[138] / 2.0;
+    X[93] = -W[633] / W[140] / 2.0;
+    X[94] = -W[646] / W[140] / 2.0;
+    X[95] = -W[659] / W[140] / 2.0;
+    X[96] = -W[676] / W[141] / 2.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_39(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[788] = X[72] - X[75];
+    W[792] = X[73] - X[76];
+    W[797] = X[74] - X[77];
+    W[801] = X[72] - X[78];
+    W[804] = X[73] - X[79];
+    W[808] = X[74] - X[80];
+    W[812] = X[72] - X[81];
+    W[815] = X[73] - X[82];
+    W[819] = X[74] - X[83];
+    W[823] = X[72] - X[84];
+    W[826] = X[73] - X[85];
+    W[830] = X[74] - X[86];
+    W[834] = X[72] - X[87];
+    W[837] = X[73] - X[88];
+    W[841] = X[74] - X[89];
+    W[844] = X[75] - X[78];
+    W[846] = X[76] - X[79];
+    W[849] = X[77] - X[80];
+    W[852] = X[75] - X[81];
+    W[854] = X[76] - X[82];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_41(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[910] = X[82] - X[88];
+    W[913] = X[83] - X[89];
+    W[916] = X[84] - X[87];
+    W[918] = X[85] - X[88];
+    W[921] = X[86] - X[89];
+    W[789] = W[2] * W[788] * 2.0 + W[395] * W[395];
+    W[793] = W[6] * W[792] * 2.0 + W[399] * W[399];
+    W[798] = W[11] * W[797] * 2.0 + W[404] * W[404];
+    W[802] = W[15] * W[801] * 2.0 + W[408] * W[408];
+    W[805] = W[18] * W[804] * 2.0 + W[411] * W[411];
+    W[809] = W[22] * W[808] * 2.0 + W[415] * W[415];
+    W[813] = W[26] * W[812] * 2.0 + W[419] * W[419];
+    W[816] = W[29] * W[815] * 2.0 + W[422] * W[422];
+    W[820] = W[33] * W[819] * 2.0 + W[426] * W[426];
+    W[824] = W[37] * W[823] * 2.0 + W[430] * W[430];
+    W[827] = W[40] * W[826] * 2.0 + W[433] * W[433];
+    W[831] = W[44] * W[830] * 2.0 + W[437] * W[437];
+    W[835] = W[48] * W[834] * 2.0 + W[441] * W[441];
+    W[838] = W[51] * W[837] * 2.0 + W[444] * W[444];
+    W[842] = W[55] * W[841] * 2.0 + W[448] * W[448];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_43(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[898] = W[111] * W[897] * 2.0 + W[504] * W[504];
+    W[901] = W[114] * W[900] * 2.0 + W[507] * W[507];
+    W[903] = W[116] * W[902] * 2.0 + W[509] * W[509];
+    W[906] = W[119] * W[905] * 2.0 + W[512] * W[512];
+    W[909] = W[122] * W[908] * 2.0 + W[515] * W[515];
+    W[911] = W[124] * W[910] * 2.0 + W[517] * W[517];
+    W[914] = W[127] * W[913] * 2.0 + W[520] * W[520];
+    W[917] = W[130] * W[916] * 2.0 + W[523] * W[523];
+    W[919] = W[132] * W[918] * 2.0 + W[525] * W[525];
+    W[922] = W[135] * W[921] * 2.0 + W[528] * W[528];
+    W[794] = W[789] + W[793];
+    W[806] = W[802] + W[805];
+    W[817] = W[813] + W[816];
+    W[828] = W[824] + W[827];
+    W[839] = W[835] + W[838];
+    W[848] = W[845] + W[847];
+    W[856] = W[853] + W[855];
+    W[864] = W[861] + W[863];
+    W[872] = W[869] + W[871];
+    W[880] = W[877] + W[879];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_45(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[952] = (-3.0 * W[843] * W[166] - 2.5 * W[450] * W[559]) / (2.0 * W[57]);
+    W[956] = (-3.0 * W[832] * W[170] - 2.5 * W[439] * W[563]) / (2.0 * W[46]);
+    W[961] = (-3.0 * W[821] * W[175] - 2.5 * W[428] * W[568]) / (2.0 * W[35]);
+    W[966] = (-3.0 * W[810] * W[180] - 2.5 * W[417] * W[573]) / (2.0 * W[24]);
+    W[971] = (-3.0 * W[799] * W[185] - 2.5 * W[406] * W[578]) / (2.0 * W[13]);
+    W[1007] = (-3.0 * W[875] * W[221] - 2.5 * W[482] * W[614]) / (2.0 * W[89]);
+    W[1011] = (-3.0 * W[867] * W[225] - 2.5 * W[474] * W[618]) / (2.0 * W[81]);
+    W[1016] = (-3.0 * W[859] * W[230] - 2.5 * W[466] * W[623]) / (2.0 * W[73]);
+    W[1021] = (-3.0 * W[851] * W[235] - 2.5 * W[458] * W[628]) / (2.0 * W[65]);
+    W[1054] = (-3.0 * W[899] * W[268] - 2.5 * W[506] * W[661]) / (2.0 * W[113]);
+    W[1058] = (-3.0 * W[891] * W[272] - 2.5 * W[498] * W[665]) / (2.0 * W[105]);
+    W[1063] = (-3.0 * W[883] * W[277] - 2.5 * W[490] * W[670]) / (2.0 * W[97]);
+    W[1093] = (-3.0 * W[915] * W[307] - 2.5 * W[522] * W[700]) / (2.0 * W[129]);
+    W[1097] = (-3.0 * W[907] * W[311] - 2.5 * W[514] * W[704]) / (2.0 * W[121]);
+    W[1124] = (-3.0 * W[923] * W[338] - 2.5 * W[530] * W[731]) / (2.0 * W[137]);
+    W[953] = W[48] * W[952] + W[441] * W[559] + W[834] * W[166];
+    W[957] = W[37] * W[956] + W[430] * W[563] + W[823] * W[170];
+    W[962] = W[26] * W[961] + W[419] * W[568] + W[812] * W[175];
+    W[967] = W[15] * W[966] + W[408] * W[573] + W[801] * W[180];
+    W[972] = W[2] * W[971] + W[395] * W[578] + W[788] * W[185];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_47(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1045] = W[71] * W[1016] + W[464] * W[623] + W[857] * W[230];
+    W[1048] = W[63] * W[1021] + W[456] * W[628] + W[849] * W[235];
+    W[1055] = W[106] * W[1054] + W[499] * W[661] + W[892] * W[268];
+    W[1059] = W[98] * W[1058] + W[491] * W[665] + W[884] * W[272];
+    W[1064] = W[90] * W[1063] + W[483] * W[670] + W[876] * W[277];
+    W[1070] = W[108] * W[1054] + W[501] * W[661] + W[894] * W[268];
+    W[1072] = W[100] * W[1058] + W[493] * W[665] + W[886] * W[272];
+    W[1075] = W[92] * W[1063] + W[485] * W[670] + W[878] * W[277];
+    W[1081] = W[111] * W[1054] + W[504] * W[661] + W[897] * W[268];
+    W[1083] = W[103] * W[1058] + W[496] * W[665] + W[889] * W[272];
+    W[1086] = W[95] * W[1063] + W[488] * W[670] + W[881] * W[277];
+    W[1094] = W[122] * W[1093] + W[515] * W[700] + W[908] * W[307];
+    W[1098] = W[114] * W[1097] + W[507] * W[704] + W[900] * W[311];
+    W[1105] = W[124] * W[1093] + W[517] * W[700] + W[910] * W[307];
+    W[1107] = W[116] * W[1097] + W[509] * W[704] + W[902] * W[311];
+    W[1114] = W[127] * W[1093] + W[520] * W[700] + W[913] * W[307];
+    W[1116] = W[119] * W[1097] + W[512] * W[704] + W[905] * W[311];
+    W[1125] = W[130] * W[1124] + W[523] * W[731] + W[916] * W[338];
+    W[1132] = W[132] * W[1124] + W[525] * W[731] + W[918] * W[338];
+    W[1139] = W[135] * W[1124] + W[528] * W[731] + W[921] * W[338];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_50(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1115] = W[306] * W[1114];
+    W[1117] = W[310] * W[1116];
+    W[1126] = W[337] * W[1125];
+    W[1133] = W[337] * W[1132];
+    W[1140] = W[337] * W[1139];
+    W[959] = W[954] + W[958];
+    W[980] = W[977] + W[979];
+    W[995] = W[992] + W[994];
+    W[1014] = W[1009] + W[1013];
+    W[1031] = W[1028] + W[1030];
+    W[1044] = W[1041] + W[1043];
+    W[1061] = W[1056] + W[1060];
+    W[1074] = W[1071] + W[1073];
+    W[1085] = W[1082] + W[1084];
+    W[1100] = W[1095] + W[1099];
+    W[1109] = W[1106] + W[1108];
+    W[1118] = W[1115] + W[1117];
+    W[1127] = W[1126] - W[1099];
+    W[1134] = W[1133] - W[1108];
+    W[1141] = W[1140] - W[1117];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_52(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1157] = W[1082] + W[1156];
+    W[969] = W[964] + W[968];
+    W[986] = W[983] + W[985];
+    W[1001] = W[998] + W[1000];
+    W[1024] = W[1019] + W[1023];
+    W[1037] = W[1034] + W[1036];
+    W[1050] = W[1047] + W[1049];
+    W[1067] = W[1066] - W[1023];
+    W[1078] = W[1077] - W[1036];
+    W[1089] = W[1088] - W[1049];
+    W[1102] = W[1101] - W[1018];
+    W[1111] = W[1110] - W[1033];
+    W[1120] = W[1119] - W[1046];
+    W[1129] = W[1128] - W[1013];
+    W[1136] = W[1135] - W[1030];
+    W[1143] = W[1142] - W[1043];
+    W[1148] = W[1009] + W[1147];
+    W[1153] = W[1028] + W[1152];
+    W[1158] = W[1041] + W[1157];
+    W[974] = W[969] + W[973];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_54(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1026] = W[161] * W[1025];
+    W[1039] = W[161] * W[1038];
+    W[1052] = W[161] * W[1051];
+    W[1069] = W[161] * W[1068];
+    W[1080] = W[161] * W[1079];
+    W[1091] = W[161] * W[1090];
+    W[1104] = W[161] * W[1103];
+    W[1113] = W[161] * W[1112];
+    W[1122] = W[161] * W[1121];
+    W[1131] = W[161] * W[1130];
+    W[1138] = W[161] * W[1137];
+    W[1145] = W[161] * W[1144];
+    W[1150] = W[163] * W[1149];
+    W[1155] = W[163] * W[1154];
+    W[1160] = W[163] * W[1159];
+    X[108] = X[90] / 3.0;
+    X[109] = X[91] / 3.0;
+    X[110] = X[92] / 3.0;
+    X[111] = X[93] / 3.0;
+    X[112] = X[94] / 3.0;
+    return 0;
+}
+
+/* Lines 340 .. 350 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_56(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[133] = -W[1080] / W[141] / 3.0;
+    X[134] = -W[1091] / W[141] / 3.0;
+    X[135] = -W[1104] / W[142] / 3.0;
+    X[136] = -W[1113] / W[142] / 3.0;
+    X[137] = -W[1122] / W[142] / 3.0;
+    X[138] = -W[1131] / W[143] / 3.0;
+    X[139] = -W[1138] / W[143] / 3.0;
+    X[140] = -W[1145] / W[143] / 3.0;
+    X[141] = -W[1150] / W[144] / 3.0;
+    X[142] = -W[1155] / W[144] / 3.0;
+    X[143] = -W[1160] / W[144] / 3.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_57(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1181] = X[108] - X[111];
+    W[1185] = X[109] - X[112];
+    W[1190] = X[110] - X[113];
+    W[1194] = X[108] - X[114];
+    W[1197] = X[109] - X[115];
+    W[1201] = X[110] - X[116];
+    W[1205] = X[108] - X[117];
+    W[1208] = X[109] - X[118];
+    W[1212] = X[110] - X[119];
+    W[1216] = X[108] - X[120];
+    W[1219] = X[109] - X[121];
+    W[1223] = X[110] - X[122];
+    W[1227] = X[108] - X[123];
+    W[1230] = X[109] - X[124];
+    W[1234] = X[110] - X[125];
+    W[1237] = X[111] - X[114];
+    W[1239] = X[112] - X[115];
+    W[1242] = X[113] - X[116];
+    W[1245] = X[111] - X[117];
+    W[1247] = X[112] - X[118];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_59(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1303] = X[118] - X[124];
+    W[1306] = X[119] - X[125];
+    W[1309] = X[120] - X[123];
+    W[1311] = X[121] - X[124];
+    W[1314] = X[122] - X[125];
+    W[1182] = (W[2] * W[1181] + W[395] * W[788]) * 2.0;
+    W[1186] = (W[6] * W[1185] + W[399] * W[792]) * 2.0;
+    W[1191] = (W[11] * W[1190] + W[404] * W[797]) * 2.0;
+    W[1195] = (W[15] * W[1194] + W[408] * W[801]) * 2.0;
+    W[1198] = (W[18] * W[1197] + W[411] * W[804]) * 2.0;
+    W[1202] = (W[22] * W[1201] + W[415] * W[808]) * 2.0;
+    W[1206] = (W[26] * W[1205] + W[419] * W[812]) * 2.0;
+    W[1209] = (W[29] * W[1208] + W[422] * W[815]) * 2.0;
+    W[1213] = (W[33] * W[1212] + W[426] * W[819]) * 2.0;
+    W[1217] = (W[37] * W[1216] + W[430] * W[823]) * 2.0;
+    W[1220] = (W[40] * W[1219] + W[433] * W[826]) * 2.0;
+    W[1224] = (W[44] * W[1223] + W[437] * W[830]) * 2.0;
+    W[1228] = (W[48] * W[1227] + W[441] * W[834]) * 2.0;
+    W[1231] = (W[51] * W[1230] + W[444] * W[837]) * 2.0;
+    W[1235] = (W[55] * W[1234] + W[448] * W[841]) * 2.0;
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_61(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1291] = (W[111] * W[1290] + W[504] * W[897]) * 2.0;
+    W[1294] = (W[114] * W[1293] + W[507] * W[900]) * 2.0;
+    W[1296] = (W[116] * W[1295] + W[509] * W[902]) * 2.0;
+    W[1299] = (W[119] * W[1298] + W[512] * W[905]) * 2.0;
+    W[1302] = (W[122] * W[1301] + W[515] * W[908]) * 2.0;
+    W[1304] = (W[124] * W[1303] + W[517] * W[910]) * 2.0;
+    W[1307] = (W[127] * W[1306] + W[520] * W[913]) * 2.0;
+    W[1310] = (W[130] * W[1309] + W[523] * W[916]) * 2.0;
+    W[1312] = (W[132] * W[1311] + W[525] * W[918]) * 2.0;
+    W[1315] = (W[135] * W[1314] + W[528] * W[921]) * 2.0;
+    W[1187] = W[1182] + W[1186];
+    W[1199] = W[1195] + W[1198];
+    W[1210] = W[1206] + W[1209];
+    W[1221] = W[1217] + W[1220];
+    W[1232] = W[1228] + W[1231];
+    W[1241] = W[1238] + W[1240];
+    W[1249] = W[1246] + W[1248];
+    W[1257] = W[1254] + W[1256];
+    W[1265] = W[1262] + W[1264];
+    W[1273] = W[1270] + W[1272];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_63(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1345] = (-4.5 * W[1236] * W[166] - 4.0 * W[843] * W[559] - 3.5 * W[450] * W[952]) / (3.0 * W[57]);
+    W[1349] = (-4.5 * W[1225] * W[170] - 4.0 * W[832] * W[563] - 3.5 * W[439] * W[956]) / (3.0 * W[46]);
+    W[1354] = (-4.5 * W[1214] * W[175] - 4.0 * W[821] * W[568] - 3.5 * W[428] * W[961]) / (3.0 * W[35]);
+    W[1359] = (-4.5 * W[1203] * W[180] - 4.0 * W[810] * W[573] - 3.5 * W[417] * W[966]) / (3.0 * W[24]);
+    W[1364] = (-4.5 * W[1192] * W[185] - 4.0 * W[799] * W[578] - 3.5 * W[406] * W[971]) / (3.0 * W[13]);
+    W[1400] = (-4.5 * W[1268] * W[221] - 4.0 * W[875] * W[614] - 3.5 * W[482] * W[1007]) / (3.0 * W[89]);
+    W[1404] = (-4.5 * W[1260] * W[225] - 4.0 * W[867] * W[618] - 3.5 * W[474] * W[1011]) / (3.0 * W[81]);
+    W[1409] = (-4.5 * W[1252] * W[230] - 4.0 * W[859] * W[623] - 3.5 * W[466] * W[1016]) / (3.0 * W[73]);
+    W[1414] = (-4.5 * W[1244] * W[235] - 4.0 * W[851] * W[628] - 3.5 * W[458] * W[1021]) / (3.0 * W[65]);
+    W[1447] = (-4.5 * W[1292] * W[268] - 4.0 * W[899] * W[661] - 3.5 * W[506] * W[1054]) / (3.0 * W[113]);
+    W[1451] = (-4.5 * W[1284] * W[272] - 4.0 * W[891] * W[665] - 3.5 * W[498] * W[1058]) / (3.0 * W[105]);
+    W[1456] = (-4.5 * W[1276] * W[277] - 4.0 * W[883] * W[670] - 3.5 * W[490] * W[1063]) / (3.0 * W[97]);
+    W[1486] = (-4.5 * W[1308] * W[307] - 4.0 * W[915] * W[700] - 3.5 * W[522] * W[1093]) / (3.0 * W[129]);
+    W[1490] = (-4.5 * W[1300] * W[311] - 4.0 * W[907] * W[704] - 3.5 * W[514] * W[1097]) / (3.0 * W[121]);
+    W[1517] = (-4.5 * W[1316] * W[338] - 4.0 * W[923] * W[731] - 3.5 * W[530] * W[1124]) / (3.0 * W[137]);
+    W[1346] = W[48] * W[1345] + W[441] * W[952] + W[834] * W[559] + W[1227] * W[166];
+    W[1350] = W[37] * W[1349] + W[430] * W[956] + W[823] * W[563] + W[1216] * W[170];
+    W[1355] = W[26] * W[1354] + W[419] * W[961] + W[812] * W[568] + W[1205] * W[175];
+    W[1360] = W[15] * W[1359] + W[408] * W[966] + W[801] * W[573] + W[1194] * W[180];
+    W[1365] = W[2] * W[1364] + W[395] * W[971] + W[788] * W[578] + W[1181] * W[185];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_65(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1438] = W[71] * W[1409] + W[464] * W[1016] + W[857] * W[623] + W[1250] * W[230];
+    W[1441] = W[63] * W[1414] + W[456] * W[1021] + W[849] * W[628] + W[1242] * W[235];
+    W[1448] = W[106] * W[1447] + W[499] * W[1054] + W[892] * W[661] + W[1285] * W[268];
+    W[1452] = W[98] * W[1451] + W[491] * W[1058] + W[884] * W[665] + W[1277] * W[272];
+    W[1457] = W[90] * W[1456] + W[483] * W[1063] + W[876] * W[670] + W[1269] * W[277];
+    W[1463] = W[108] * W[1447] + W[501] * W[1054] + W[894] * W[661] + W[1287] * W[268];
+    W[1465] = W[100] * W[1451] + W[493] * W[1058] + W[886] * W[665] + W[1279] * W[272];
+    W[1468] = W[92] * W[1456] + W[485] * W[1063] + W[878] * W[670] + W[1271] * W[277];
+    W[1474] = W[111] * W[1447] + W[504] * W[1054] + W[897] * W[661] + W[1290] * W[268];
+    W[1476] = W[103] * W[1451] + W[496] * W[1058] + W[889] * W[665] + W[1282] * W[272];
+    W[1479] = W[95] * W[1456] + W[488] * W[1063] + W[881] * W[670] + W[1274] * W[277];
+    W[1487] = W[122] * W[1486] + W[515] * W[1093] + W[908] * W[700] + W[1301] * W[307];
+    W[1491] = W[114] * W[1490] + W[507] * W[1097] + W[900] * W[704] + W[1293] * W[311];
+    W[1498] = W[124] * W[1486] + W[517] * W[1093] + W[910] * W[700] + W[1303] * W[307];
+    W[1500] = W[116] * W[1490] + W[509] * W[1097] + W[902] * W[704] + W[1295] * W[311];
+    W[1507] = W[127] * W[1486] + W[520] * W[1093] + W[913] * W[700] + W[1306] * W[307];
+    W[1509] = W[119] * W[1490] + W[512] * W[1097] + W[905] * W[704] + W[1298] * W[311];
+    W[1518] = W[130] * W[1517] + W[523] * W[1124] + W[916] * W[731] + W[1309] * W[338];
+    W[1525] = W[132] * W[1517] + W[525] * W[1124] + W[918] * W[731] + W[1311] * W[338];
+    W[1532] = W[135] * W[1517] + W[528] * W[1124] + W[921] * W[731] + W[1314] * W[338];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_68(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1508] = W[306] * W[1507];
+    W[1510] = W[310] * W[1509];
+    W[1519] = W[337] * W[1518];
+    W[1526] = W[337] * W[1525];
+    W[1533] = W[337] * W[1532];
+    W[1352] = W[1347] + W[1351];
+    W[1373] = W[1370] + W[1372];
+    W[1388] = W[1385] + W[1387];
+    W[1407] = W[1402] + W[1406];
+    W[1424] = W[1421] + W[1423];
+    W[1437] = W[1434] + W[1436];
+    W[1454] = W[1449] + W[1453];
+    W[1467] = W[1464] + W[1466];
+    W[1478] = W[1475] + W[1477];
+    W[1493] = W[1488] + W[1492];
+    W[1502] = W[1499] + W[1501];
+    W[1511] = W[1508] + W[1510];
+    W[1520] = W[1519] - W[1492];
+    W[1527] = W[1526] - W[1501];
+    W[1534] = W[1533] - W[1510];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_70(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1550] = W[1475] + W[1549];
+    W[1362] = W[1357] + W[1361];
+    W[1379] = W[1376] + W[1378];
+    W[1394] = W[1391] + W[1393];
+    W[1417] = W[1412] + W[1416];
+    W[1430] = W[1427] + W[1429];
+    W[1443] = W[1440] + W[1442];
+    W[1460] = W[1459] - W[1416];
+    W[1471] = W[1470] - W[1429];
+    W[1482] = W[1481] - W[1442];
+    W[1495] = W[1494] - W[1411];
+    W[1504] = W[1503] - W[1426];
+    W[1513] = W[1512] - W[1439];
+    W[1522] = W[1521] - W[1406];
+    W[1529] = W[1528] - W[1423];
+    W[1536] = W[1535] - W[1436];
+    W[1541] = W[1402] + W[1540];
+    W[1546] = W[1421] + W[1545];
+    W[1551] = W[1434] + W[1550];
+    W[1367] = W[1362] + W[1366];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_72(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1419] = W[161] * W[1418];
+    W[1432] = W[161] * W[1431];
+    W[1445] = W[161] * W[1444];
+    W[1462] = W[161] * W[1461];
+    W[1473] = W[161] * W[1472];
+    W[1484] = W[161] * W[1483];
+    W[1497] = W[161] * W[1496];
+    W[1506] = W[161] * W[1505];
+    W[1515] = W[161] * W[1514];
+    W[1524] = W[161] * W[1523];
+    W[1531] = W[161] * W[1530];
+    W[1538] = W[161] * W[1537];
+    W[1543] = W[163] * W[1542];
+    W[1548] = W[163] * W[1547];
+    W[1553] = W[163] * W[1552];
+    X[144] = X[126] / 4.0;
+    X[145] = X[127] / 4.0;
+    X[146] = X[128] / 4.0;
+    X[147] = X[129] / 4.0;
+    X[148] = X[130] / 4.0;
+    return 0;
+}
+
+/* Lines 340 .. 350 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_74(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[169] = -W[1473] / W[141] / 4.0;
+    X[170] = -W[1484] / W[141] / 4.0;
+    X[171] = -W[1497] / W[142] / 4.0;
+    X[172] = -W[1506] / W[142] / 4.0;
+    X[173] = -W[1515] / W[142] / 4.0;
+    X[174] = -W[1524] / W[143] / 4.0;
+    X[175] = -W[1531] / W[143] / 4.0;
+    X[176] = -W[1538] / W[143] / 4.0;
+    X[177] = -W[1543] / W[144] / 4.0;
+    X[178] = -W[1548] / W[144] / 4.0;
+    X[179] = -W[1553] / W[144] / 4.0;
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_76(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1643] = X[149] - X[155];
+    W[1646] = X[147] - X[156];
+    W[1648] = X[148] - X[157];
+    W[1651] = X[149] - X[158];
+    W[1654] = X[147] - X[159];
+    W[1656] = X[148] - X[160];
+    W[1659] = X[149] - X[161];
+    W[1662] = X[150] - X[153];
+    W[1664] = X[151] - X[154];
+    W[1667] = X[152] - X[155];
+    W[1670] = X[150] - X[156];
+    W[1672] = X[151] - X[157];
+    W[1675] = X[152] - X[158];
+    W[1678] = X[150] - X[159];
+    W[1680] = X[151] - X[160];
+    W[1683] = X[152] - X[161];
+    W[1686] = X[153] - X[156];
+    W[1688] = X[154] - X[157];
+    W[1691] = X[155] - X[158];
+    W[1694] = X[153] - X[159];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_78(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1631] = (W[58] * W[1630] + W[451] * W[1237]) * 2.0 + W[844] * W[844];
+    W[1633] = (W[60] * W[1632] + W[453] * W[1239]) * 2.0 + W[846] * W[846];
+    W[1636] = (W[63] * W[1635] + W[456] * W[1242]) * 2.0 + W[849] * W[849];
+    W[1639] = (W[66] * W[1638] + W[459] * W[1245]) * 2.0 + W[852] * W[852];
+    W[1641] = (W[68] * W[1640] + W[461] * W[1247]) * 2.0 + W[854] * W[854];
+    W[1644] = (W[71] * W[1643] + W[464] * W[1250]) * 2.0 + W[857] * W[857];
+    W[1647] = (W[74] * W[1646] + W[467] * W[1253]) * 2.0 + W[860] * W[860];
+    W[1649] = (W[76] * W[1648] + W[469] * W[1255]) * 2.0 + W[862] * W[862];
+    W[1652] = (W[79] * W[1651] + W[472] * W[1258]) * 2.0 + W[865] * W[865];
+    W[1655] = (W[82] * W[1654] + W[475] * W[1261]) * 2.0 + W[868] * W[868];
+    W[1657] = (W[84] * W[1656] + W[477] * W[1263]) * 2.0 + W[870] * W[870];
+    W[1660] = (W[87] * W[1659] + W[480] * W[1266]) * 2.0 + W[873] * W[873];
+    W[1663] = (W[90] * W[1662] + W[483] * W[1269]) * 2.0 + W[876] * W[876];
+    W[1665] = (W[92] * W[1664] + W[485] * W[1271]) * 2.0 + W[878] * W[878];
+    W[1668] = (W[95] * W[1667] + W[488] * W[1274]) * 2.0 + W[881] * W[881];
+    W[1671] = (W[98] * W[1670] + W[491] * W[1277]) * 2.0 + W[884] * W[884];
+    W[1673] = (W[100] * W[1672] + W[493] * W[1279]) * 2.0 + W[886] * W[886];
+    W[1676] = (W[103] * W[1675] + W[496] * W[1282]) * 2.0 + W[889] * W[889];
+    W[1679] = (W[106] * W[1678] + W[499] * W[1285]) * 2.0 + W[892] * W[892];
+    W[1681] = (W[108] * W[1680] + W[501] * W[1287]) * 2.0 + W[894] * W[894];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_80(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1674] = W[1671] + W[1673];
+    W[1682] = W[1679] + W[1681];
+    W[1690] = W[1687] + W[1689];
+    W[1698] = W[1695] + W[1697];
+    W[1706] = W[1703] + W[1705];
+    W[1585] = W[1580] + W[1584];
+    W[1596] = W[1592] + W[1595];
+    W[1607] = W[1603] + W[1606];
+    W[1618] = W[1614] + W[1617];
+    W[1629] = W[1625] + W[1628];
+    W[1637] = W[1634] + W[1636];
+    W[1645] = W[1642] + W[1644];
+    W[1653] = W[1650] + W[1652];
+    W[1661] = W[1658] + W[1660];
+    W[1669] = W[1666] + W[1668];
+    W[1677] = W[1674] + W[1676];
+    W[1685] = W[1682] + W[1684];
+    W[1693] = W[1690] + W[1692];
+    W[1701] = W[1698] + W[1700];
+    W[1709] = W[1706] + W[1708];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_82(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1762] = W[51] * W[1738] + W[444] * W[1345] + W[837] * W[952] + W[1230] * W[559] + W[1623] * W[166];
+    W[1764] = W[40] * W[1742] + W[433] * W[1349] + W[826] * W[956] + W[1219] * W[563] + W[1612] * W[170];
+    W[1767] = W[29] * W[1747] + W[422] * W[1354] + W[815] * W[961] + W[1208] * W[568] + W[1601] * W[175];
+    W[1770] = W[18] * W[1752] + W[411] * W[1359] + W[804] * W[966] + W[1197] * W[573] + W[1590] * W[180];
+    W[1773] = W[6] * W[1757] + W[399] * W[1364] + W[792] * W[971] + W[1185] * W[578] + W[1578] * W[185];
+    W[1777] = W[55] * W[1738] + W[448] * W[1345] + W[841] * W[952] + W[1234] * W[559] + W[1627] * W[166];
+    W[1779] = W[44] * W[1742] + W[437] * W[1349] + W[830] * W[956] + W[1223] * W[563] + W[1616] * W[170];
+    W[1782] = W[33] * W[1747] + W[426] * W[1354] + W[819] * W[961] + W[1212] * W[568] + W[1605] * W[175];
+    W[1785] = W[22] * W[1752] + W[415] * W[1359] + W[808] * W[966] + W[1201] * W[573] + W[1594] * W[180];
+    W[1788] = W[11] * W[1757] + W[404] * W[1364] + W[797] * W[971] + W[1190] * W[578] + W[1583] * W[185];
+    W[1794] = W[82] * W[1793] + W[475] * W[1400] + W[868] * W[1007] + W[1261] * W[614] + W[1654] * W[221];
+    W[1798] = W[74] * W[1797] + W[467] * W[1404] + W[860] * W[1011] + W[1253] * W[618] + W[1646] * W[225];
+    W[1803] = W[66] * W[1802] + W[459] * W[1409] + W[852] * W[1016] + W[1245] * W[623] + W[1638] * W[230];
+    W[1808] = W[58] * W[1807] + W[451] * W[1414] + W[844] * W[1021] + W[1237] * W[628] + W[1630] * W[235];
+    W[1813] = W[84] * W[1793] + W[477] * W[1400] + W[870] * W[1007] + W[1263] * W[614] + W[1656] * W[221];
+    W[1815] = W[76] * W[1797] + W[469] * W[1404] + W[862] * W[1011] + W[1255] * W[618] + W[1648] * W[225];
+    W[1818] = W[68] * W[1802] + W[461] * W[1409] + W[854] * W[1016] + W[1247] * W[623] + W[1640] * W[230];
+    W[1821] = W[60] * W[1807] + W[453] * W[1414] + W[846] * W[1021] + W[1239] * W[628] + W[1632] * W[235];
+    W[1826] = W[87] * W[1793] + W[480] * W[1400] + W[873] * W[1007] + W[1266] * W[614] + W[1659] * W[221];
+    W[1828] = W[79] * W[1797] + W[472] * W[1404] + W[865] * W[1011] + W[1258] * W[618] + W[1651] * W[225];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_84(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1740] = W[164] * W[1739];
+    W[1744] = W[169] * W[1743];
+    W[1749] = W[174] * W[1748];
+    W[1754] = W[179] * W[1753];
+    W[1759] = W[184] * W[1758];
+    W[1763] = W[164] * W[1762];
+    W[1765] = W[169] * W[1764];
+    W[1768] = W[174] * W[1767];
+    W[1771] = W[179] * W[1770];
+    W[1774] = W[184] * W[1773];
+    W[1778] = W[164] * W[1777];
+    W[1780] = W[169] * W[1779];
+    W[1783] = W[174] * W[1782];
+    W[1786] = W[179] * W[1785];
+    W[1789] = W[184] * W[1788];
+    W[1795] = W[220] * W[1794];
+    W[1799] = W[224] * W[1798];
+    W[1804] = W[229] * W[1803];
+    W[1809] = W[234] * W[1808];
+    W[1814] = W[220] * W[1813];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_85(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1816] = W[224] * W[1815];
+    W[1819] = W[229] * W[1818];
+    W[1822] = W[234] * W[1821];
+    W[1827] = W[220] * W[1826];
+    W[1829] = W[224] * W[1828];
+    W[1832] = W[229] * W[1831];
+    W[1835] = W[234] * W[1834];
+    W[1842] = W[267] * W[1841];
+    W[1846] = W[271] * W[1845];
+    W[1851] = W[276] * W[1850];
+    W[1857] = W[267] * W[1856];
+    W[1859] = W[271] * W[1858];
+    W[1862] = W[276] * W[1861];
+    W[1868] = W[267] * W[1867];
+    W[1870] = W[271] * W[1869];
+    W[1873] = W[276] * W[1872];
+    W[1881] = W[306] * W[1880];
+    W[1885] = W[310] * W[1884];
+    W[1892] = W[306] * W[1891];
+    W[1894] = W[310] * W[1893];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_86(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1901] = W[306] * W[1900];
+    W[1903] = W[310] * W[1902];
+    W[1912] = W[337] * W[1911];
+    W[1919] = W[337] * W[1918];
+    W[1926] = W[337] * W[1925];
+    W[1745] = W[1740] + W[1744];
+    W[1766] = W[1763] + W[1765];
+    W[1781] = W[1778] + W[1780];
+    W[1800] = W[1795] + W[1799];
+    W[1817] = W[1814] + W[1816];
+    W[1830] = W[1827] + W[1829];
+    W[1847] = W[1842] + W[1846];
+    W[1860] = W[1857] + W[1859];
+    W[1871] = W[1868] + W[1870];
+    W[1886] = W[1881] + W[1885];
+    W[1895] = W[1892] + W[1894];
+    W[1904] = W[1901] + W[1903];
+    W[1913] = W[1912] - W[1885];
+    W[1920] = W[1919] - W[1894];
+    W[1927] = W[1926] - W[1903];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_88(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1943] = W[1868] + W[1942];
+    W[1755] = W[1750] + W[1754];
+    W[1772] = W[1769] + W[1771];
+    W[1787] = W[1784] + W[1786];
+    W[1810] = W[1805] + W[1809];
+    W[1823] = W[1820] + W[1822];
+    W[1836] = W[1833] + W[1835];
+    W[1853] = W[1852] - W[1809];
+    W[1864] = W[1863] - W[1822];
+    W[1875] = W[1874] - W[1835];
+    W[1888] = W[1887] - W[1804];
+    W[1897] = W[1896] - W[1819];
+    W[1906] = W[1905] - W[1832];
+    W[1915] = W[1914] - W[1799];
+    W[1922] = W[1921] - W[1816];
+    W[1929] = W[1928] - W[1829];
+    W[1934] = W[1795] + W[1933];
+    W[1939] = W[1814] + W[1938];
+    W[1944] = W[1827] + W[1943];
+    W[1760] = W[1755] + W[1759];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_90(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1812] = W[161] * W[1811];
+    W[1825] = W[161] * W[1824];
+    W[1838] = W[161] * W[1837];
+    W[1855] = W[161] * W[1854];
+    W[1866] = W[161] * W[1865];
+    W[1877] = W[161] * W[1876];
+    W[1890] = W[161] * W[1889];
+    W[1899] = W[161] * W[1898];
+    W[1908] = W[161] * W[1907];
+    W[1917] = W[161] * W[1916];
+    W[1924] = W[161] * W[1923];
+    W[1931] = W[161] * W[1930];
+    W[1936] = W[163] * W[1935];
+    W[1941] = W[163] * W[1940];
+    W[1946] = W[163] * W[1945];
+    X[180] = X[162] / 5.0;
+    X[181] = X[163] / 5.0;
+    X[182] = X[164] / 5.0;
+    X[183] = X[165] / 5.0;
+    X[184] = X[166] / 5.0;
+    return 0;
+}
+
+/* Lines 340 .. 350 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_92(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[205] = -W[1866] / W[141] / 5.0;
+    X[206] = -W[1877] / W[141] / 5.0;
+    X[207] = -W[1890] / W[142] / 5.0;
+    X[208] = -W[1899] / W[142] / 5.0;
+    X[209] = -W[1908] / W[142] / 5.0;
+    X[210] = -W[1917] / W[143] / 5.0;
+    X[211] = -W[1924] / W[143] / 5.0;
+    X[212] = -W[1931] / W[143] / 5.0;
+    X[213] = -W[1936] / W[144] / 5.0;
+    X[214] = -W[1941] / W[144] / 5.0;
+    X[215] = -W[1946] / W[144] / 5.0;
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_94(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2036] = X[185] - X[191];
+    W[2039] = X[183] - X[192];
+    W[2041] = X[184] - X[193];
+    W[2044] = X[185] - X[194];
+    W[2047] = X[183] - X[195];
+    W[2049] = X[184] - X[196];
+    W[2052] = X[185] - X[197];
+    W[2055] = X[186] - X[189];
+    W[2057] = X[187] - X[190];
+    W[2060] = X[188] - X[191];
+    W[2063] = X[186] - X[192];
+    W[2065] = X[187] - X[193];
+    W[2068] = X[188] - X[194];
+    W[2071] = X[186] - X[195];
+    W[2073] = X[187] - X[196];
+    W[2076] = X[188] - X[197];
+    W[2079] = X[189] - X[192];
+    W[2081] = X[190] - X[193];
+    W[2084] = X[191] - X[194];
+    W[2087] = X[189] - X[195];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_96(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2024] = (W[58] * W[2023] + W[451] * W[1630] + W[844] * W[1237]) * 2.0;
+    W[2026] = (W[60] * W[2025] + W[453] * W[1632] + W[846] * W[1239]) * 2.0;
+    W[2029] = (W[63] * W[2028] + W[456] * W[1635] + W[849] * W[1242]) * 2.0;
+    W[2032] = (W[66] * W[2031] + W[459] * W[1638] + W[852] * W[1245]) * 2.0;
+    W[2034] = (W[68] * W[2033] + W[461] * W[1640] + W[854] * W[1247]) * 2.0;
+    W[2037] = (W[71] * W[2036] + W[464] * W[1643] + W[857] * W[1250]) * 2.0;
+    W[2040] = (W[74] * W[2039] + W[467] * W[1646] + W[860] * W[1253]) * 2.0;
+    W[2042] = (W[76] * W[2041] + W[469] * W[1648] + W[862] * W[1255]) * 2.0;
+    W[2045] = (W[79] * W[2044] + W[472] * W[1651] + W[865] * W[1258]) * 2.0;
+    W[2048] = (W[82] * W[2047] + W[475] * W[1654] + W[868] * W[1261]) * 2.0;
+    W[2050] = (W[84] * W[2049] + W[477] * W[1656] + W[870] * W[1263]) * 2.0;
+    W[2053] = (W[87] * W[2052] + W[480] * W[1659] + W[873] * W[1266]) * 2.0;
+    W[2056] = (W[90] * W[2055] + W[483] * W[1662] + W[876] * W[1269]) * 2.0;
+    W[2058] = (W[92] * W[2057] + W[485] * W[1664] + W[878] * W[1271]) * 2.0;
+    W[2061] = (W[95] * W[2060] + W[488] * W[1667] + W[881] * W[1274]) * 2.0;
+    W[2064] = (W[98] * W[2063] + W[491] * W[1670] + W[884] * W[1277]) * 2.0;
+    W[2066] = (W[100] * W[2065] + W[493] * W[1672] + W[886] * W[1279]) * 2.0;
+    W[2069] = (W[103] * W[2068] + W[496] * W[1675] + W[889] * W[1282]) * 2.0;
+    W[2072] = (W[106] * W[2071] + W[499] * W[1678] + W[892] * W[1285]) * 2.0;
+    W[2074] = (W[108] * W[2073] + W[501] * W[1680] + W[894] * W[1287]) * 2.0;
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_98(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2067] = W[2064] + W[2066];
+    W[2075] = W[2072] + W[2074];
+    W[2083] = W[2080] + W[2082];
+    W[2091] = W[2088] + W[2090];
+    W[2099] = W[2096] + W[2098];
+    W[1978] = W[1973] + W[1977];
+    W[1989] = W[1985] + W[1988];
+    W[2000] = W[1996] + W[1999];
+    W[2011] = W[2007] + W[2010];
+    W[2022] = W[2018] + W[2021];
+    W[2030] = W[2027] + W[2029];
+    W[2038] = W[2035] + W[2037];
+    W[2046] = W[2043] + W[2045];
+    W[2054] = W[2051] + W[2053];
+    W[2062] = W[2059] + W[2061];
+    W[2070] = W[2067] + W[2069];
+    W[2078] = W[2075] + W[2077];
+    W[2086] = W[2083] + W[2085];
+    W[2094] = W[2091] + W[2093];
+    W[2102] = W[2099] + W[2101];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_100(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2155] = W[51] * W[2131] + W[444] * W[1738] + W[837] * W[1345] + W[1230] * W[952] + W[1623] * W[559]
+            + W[2016] * W[166];
+    W[2157] = W[40] * W[2135] + W[433] * W[1742] + W[826] * W[1349] + W[1219] * W[956] + W[1612] * W[563]
+            + W[2005] * W[170];
+    W[2160] = W[29] * W[2140] + W[422] * W[1747] + W[815] * W[1354] + W[1208] * W[961] + W[1601] * W[568]
+            + W[1994] * W[175];
+    W[2163] = W[18] * W[2145] + W[411] * W[1752] + W[804] * W[1359] + W[1197] * W[966] + W[1590] * W[573]
+            + W[1983] * W[180];
+    W[2166] = W[6] * W[2150] + W[399] * W[1757] + W[792] * W[1364] + W[1185] * W[971] + W[1578] * W[578]
+            + W[1971] * W[185];
+    W[2170] = W[55] * W[2131] + W[448] * W[1738] + W[841] * W[1345] + W[1234] * W[952] + W[1627] * W[559]
+            + W[2020] * W[166];
+    W[2172] = W[44] * W[2135] + W[437] * W[1742] + W[830] * W[1349] + W[1223] * W[956] + W[1616] * W[563]
+            + W[2009] * W[170];
+    W[2175] = W[33] * W[2140] + W[426] * W[1747] + W[819] * W[1354] + W[1212] * W[961] + W[1605] * W[568]
+            + W[1998] * W[175];
+    W[2178] = W[22] * W[2145] + W[415] * W[1752] + W[808] * W[1359] + W[1201] * W[966] + W[1594] * W[573]
+            + W[1987] * W[180];
+    W[2181] = W[11] * W[2150] + W[404] * W[1757] + W[797] * W[1364] + W[1190] * W[971] + W[1583] * W[578]
+            + W[1976] * W[185];
+    W[2187] = W[82] * W[2186] + W[475] * W[1793] + W[868] * W[1400] + W[1261] * W[1007] + W[1654] * W[614]
+            + W[2047] * W[221];
+    W[2191] = W[74] * W[2190] + W[467] * W[1797] + W[860] * W[1404] + W[1253] * W[1011] + W[1646] * W[618]
+            + W[2039] * W[225];
+    W[2196] = W[66] * W[2195] + W[459] * W[1802] + W[852] * W[1409] + W[1245] * W[1016] + W[1638] * W[623]
+            + W[2031] * W[230];
+    W[2201] = W[58] * W[2200] + W[451] * W[1807] + W[844] * W[1414] + W[1237] * W[1021] + W[1630] * W[628]
+            + W[2023] * W[235];
+    W[2206] = W[84] * W[2186] + W[477] * W[1793] + W[870] * W[1400] + W[1263] * W[1007] + W[1656] * W[614]
+            + W[2049] * W[221];
+    W[2208] = W[76] * W[2190] + W[469] * W[1797] + W[862] * W[1404] + W[1255] * W[1011] + W[1648] * W[618]
+            + W[2041] * W[225];
+    W[2211] = W[68] * W[2195] + W[461] * W[1802] + W[854] * W[1409] + W[1247] * W[1016] + W[1640] * W[623]
+            + W[2033] * W[230];
+    W[2214] = W[60] * W[2200] + W[453] * W[1807] + W[846] * W[1414] + W[1239] * W[1021] + W[1632] * W[628]
+            + W[2025] * W[235];
+    W[2219] = W[87] * W[2186] + W[480] * W[1793] + W[873] * W[1400] + W[1266] * W[1007] + W[1659] * W[614]
+            + W[2052] * W[221];
+    W[2221] = W[79] * W[2190] + W[472] * W[1797] + W[865] * W[1404] + W[1258] * W[1011] + W[1651] * W[618]
+            + W[2044] * W[225];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_102(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2133] = W[164] * W[2132];
+    W[2137] = W[169] * W[2136];
+    W[2142] = W[174] * W[2141];
+    W[2147] = W[179] * W[2146];
+    W[2152] = W[184] * W[2151];
+    W[2156] = W[164] * W[2155];
+    W[2158] = W[169] * W[2157];
+    W[2161] = W[174] * W[2160];
+    W[2164] = W[179] * W[2163];
+    W[2167] = W[184] * W[2166];
+    W[2171] = W[164] * W[2170];
+    W[2173] = W[169] * W[2172];
+    W[2176] = W[174] * W[2175];
+    W[2179] = W[179] * W[2178];
+    W[2182] = W[184] * W[2181];
+    W[2188] = W[220] * W[2187];
+    W[2192] = W[224] * W[2191];
+    W[2197] = W[229] * W[2196];
+    W[2202] = W[234] * W[2201];
+    W[2207] = W[220] * W[2206];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_103(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2209] = W[224] * W[2208];
+    W[2212] = W[229] * W[2211];
+    W[2215] = W[234] * W[2214];
+    W[2220] = W[220] * W[2219];
+    W[2222] = W[224] * W[2221];
+    W[2225] = W[229] * W[2224];
+    W[2228] = W[234] * W[2227];
+    W[2235] = W[267] * W[2234];
+    W[2239] = W[271] * W[2238];
+    W[2244] = W[276] * W[2243];
+    W[2250] = W[267] * W[2249];
+    W[2252] = W[271] * W[2251];
+    W[2255] = W[276] * W[2254];
+    W[2261] = W[267] * W[2260];
+    W[2263] = W[271] * W[2262];
+    W[2266] = W[276] * W[2265];
+    W[2274] = W[306] * W[2273];
+    W[2278] = W[310] * W[2277];
+    W[2285] = W[306] * W[2284];
+    W[2287] = W[310] * W[2286];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_104(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2294] = W[306] * W[2293];
+    W[2296] = W[310] * W[2295];
+    W[2305] = W[337] * W[2304];
+    W[2312] = W[337] * W[2311];
+    W[2319] = W[337] * W[2318];
+    W[2138] = W[2133] + W[2137];
+    W[2159] = W[2156] + W[2158];
+    W[2174] = W[2171] + W[2173];
+    W[2193] = W[2188] + W[2192];
+    W[2210] = W[2207] + W[2209];
+    W[2223] = W[2220] + W[2222];
+    W[2240] = W[2235] + W[2239];
+    W[2253] = W[2250] + W[2252];
+    W[2264] = W[2261] + W[2263];
+    W[2279] = W[2274] + W[2278];
+    W[2288] = W[2285] + W[2287];
+    W[2297] = W[2294] + W[2296];
+    W[2306] = W[2305] - W[2278];
+    W[2313] = W[2312] - W[2287];
+    W[2320] = W[2319] - W[2296];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_106(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2336] = W[2261] + W[2335];
+    W[2148] = W[2143] + W[2147];
+    W[2165] = W[2162] + W[2164];
+    W[2180] = W[2177] + W[2179];
+    W[2203] = W[2198] + W[2202];
+    W[2216] = W[2213] + W[2215];
+    W[2229] = W[2226] + W[2228];
+    W[2246] = W[2245] - W[2202];
+    W[2257] = W[2256] - W[2215];
+    W[2268] = W[2267] - W[2228];
+    W[2281] = W[2280] - W[2197];
+    W[2290] = W[2289] - W[2212];
+    W[2299] = W[2298] - W[2225];
+    W[2308] = W[2307] - W[2192];
+    W[2315] = W[2314] - W[2209];
+    W[2322] = W[2321] - W[2222];
+    W[2327] = W[2188] + W[2326];
+    W[2332] = W[2207] + W[2331];
+    W[2337] = W[2220] + W[2336];
+    W[2153] = W[2148] + W[2152];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_108(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2205] = W[161] * W[2204];
+    W[2218] = W[161] * W[2217];
+    W[2231] = W[161] * W[2230];
+    W[2248] = W[161] * W[2247];
+    W[2259] = W[161] * W[2258];
+    W[2270] = W[161] * W[2269];
+    W[2283] = W[161] * W[2282];
+    W[2292] = W[161] * W[2291];
+    W[2301] = W[161] * W[2300];
+    W[2310] = W[161] * W[2309];
+    W[2317] = W[161] * W[2316];
+    W[2324] = W[161] * W[2323];
+    W[2329] = W[163] * W[2328];
+    W[2334] = W[163] * W[2333];
+    W[2339] = W[163] * W[2338];
+    X[216] = X[198] / 6.0;
+    X[217] = X[199] / 6.0;
+    X[218] = X[200] / 6.0;
+    X[219] = X[201] / 6.0;
+    X[220] = X[202] / 6.0;
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_109(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[221] = X[203] / 6.0;
+    X[222] = X[204] / 6.0;
+    X[223] = X[205] / 6.0;
+    X[224] = X[206] / 6.0;
+    X[225] = X[207] / 6.0;
+    X[226] = X[208] / 6.0;
+    X[227] = X[209] / 6.0;
+    X[228] = X[210] / 6.0;
+    X[229] = X[211] / 6.0;
+    X[230] = X[212] / 6.0;
+    X[231] = X[213] / 6.0;
+    X[232] = X[214] / 6.0;
+    X[233] = X[215] / 6.0;
+    X[234] = -W[2154] / W[138] / 6.0;
+    X[235] = -W[2169] / W[138] / 6.0;
+    X[236] = -W[2184] / W[138] / 6.0;
+    X[237] = -W[2205] / W[140] / 6.0;
+    X[238] = -W[2218] / W[140] / 6.0;
+    X[239] = -W[2231] / W[140] / 6.0;
+    X[240] = -W[2248] / W[141] / 6.0;
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_112(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2429] = X[221] - X[227];
+    W[2432] = X[219] - X[228];
+    W[2434] = X[220] - X[229];
+    W[2437] = X[221] - X[230];
+    W[2440] = X[219] - X[231];
+    W[2442] = X[220] - X[232];
+    W[2445] = X[221] - X[233];
+    W[2448] = X[222] - X[225];
+    W[2450] = X[223] - X[226];
+    W[2453] = X[224] - X[227];
+    W[2456] = X[222] - X[228];
+    W[2458] = X[223] - X[229];
+    W[2461] = X[224] - X[230];
+    W[2464] = X[222] - X[231];
+    W[2466] = X[223] - X[232];
+    W[2469] = X[224] - X[233];
+    W[2472] = X[225] - X[228];
+    W[2474] = X[226] - X[229];
+    W[2477] = X[227] - X[230];
+    W[2480] = X[225] - X[231];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_114(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2417] = (W[58] * W[2416] + W[451] * W[2023] + W[844] * W[1630]) * 2.0 + W[1237] * W[1237];
+    W[2419] = (W[60] * W[2418] + W[453] * W[2025] + W[846] * W[1632]) * 2.0 + W[1239] * W[1239];
+    W[2422] = (W[63] * W[2421] + W[456] * W[2028] + W[849] * W[1635]) * 2.0 + W[1242] * W[1242];
+    W[2425] = (W[66] * W[2424] + W[459] * W[2031] + W[852] * W[1638]) * 2.0 + W[1245] * W[1245];
+    W[2427] = (W[68] * W[2426] + W[461] * W[2033] + W[854] * W[1640]) * 2.0 + W[1247] * W[1247];
+    W[2430] = (W[71] * W[2429] + W[464] * W[2036] + W[857] * W[1643]) * 2.0 + W[1250] * W[1250];
+    W[2433] = (W[74] * W[2432] + W[467] * W[2039] + W[860] * W[1646]) * 2.0 + W[1253] * W[1253];
+    W[2435] = (W[76] * W[2434] + W[469] * W[2041] + W[862] * W[1648]) * 2.0 + W[1255] * W[1255];
+    W[2438] = (W[79] * W[2437] + W[472] * W[2044] + W[865] * W[1651]) * 2.0 + W[1258] * W[1258];
+    W[2441] = (W[82] * W[2440] + W[475] * W[2047] + W[868] * W[1654]) * 2.0 + W[1261] * W[1261];
+    W[2443] = (W[84] * W[2442] + W[477] * W[2049] + W[870] * W[1656]) * 2.0 + W[1263] * W[1263];
+    W[2446] = (W[87] * W[2445] + W[480] * W[2052] + W[873] * W[1659]) * 2.0 + W[1266] * W[1266];
+    W[2449] = (W[90] * W[2448] + W[483] * W[2055] + W[876] * W[1662]) * 2.0 + W[1269] * W[1269];
+    W[2451] = (W[92] * W[2450] + W[485] * W[2057] + W[878] * W[1664]) * 2.0 + W[1271] * W[1271];
+    W[2454] = (W[95] * W[2453] + W[488] * W[2060] + W[881] * W[1667]) * 2.0 + W[1274] * W[1274];
+    W[2457] = (W[98] * W[2456] + W[491] * W[2063] + W[884] * W[1670]) * 2.0 + W[1277] * W[1277];
+    W[2459] = (W[100] * W[2458] + W[493] * W[2065] + W[886] * W[1672]) * 2.0 + W[1279] * W[1279];
+    W[2462] = (W[103] * W[2461] + W[496] * W[2068] + W[889] * W[1675]) * 2.0 + W[1282] * W[1282];
+    W[2465] = (W[106] * W[2464] + W[499] * W[2071] + W[892] * W[1678]) * 2.0 + W[1285] * W[1285];
+    W[2467] = (W[108] * W[2466] + W[501] * W[2073] + W[894] * W[1680]) * 2.0 + W[1287] * W[1287];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_116(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2460] = W[2457] + W[2459];
+    W[2468] = W[2465] + W[2467];
+    W[2476] = W[2473] + W[2475];
+    W[2484] = W[2481] + W[2483];
+    W[2492] = W[2489] + W[2491];
+    W[2371] = W[2366] + W[2370];
+    W[2382] = W[2378] + W[2381];
+    W[2393] = W[2389] + W[2392];
+    W[2404] = W[2400] + W[2403];
+    W[2415] = W[2411] + W[2414];
+    W[2423] = W[2420] + W[2422];
+    W[2431] = W[2428] + W[2430];
+    W[2439] = W[2436] + W[2438];
+    W[2447] = W[2444] + W[2446];
+    W[2455] = W[2452] + W[2454];
+    W[2463] = W[2460] + W[2462];
+    W[2471] = W[2468] + W[2470];
+    W[2479] = W[2476] + W[2478];
+    W[2487] = W[2484] + W[2486];
+    W[2495] = W[2492] + W[2494];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_118(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2548] = W[51] * W[2524] + W[444] * W[2131] + W[837] * W[1738] + W[1230] * W[1345] + W[1623] * W[952]
+            + W[2016] * W[559] + W[2409] * W[166];
+    W[2550] = W[40] * W[2528] + W[433] * W[2135] + W[826] * W[1742] + W[1219] * W[1349] + W[1612] * W[956]
+            + W[2005] * W[563] + W[2398] * W[170];
+    W[2553] = W[29] * W[2533] + W[422] * W[2140] + W[815] * W[1747] + W[1208] * W[1354] + W[1601] * W[961]
+            + W[1994] * W[568] + W[2387] * W[175];
+    W[2556] = W[18] * W[2538] + W[411] * W[2145] + W[804] * W[1752] + W[1197] * W[1359] + W[1590] * W[966]
+            + W[1983] * W[573] + W[2376] * W[180];
+    W[2559] = W[6] * W[2543] + W[399] * W[2150] + W[792] * W[1757] + W[1185] * W[1364] + W[1578] * W[971]
+            + W[1971] * W[578] + W[2364] * W[185];
+    W[2563] = W[55] * W[2524] + W[448] * W[2131] + W[841] * W[1738] + W[1234] * W[1345] + W[1627] * W[952]
+            + W[2020] * W[559] + W[2413] * W[166];
+    W[2565] = W[44] * W[2528] + W[437] * W[2135] + W[830] * W[1742] + W[1223] * W[1349] + W[1616] * W[956]
+            + W[2009] * W[563] + W[2402] * W[170];
+    W[2568] = W[33] * W[2533] + W[426] * W[2140] + W[819] * W[1747] + W[1212] * W[1354] + W[1605] * W[961]
+            + W[1998] * W[568] + W[2391] * W[175];
+    W[2571] = W[22] * W[2538] + W[415] * W[2145] + W[808] * W[1752] + W[1201] * W[1359] + W[1594] * W[966]
+            + W[1987] * W[573] + W[2380] * W[180];
+    W[2574] = W[11] * W[2543] + W[404] * W[2150] + W[797] * W[1757] + W[1190] * W[1364] + W[1583] * W[971]
+            + W[1976] * W[578] + W[2369] * W[185];
+    W[2580] = W[82] * W[2579] + W[475] * W[2186] + W[868] * W[1793] + W[1261] * W[1400] + W[1654] * W[1007]
+            + W[2047] * W[614] + W[2440] * W[221];
+    W[2584] = W[74] * W[2583] + W[467] * W[2190] + W[860] * W[1797] + W[1253] * W[1404] + W[1646] * W[1011]
+            + W[2039] * W[618] + W[2432] * W[225];
+    W[2589] = W[66] * W[2588] + W[459] * W[2195] + W[852] * W[1802] + W[1245] * W[1409] + W[1638] * W[1016]
+            + W[2031] * W[623] + W[2424] * W[230];
+    W[2594] = W[58] * W[2593] + W[451] * W[2200] + W[844] * W[1807] + W[1237] * W[1414] + W[1630] * W[1021]
+            + W[2023] * W[628] + W[2416] * W[235];
+    W[2599] = W[84] * W[2579] + W[477] * W[2186] + W[870] * W[1793] + W[1263] * W[1400] + W[1656] * W[1007]
+            + W[2049] * W[614] + W[2442] * W[221];
+    W[2601] = W[76] * W[2583] + W[469] * W[2190] + W[862] * W[1797] + W[1255] * W[1404] + W[1648] * W[1011]
+            + W[2041] * W[618] + W[2434] * W[225];
+    W[2604] = W[68] * W[2588] + W[461] * W[2195] + W[854] * W[1802] + W[1247] * W[1409] + W[1640] * W[1016]
+            + W[2033] * W[623] + W[2426] * W[230];
+    W[2607] = W[60] * W[2593] + W[453] * W[2200] + W[846] * W[1807] + W[1239] * W[1414] + W[1632] * W[1021]
+            + W[2025] * W[628] + W[2418] * W[235];
+    W[2612] = W[87] * W[2579] + W[480] * W[2186] + W[873] * W[1793] + W[1266] * W[1400] + W[1659] * W[1007]
+            + W[2052] * W[614] + W[2445] * W[221];
+    W[2614] = W[79] * W[2583] + W[472] * W[2190] + W[865] * W[1797] + W[1258] * W[1404] + W[1651] * W[1011]
+            + W[2044] * W[618] + W[2437] * W[225];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_120(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2526] = W[164] * W[2525];
+    W[2530] = W[169] * W[2529];
+    W[2535] = W[174] * W[2534];
+    W[2540] = W[179] * W[2539];
+    W[2545] = W[184] * W[2544];
+    W[2549] = W[164] * W[2548];
+    W[2551] = W[169] * W[2550];
+    W[2554] = W[174] * W[2553];
+    W[2557] = W[179] * W[2556];
+    W[2560] = W[184] * W[2559];
+    W[2564] = W[164] * W[2563];
+    W[2566] = W[169] * W[2565];
+    W[2569] = W[174] * W[2568];
+    W[2572] = W[179] * W[2571];
+    W[2575] = W[184] * W[2574];
+    W[2581] = W[220] * W[2580];
+    W[2585] = W[224] * W[2584];
+    W[2590] = W[229] * W[2589];
+    W[2595] = W[234] * W[2594];
+    W[2600] = W[220] * W[2599];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_121(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2602] = W[224] * W[2601];
+    W[2605] = W[229] * W[2604];
+    W[2608] = W[234] * W[2607];
+    W[2613] = W[220] * W[2612];
+    W[2615] = W[224] * W[2614];
+    W[2618] = W[229] * W[2617];
+    W[2621] = W[234] * W[2620];
+    W[2628] = W[267] * W[2627];
+    W[2632] = W[271] * W[2631];
+    W[2637] = W[276] * W[2636];
+    W[2643] = W[267] * W[2642];
+    W[2645] = W[271] * W[2644];
+    W[2648] = W[276] * W[2647];
+    W[2654] = W[267] * W[2653];
+    W[2656] = W[271] * W[2655];
+    W[2659] = W[276] * W[2658];
+    W[2667] = W[306] * W[2666];
+    W[2671] = W[310] * W[2670];
+    W[2678] = W[306] * W[2677];
+    W[2680] = W[310] * W[2679];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_122(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2687] = W[306] * W[2686];
+    W[2689] = W[310] * W[2688];
+    W[2698] = W[337] * W[2697];
+    W[2705] = W[337] * W[2704];
+    W[2712] = W[337] * W[2711];
+    W[2531] = W[2526] + W[2530];
+    W[2552] = W[2549] + W[2551];
+    W[2567] = W[2564] + W[2566];
+    W[2586] = W[2581] + W[2585];
+    W[2603] = W[2600] + W[2602];
+    W[2616] = W[2613] + W[2615];
+    W[2633] = W[2628] + W[2632];
+    W[2646] = W[2643] + W[2645];
+    W[2657] = W[2654] + W[2656];
+    W[2672] = W[2667] + W[2671];
+    W[2681] = W[2678] + W[2680];
+    W[2690] = W[2687] + W[2689];
+    W[2699] = W[2698] - W[2671];
+    W[2706] = W[2705] - W[2680];
+    W[2713] = W[2712] - W[2689];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_124(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2729] = W[2654] + W[2728];
+    W[2541] = W[2536] + W[2540];
+    W[2558] = W[2555] + W[2557];
+    W[2573] = W[2570] + W[2572];
+    W[2596] = W[2591] + W[2595];
+    W[2609] = W[2606] + W[2608];
+    W[2622] = W[2619] + W[2621];
+    W[2639] = W[2638] - W[2595];
+    W[2650] = W[2649] - W[2608];
+    W[2661] = W[2660] - W[2621];
+    W[2674] = W[2673] - W[2590];
+    W[2683] = W[2682] - W[2605];
+    W[2692] = W[2691] - W[2618];
+    W[2701] = W[2700] - W[2585];
+    W[2708] = W[2707] - W[2602];
+    W[2715] = W[2714] - W[2615];
+    W[2720] = W[2581] + W[2719];
+    W[2725] = W[2600] + W[2724];
+    W[2730] = W[2613] + W[2729];
+    W[2546] = W[2541] + W[2545];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_126(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2598] = W[161] * W[2597];
+    W[2611] = W[161] * W[2610];
+    W[2624] = W[161] * W[2623];
+    W[2641] = W[161] * W[2640];
+    W[2652] = W[161] * W[2651];
+    W[2663] = W[161] * W[2662];
+    W[2676] = W[161] * W[2675];
+    W[2685] = W[161] * W[2684];
+    W[2694] = W[161] * W[2693];
+    W[2703] = W[161] * W[2702];
+    W[2710] = W[161] * W[2709];
+    W[2717] = W[161] * W[2716];
+    W[2722] = W[163] * W[2721];
+    W[2727] = W[163] * W[2726];
+    W[2732] = W[163] * W[2731];
+    X[252] = X[234] / 7.0;
+    X[253] = X[235] / 7.0;
+    X[254] = X[236] / 7.0;
+    X[255] = X[237] / 7.0;
+    X[256] = X[238] / 7.0;
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_127(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[257] = X[239] / 7.0;
+    X[258] = X[240] / 7.0;
+    X[259] = X[241] / 7.0;
+    X[260] = X[242] / 7.0;
+    X[261] = X[243] / 7.0;
+    X[262] = X[244] / 7.0;
+    X[263] = X[245] / 7.0;
+    X[264] = X[246] / 7.0;
+    X[265] = X[247] / 7.0;
+    X[266] = X[248] / 7.0;
+    X[267] = X[249] / 7.0;
+    X[268] = X[250] / 7.0;
+    X[269] = X[251] / 7.0;
+    X[270] = -W[2547] / W[138] / 7.0;
+    X[271] = -W[2562] / W[138] / 7.0;
+    X[272] = -W[2577] / W[138] / 7.0;
+    X[273] = -W[2598] / W[140] / 7.0;
+    X[274] = -W[2611] / W[140] / 7.0;
+    X[275] = -W[2624] / W[140] / 7.0;
+    X[276] = -W[2641] / W[141] / 7.0;
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_130(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2822] = X[257] - X[263];
+    W[2825] = X[255] - X[264];
+    W[2827] = X[256] - X[265];
+    W[2830] = X[257] - X[266];
+    W[2833] = X[255] - X[267];
+    W[2835] = X[256] - X[268];
+    W[2838] = X[257] - X[269];
+    W[2841] = X[258] - X[261];
+    W[2843] = X[259] - X[262];
+    W[2846] = X[260] - X[263];
+    W[2849] = X[258] - X[264];
+    W[2851] = X[259] - X[265];
+    W[2854] = X[260] - X[266];
+    W[2857] = X[258] - X[267];
+    W[2859] = X[259] - X[268];
+    W[2862] = X[260] - X[269];
+    W[2865] = X[261] - X[264];
+    W[2867] = X[262] - X[265];
+    W[2870] = X[263] - X[266];
+    W[2873] = X[261] - X[267];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_132(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2810] = (W[58] * W[2809] + W[451] * W[2416] + W[844] * W[2023] + W[1237] * W[1630]) * 2.0;
+    W[2812] = (W[60] * W[2811] + W[453] * W[2418] + W[846] * W[2025] + W[1239] * W[1632]) * 2.0;
+    W[2815] = (W[63] * W[2814] + W[456] * W[2421] + W[849] * W[2028] + W[1242] * W[1635]) * 2.0;
+    W[2818] = (W[66] * W[2817] + W[459] * W[2424] + W[852] * W[2031] + W[1245] * W[1638]) * 2.0;
+    W[2820] = (W[68] * W[2819] + W[461] * W[2426] + W[854] * W[2033] + W[1247] * W[1640]) * 2.0;
+    W[2823] = (W[71] * W[2822] + W[464] * W[2429] + W[857] * W[2036] + W[1250] * W[1643]) * 2.0;
+    W[2826] = (W[74] * W[2825] + W[467] * W[2432] + W[860] * W[2039] + W[1253] * W[1646]) * 2.0;
+    W[2828] = (W[76] * W[2827] + W[469] * W[2434] + W[862] * W[2041] + W[1255] * W[1648]) * 2.0;
+    W[2831] = (W[79] * W[2830] + W[472] * W[2437] + W[865] * W[2044] + W[1258] * W[1651]) * 2.0;
+    W[2834] = (W[82] * W[2833] + W[475] * W[2440] + W[868] * W[2047] + W[1261] * W[1654]) * 2.0;
+    W[2836] = (W[84] * W[2835] + W[477] * W[2442] + W[870] * W[2049] + W[1263] * W[1656]) * 2.0;
+    W[2839] = (W[87] * W[2838] + W[480] * W[2445] + W[873] * W[2052] + W[1266] * W[1659]) * 2.0;
+    W[2842] = (W[90] * W[2841] + W[483] * W[2448] + W[876] * W[2055] + W[1269] * W[1662]) * 2.0;
+    W[2844] = (W[92] * W[2843] + W[485] * W[2450] + W[878] * W[2057] + W[1271] * W[1664]) * 2.0;
+    W[2847] = (W[95] * W[2846] + W[488] * W[2453] + W[881] * W[2060] + W[1274] * W[1667]) * 2.0;
+    W[2850] = (W[98] * W[2849] + W[491] * W[2456] + W[884] * W[2063] + W[1277] * W[1670]) * 2.0;
+    W[2852] = (W[100] * W[2851] + W[493] * W[2458] + W[886] * W[2065] + W[1279] * W[1672]) * 2.0;
+    W[2855] = (W[103] * W[2854] + W[496] * W[2461] + W[889] * W[2068] + W[1282] * W[1675]) * 2.0;
+    W[2858] = (W[106] * W[2857] + W[499] * W[2464] + W[892] * W[2071] + W[1285] * W[1678]) * 2.0;
+    W[2860] = (W[108] * W[2859] + W[501] * W[2466] + W[894] * W[2073] + W[1287] * W[1680]) * 2.0;
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_134(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2853] = W[2850] + W[2852];
+    W[2861] = W[2858] + W[2860];
+    W[2869] = W[2866] + W[2868];
+    W[2877] = W[2874] + W[2876];
+    W[2885] = W[2882] + W[2884];
+    W[2764] = W[2759] + W[2763];
+    W[2775] = W[2771] + W[2774];
+    W[2786] = W[2782] + W[2785];
+    W[2797] = W[2793] + W[2796];
+    W[2808] = W[2804] + W[2807];
+    W[2816] = W[2813] + W[2815];
+    W[2824] = W[2821] + W[2823];
+    W[2832] = W[2829] + W[2831];
+    W[2840] = W[2837] + W[2839];
+    W[2848] = W[2845] + W[2847];
+    W[2856] = W[2853] + W[2855];
+    W[2864] = W[2861] + W[2863];
+    W[2872] = W[2869] + W[2871];
+    W[2880] = W[2877] + W[2879];
+    W[2888] = W[2885] + W[2887];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_135(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2917] = (-10.5 * W[2808] * W[166] - 10.0 * W[2415] * W[559] - 9.5 * W[2022] * W[952] - 9.0 * W[1629] * W[1345]
+            - 8.5 * W[1236] * W[1738] - 8.0 * W[843] * W[2131] - 7.5 * W[450] * W[2524]) / (7.0 * W[57]);
+    W[2921] = (-10.5 * W[2797] * W[170] - 10.0 * W[2404] * W[563] - 9.5 * W[2011] * W[956] - 9.0 * W[1618] * W[1349]
+            - 8.5 * W[1225] * W[1742] - 8.0 * W[832] * W[2135] - 7.5 * W[439] * W[2528]) / (7.0 * W[46]);
+    W[2926] = (-10.5 * W[2786] * W[175] - 10.0 * W[2393] * W[568] - 9.5 * W[2000] * W[961] - 9.0 * W[1607] * W[1354]
+            - 8.5 * W[1214] * W[1747] - 8.0 * W[821] * W[2140] - 7.5 * W[428] * W[2533]) / (7.0 * W[35]);
+    W[2931] = (-10.5 * W[2775] * W[180] - 10.0 * W[2382] * W[573] - 9.5 * W[1989] * W[966] - 9.0 * W[1596] * W[1359]
+            - 8.5 * W[1203] * W[1752] - 8.0 * W[810] * W[2145] - 7.5 * W[417] * W[2538]) / (7.0 * W[24]);
+    W[2936] = (-10.5 * W[2764] * W[185] - 10.0 * W[2371] * W[578] - 9.5 * W[1978] * W[971] - 9.0 * W[1585] * W[1364]
+            - 8.5 * W[1192] * W[1757] - 8.0 * W[799] * W[2150] - 7.5 * W[406] * W[2543]) / (7.0 * W[13]);
+    W[2972] = (-10.5 * W[2840] * W[221] - 10.0 * W[2447] * W[614] - 9.5 * W[2054] * W[1007] - 9.0 * W[1661] * W[1400]
+            - 8.5 * W[1268] * W[1793] - 8.0 * W[875] * W[2186] - 7.5 * W[482] * W[2579]) / (7.0 * W[89]);
+    W[2976] = (-10.5 * W[2832] * W[225] - 10.0 * W[2439] * W[618] - 9.5 * W[2046] * W[1011] - 9.0 * W[1653] * W[1404]
+            - 8.5 * W[1260] * W[1797] - 8.0 * W[867] * W[2190] - 7.5 * W[474] * W[2583]) / (7.0 * W[81]);
+    W[2981] = (-10.5 * W[2824] * W[230] - 10.0 * W[2431] * W[623] - 9.5 * W[2038] * W[1016] - 9.0 * W[1645] * W[1409]
+            - 8.5 * W[1252] * W[1802] - 8.0 * W[859] * W[2195] - 7.5 * W[466] * W[2588]) / (7.0 * W[73]);
+    W[2986] = (-10.5 * W[2816] * W[235] - 10.0 * W[2423] * W[628] - 9.5 * W[2030] * W[1021] - 9.0 * W[1637] * W[1414]
+            - 8.5 * W[1244] * W[1807] - 8.0 * W[851] * W[2200] - 7.5 * W[458] * W[2593]) / (7.0 * W[65]);
+    W[3019] = (-10.5 * W[2864] * W[268] - 10.0 * W[2471] * W[661] - 9.5 * W[2078] * W[1054] - 9.0 * W[1685] * W[1447]
+            - 8.5 * W[1292] * W[1840] - 8.0 * W[899] * W[2233] - 7.5 * W[506] * W[2626]) / (7.0 * W[113]);
+    W[3023] = (-10.5 * W[2856] * W[272] - 10.0 * W[2463] * W[665] - 9.5 * W[2070] * W[1058] - 9.0 * W[1677] * W[1451]
+            - 8.5 * W[1284] * W[1844] - 8.0 * W[891] * W[2237] - 7.5 * W[498] * W[2630]) / (7.0 * W[105]);
+    W[3028] = (-10.5 * W[2848] * W[277] - 10.0 * W[2455] * W[670] - 9.5 * W[2062] * W[1063] - 9.0 * W[1669] * W[1456]
+            - 8.5 * W[1276] * W[1849] - 8.0 * W[883] * W[2242] - 7.5 * W[490] * W[2635]) / (7.0 * W[97]);
+    W[3058] = (-10.5 * W[2880] * W[307] - 10.0 * W[2487] * W[700] - 9.5 * W[2094] * W[1093] - 9.0 * W[1701] * W[1486]
+            - 8.5 * W[1308] * W[1879] - 8.0 * W[915] * W[2272] - 7.5 * W[522] * W[2665]) / (7.0 * W[129]);
+    W[3062] = (-10.5 * W[2872] * W[311] - 10.0 * W[2479] * W[704] - 9.5 * W[2086] * W[1097] - 9.0 * W[1693] * W[1490]
+            - 8.5 * W[1300] * W[1883] - 8.0 * W[907] * W[2276] - 7.5 * W[514] * W[2669]) / (7.0 * W[121]);
+    W[3089] = (-10.5 * W[2888] * W[338] - 10.0 * W[2495] * W[731] - 9.5 * W[2102] * W[1124] - 9.0 * W[1709] * W[1517]
+            - 8.5 * W[1316] * W[1910] - 8.0 * W[923] * W[2303] - 7.5 * W[530] * W[2696]) / (7.0 * W[137]);
+    W[2918] = W[48] * W[2917] + W[441] * W[2524] + W[834] * W[2131] + W[1227] * W[1738] + W[1620] * W[1345]
+            + W[2013] * W[952] + W[2406] * W[559] + W[2799] * W[166];
+    W[2922] = W[37] * W[2921] + W[430] * W[2528] + W[823] * W[2135] + W[1216] * W[1742] + W[1609] * W[1349]
+            + W[2002] * W[956] + W[2395] * W[563] + W[2788] * W[170];
+    W[2927] = W[26] * W[2926] + W[419] * W[2533] + W[812] * W[2140] + W[1205] * W[1747] + W[1598] * W[1354]
+            + W[1991] * W[961] + W[2384] * W[568] + W[2777] * W[175];
+    W[2932] = W[15] * W[2931] + W[408] * W[2538] + W[801] * W[2145] + W[1194] * W[1752] + W[1587] * W[1359]
+            + W[1980] * W[966] + W[2373] * W[573] + W[2766] * W[180];
+    W[2937] = W[2] * W[2936] + W[395] * W[2543] + W[788] * W[2150] + W[1181] * W[1757] + W[1574] * W[1364]
+            + W[1967] * W[971] + W[2360] * W[578] + W[2753] * W[185];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_137(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3010] = W[71] * W[2981] + W[464] * W[2588] + W[857] * W[2195] + W[1250] * W[1802] + W[1643] * W[1409]
+            + W[2036] * W[1016] + W[2429] * W[623] + W[2822] * W[230];
+    W[3013] = W[63] * W[2986] + W[456] * W[2593] + W[849] * W[2200] + W[1242] * W[1807] + W[1635] * W[1414]
+            + W[2028] * W[1021] + W[2421] * W[628] + W[2814] * W[235];
+    W[3020] = W[106] * W[3019] + W[499] * W[2626] + W[892] * W[2233] + W[1285] * W[1840] + W[1678] * W[1447]
+            + W[2071] * W[1054] + W[2464] * W[661] + W[2857] * W[268];
+    W[3024] = W[98] * W[3023] + W[491] * W[2630] + W[884] * W[2237] + W[1277] * W[1844] + W[1670] * W[1451]
+            + W[2063] * W[1058] + W[2456] * W[665] + W[2849] * W[272];
+    W[3029] = W[90] * W[3028] + W[483] * W[2635] + W[876] * W[2242] + W[1269] * W[1849] + W[1662] * W[1456]
+            + W[2055] * W[1063] + W[2448] * W[670] + W[2841] * W[277];
+    W[3035] = W[108] * W[3019] + W[501] * W[2626] + W[894] * W[2233] + W[1287] * W[1840] + W[1680] * W[1447]
+            + W[2073] * W[1054] + W[2466] * W[661] + W[2859] * W[268];
+    W[3037] = W[100] * W[3023] + W[493] * W[2630] + W[886] * W[2237] + W[1279] * W[1844] + W[1672] * W[1451]
+            + W[2065] * W[1058] + W[2458] * W[665] + W[2851] * W[272];
+    W[3040] = W[92] * W[3028] + W[485] * W[2635] + W[878] * W[2242] + W[1271] * W[1849] + W[1664] * W[1456]
+            + W[2057] * W[1063] + W[2450] * W[670] + W[2843] * W[277];
+    W[3046] = W[111] * W[3019] + W[504] * W[2626] + W[897] * W[2233] + W[1290] * W[1840] + W[1683] * W[1447]
+            + W[2076] * W[1054] + W[2469] * W[661] + W[2862] * W[268];
+    W[3048] = W[103] * W[3023] + W[496] * W[2630] + W[889] * W[2237] + W[1282] * W[1844] + W[1675] * W[1451]
+            + W[2068] * W[1058] + W[2461] * W[665] + W[2854] * W[272];
+    W[3051] = W[95] * W[3028] + W[488] * W[2635] + W[881] * W[2242] + W[1274] * W[1849] + W[1667] * W[1456]
+            + W[2060] * W[1063] + W[2453] * W[670] + W[2846] * W[277];
+    W[3059] = W[122] * W[3058] + W[515] * W[2665] + W[908] * W[2272] + W[1301] * W[1879] + W[1694] * W[1486]
+            + W[2087] * W[1093] + W[2480] * W[700] + W[2873] * W[307];
+    W[3063] = W[114] * W[3062] + W[507] * W[2669] + W[900] * W[2276] + W[1293] * W[1883] + W[1686] * W[1490]
+            + W[2079] * W[1097] + W[2472] * W[704] + W[2865] * W[311];
+    W[3070] = W[124] * W[3058] + W[517] * W[2665] + W[910] * W[2272] + W[1303] * W[1879] + W[1696] * W[1486]
+            + W[2089] * W[1093] + W[2482] * W[700] + W[2875] * W[307];
+    W[3072] = W[116] * W[3062] + W[509] * W[2669] + W[902] * W[2276] + W[1295] * W[1883] + W[1688] * W[1490]
+            + W[2081] * W[1097] + W[2474] * W[704] + W[2867] * W[311];
+    W[3079] = W[127] * W[3058] + W[520] * W[2665] + W[913] * W[2272] + W[1306] * W[1879] + W[1699] * W[1486]
+            + W[2092] * W[1093] + W[2485] * W[700] + W[2878] * W[307];
+    W[3081] = W[119] * W[3062] + W[512] * W[2669] + W[905] * W[2276] + W[1298] * W[1883] + W[1691] * W[1490]
+            + W[2084] * W[1097] + W[2477] * W[704] + W[2870] * W[311];
+    W[3090] = W[130] * W[3089] + W[523] * W[2696] + W[916] * W[2303] + W[1309] * W[1910] + W[1702] * W[1517]
+            + W[2095] * W[1124] + W[2488] * W[731] + W[2881] * W[338];
+    W[3097] = W[132] * W[3089] + W[525] * W[2696] + W[918] * W[2303] + W[1311] * W[1910] + W[1704] * W[1517]
+            + W[2097] * W[1124] + W[2490] * W[731] + W[2883] * W[338];
+    W[3104] = W[135] * W[3089] + W[528] * W[2696] + W[921] * W[2303] + W[1314] * W[1910] + W[1707] * W[1517]
+            + W[2100] * W[1124] + W[2493] * W[731] + W[2886] * W[338];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_142(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3122] = W[3047] + W[3121];
+    W[2934] = W[2929] + W[2933];
+    W[2951] = W[2948] + W[2950];
+    W[2966] = W[2963] + W[2965];
+    W[2989] = W[2984] + W[2988];
+    W[3002] = W[2999] + W[3001];
+    W[3015] = W[3012] + W[3014];
+    W[3032] = W[3031] - W[2988];
+    W[3043] = W[3042] - W[3001];
+    W[3054] = W[3053] - W[3014];
+    W[3067] = W[3066] - W[2983];
+    W[3076] = W[3075] - W[2998];
+    W[3085] = W[3084] - W[3011];
+    W[3094] = W[3093] - W[2978];
+    W[3101] = W[3100] - W[2995];
+    W[3108] = W[3107] - W[3008];
+    W[3113] = W[2974] + W[3112];
+    W[3118] = W[2993] + W[3117];
+    W[3123] = W[3006] + W[3122];
+    W[2939] = W[2934] + W[2938];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_144(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2991] = W[161] * W[2990];
+    W[3004] = W[161] * W[3003];
+    W[3017] = W[161] * W[3016];
+    W[3034] = W[161] * W[3033];
+    W[3045] = W[161] * W[3044];
+    W[3056] = W[161] * W[3055];
+    W[3069] = W[161] * W[3068];
+    W[3078] = W[161] * W[3077];
+    W[3087] = W[161] * W[3086];
+    W[3096] = W[161] * W[3095];
+    W[3103] = W[161] * W[3102];
+    W[3110] = W[161] * W[3109];
+    W[3115] = W[163] * W[3114];
+    W[3120] = W[163] * W[3119];
+    W[3125] = W[163] * W[3124];
+    X[288] = X[270] / 8.0;
+    X[289] = X[271] / 8.0;
+    X[290] = X[272] / 8.0;
+    X[291] = X[273] / 8.0;
+    X[292] = X[274] / 8.0;
+    return 0;
+}
+
+/* Lines 340 .. 350 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_146(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[313] = -W[3045] / W[141] / 8.0;
+    X[314] = -W[3056] / W[141] / 8.0;
+    X[315] = -W[3069] / W[142] / 8.0;
+    X[316] = -W[3078] / W[142] / 8.0;
+    X[317] = -W[3087] / W[142] / 8.0;
+    X[318] = -W[3096] / W[143] / 8.0;
+    X[319] = -W[3103] / W[143] / 8.0;
+    X[320] = -W[3110] / W[143] / 8.0;
+    X[321] = -W[3115] / W[144] / 8.0;
+    X[322] = -W[3120] / W[144] / 8.0;
+    X[323] = -W[3125] / W[144] / 8.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_147(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3146] = X[288] - X[291];
+    W[3150] = X[289] - X[292];
+    W[3155] = X[290] - X[293];
+    W[3159] = X[288] - X[294];
+    W[3162] = X[289] - X[295];
+    W[3166] = X[290] - X[296];
+    W[3170] = X[288] - X[297];
+    W[3173] = X[289] - X[298];
+    W[3177] = X[290] - X[299];
+    W[3181] = X[288] - X[300];
+    W[3184] = X[289] - X[301];
+    W[3188] = X[290] - X[302];
+    W[3192] = X[288] - X[303];
+    W[3195] = X[289] - X[304];
+    W[3199] = X[290] - X[305];
+    W[3202] = X[291] - X[294];
+    W[3204] = X[292] - X[295];
+    W[3207] = X[293] - X[296];
+    W[3210] = X[291] - X[297];
+    W[3212] = X[292] - X[298];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_149(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3268] = X[298] - X[304];
+    W[3271] = X[299] - X[305];
+    W[3274] = X[300] - X[303];
+    W[3276] = X[301] - X[304];
+    W[3279] = X[302] - X[305];
+    W[3147] = (W[2] * W[3146] + W[395] * W[2753] + W[788] * W[2360] + W[1181] * W[1967]) * 2.0
+            + W[1574] * W[1574];
+    W[3151] = (W[6] * W[3150] + W[399] * W[2757] + W[792] * W[2364] + W[1185] * W[1971]) * 2.0
+            + W[1578] * W[1578];
+    W[3156] = (W[11] * W[3155] + W[404] * W[2762] + W[797] * W[2369] + W[1190] * W[1976]) * 2.0
+            + W[1583] * W[1583];
+    W[3160] = (W[15] * W[3159] + W[408] * W[2766] + W[801] * W[2373] + W[1194] * W[1980]) * 2.0
+            + W[1587] * W[1587];
+    W[3163] = (W[18] * W[3162] + W[411] * W[2769] + W[804] * W[2376] + W[1197] * W[1983]) * 2.0
+            + W[1590] * W[1590];
+    W[3167] = (W[22] * W[3166] + W[415] * W[2773] + W[808] * W[2380] + W[1201] * W[1987]) * 2.0
+            + W[1594] * W[1594];
+    W[3171] = (W[26] * W[3170] + W[419] * W[2777] + W[812] * W[2384] + W[1205] * W[1991]) * 2.0
+            + W[1598] * W[1598];
+    W[3174] = (W[29] * W[3173] + W[422] * W[2780] + W[815] * W[2387] + W[1208] * W[1994]) * 2.0
+            + W[1601] * W[1601];
+    W[3178] = (W[33] * W[3177] + W[426] * W[2784] + W[819] * W[2391] + W[1212] * W[1998]) * 2.0
+            + W[1605] * W[1605];
+    W[3182] = (W[37] * W[3181] + W[430] * W[2788] + W[823] * W[2395] + W[1216] * W[2002]) * 2.0
+            + W[1609] * W[1609];
+    W[3185] = (W[40] * W[3184] + W[433] * W[2791] + W[826] * W[2398] + W[1219] * W[2005]) * 2.0
+            + W[1612] * W[1612];
+    W[3189] = (W[44] * W[3188] + W[437] * W[2795] + W[830] * W[2402] + W[1223] * W[2009]) * 2.0
+            + W[1616] * W[1616];
+    W[3193] = (W[48] * W[3192] + W[441] * W[2799] + W[834] * W[2406] + W[1227] * W[2013]) * 2.0
+            + W[1620] * W[1620];
+    W[3196] = (W[51] * W[3195] + W[444] * W[2802] + W[837] * W[2409] + W[1230] * W[2016]) * 2.0
+            + W[1623] * W[1623];
+    W[3200] = (W[55] * W[3199] + W[448] * W[2806] + W[841] * W[2413] + W[1234] * W[2020]) * 2.0
+            + W[1627] * W[1627];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_151(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3256] = (W[111] * W[3255] + W[504] * W[2862] + W[897] * W[2469] + W[1290] * W[2076]) * 2.0
+            + W[1683] * W[1683];
+    W[3259] = (W[114] * W[3258] + W[507] * W[2865] + W[900] * W[2472] + W[1293] * W[2079]) * 2.0
+            + W[1686] * W[1686];
+    W[3261] = (W[116] * W[3260] + W[509] * W[2867] + W[902] * W[2474] + W[1295] * W[2081]) * 2.0
+            + W[1688] * W[1688];
+    W[3264] = (W[119] * W[3263] + W[512] * W[2870] + W[905] * W[2477] + W[1298] * W[2084]) * 2.0
+            + W[1691] * W[1691];
+    W[3267] = (W[122] * W[3266] + W[515] * W[2873] + W[908] * W[2480] + W[1301] * W[2087]) * 2.0
+            + W[1694] * W[1694];
+    W[3269] = (W[124] * W[3268] + W[517] * W[2875] + W[910] * W[2482] + W[1303] * W[2089]) * 2.0
+            + W[1696] * W[1696];
+    W[3272] = (W[127] * W[3271] + W[520] * W[2878] + W[913] * W[2485] + W[1306] * W[2092]) * 2.0
+            + W[1699] * W[1699];
+    W[3275] = (W[130] * W[3274] + W[523] * W[2881] + W[916] * W[2488] + W[1309] * W[2095]) * 2.0
+            + W[1702] * W[1702];
+    W[3277] = (W[132] * W[3276] + W[525] * W[2883] + W[918] * W[2490] + W[1311] * W[2097]) * 2.0
+            + W[1704] * W[1704];
+    W[3280] = (W[135] * W[3279] + W[528] * W[2886] + W[921] * W[2493] + W[1314] * W[2100]) * 2.0
+            + W[1707] * W[1707];
+    W[3152] = W[3147] + W[3151];
+    W[3164] = W[3160] + W[3163];
+    W[3175] = W[3171] + W[3174];
+    W[3186] = W[3182] + W[3185];
+    W[3197] = W[3193] + W[3196];
+    W[3206] = W[3203] + W[3205];
+    W[3214] = W[3211] + W[3213];
+    W[3222] = W[3219] + W[3221];
+    W[3230] = W[3227] + W[3229];
+    W[3238] = W[3235] + W[3237];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_153(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3310] = (-12.0 * W[3201] * W[166] - 11.5 * W[2808] * W[559] - 11.0 * W[2415] * W[952] - 10.5 * W[2022] * W[1345]
+            - 10.0 * W[1629] * W[1738] - 9.5 * W[1236] * W[2131] - 9.0 * W[843] * W[2524] - 8.5 * W[450] * W[2917]) / (8.0 * W[57]);
+    W[3314] = (-12.0 * W[3190] * W[170] - 11.5 * W[2797] * W[563] - 11.0 * W[2404] * W[956] - 10.5 * W[2011] * W[1349]
+            - 10.0 * W[1618] * W[1742] - 9.5 * W[1225] * W[2135] - 9.0 * W[832] * W[2528] - 8.5 * W[439] * W[2921]) / (8.0 * W[46]);
+    W[3319] = (-12.0 * W[3179] * W[175] - 11.5 * W[2786] * W[568] - 11.0 * W[2393] * W[961] - 10.5 * W[2000] * W[1354]
+            - 10.0 * W[1607] * W[1747] - 9.5 * W[1214] * W[2140] - 9.0 * W[821] * W[2533] - 8.5 * W[428] * W[2926]) / (8.0 * W[35]);
+    W[3324] = (-12.0 * W[3168] * W[180] - 11.5 * W[2775] * W[573] - 11.0 * W[2382] * W[966] - 10.5 * W[1989] * W[1359]
+            - 10.0 * W[1596] * W[1752] - 9.5 * W[1203] * W[2145] - 9.0 * W[810] * W[2538] - 8.5 * W[417] * W[2931]) / (8.0 * W[24]);
+    W[3329] = (-12.0 * W[3157] * W[185] - 11.5 * W[2764] * W[578] - 11.0 * W[2371] * W[971] - 10.5 * W[1978] * W[1364]
+            - 10.0 * W[1585] * W[1757] - 9.5 * W[1192] * W[2150] - 9.0 * W[799] * W[2543] - 8.5 * W[406] * W[2936]) / (8.0 * W[13]);
+    W[3365] = (-12.0 * W[3233] * W[221] - 11.5 * W[2840] * W[614] - 11.0 * W[2447] * W[1007] - 10.5 * W[2054] * W[1400]
+            - 10.0 * W[1661] * W[1793] - 9.5 * W[1268] * W[2186] - 9.0 * W[875] * W[2579] - 8.5 * W[482] * W[2972]) / (8.0 * W[89]);
+    W[3369] = (-12.0 * W[3225] * W[225] - 11.5 * W[2832] * W[618] - 11.0 * W[2439] * W[1011] - 10.5 * W[2046] * W[1404]
+            - 10.0 * W[1653] * W[1797] - 9.5 * W[1260] * W[2190] - 9.0 * W[867] * W[2583] - 8.5 * W[474] * W[2976]) / (8.0 * W[81]);
+    W[3374] = (-12.0 * W[3217] * W[230] - 11.5 * W[2824] * W[623] - 11.0 * W[2431] * W[1016] - 10.5 * W[2038] * W[1409]
+            - 10.0 * W[1645] * W[1802] - 9.5 * W[1252] * W[2195] - 9.0 * W[859] * W[2588] - 8.5 * W[466] * W[2981]) / (8.0 * W[73]);
+    W[3379] = (-12.0 * W[3209] * W[235] - 11.5 * W[2816] * W[628] - 11.0 * W[2423] * W[1021] - 10.5 * W[2030] * W[1414]
+            - 10.0 * W[1637] * W[1807] - 9.5 * W[1244] * W[2200] - 9.0 * W[851] * W[2593] - 8.5 * W[458] * W[2986]) / (8.0 * W[65]);
+    W[3412] = (-12.0 * W[3257] * W[268] - 11.5 * W[2864] * W[661] - 11.0 * W[2471] * W[1054] - 10.5 * W[2078] * W[1447]
+            - 10.0 * W[1685] * W[1840] - 9.5 * W[1292] * W[2233] - 9.0 * W[899] * W[2626] - 8.5 * W[506] * W[3019]) / (8.0 * W[113]);
+    W[3416] = (-12.0 * W[3249] * W[272] - 11.5 * W[2856] * W[665] - 11.0 * W[2463] * W[1058] - 10.5 * W[2070] * W[1451]
+            - 10.0 * W[1677] * W[1844] - 9.5 * W[1284] * W[2237] - 9.0 * W[891] * W[2630] - 8.5 * W[498] * W[3023]) / (8.0 * W[105]);
+    W[3421] = (-12.0 * W[3241] * W[277] - 11.5 * W[2848] * W[670] - 11.0 * W[2455] * W[1063] - 10.5 * W[2062] * W[1456]
+            - 10.0 * W[1669] * W[1849] - 9.5 * W[1276] * W[2242] - 9.0 * W[883] * W[2635] - 8.5 * W[490] * W[3028]) / (8.0 * W[97]);
+    W[3451] = (-12.0 * W[3273] * W[307] - 11.5 * W[2880] * W[700] - 11.0 * W[2487] * W[1093] - 10.5 * W[2094] * W[1486]
+            - 10.0 * W[1701] * W[1879] - 9.5 * W[1308] * W[2272] - 9.0 * W[915] * W[2665] - 8.5 * W[522] * W[3058]) / (8.0 * W[129]);
+    W[3455] = (-12.0 * W[3265] * W[311] - 11.5 * W[2872] * W[704] - 11.0 * W[2479] * W[1097] - 10.5 * W[2086] * W[1490]
+            - 10.0 * W[1693] * W[1883] - 9.5 * W[1300] * W[2276] - 9.0 * W[907] * W[2669] - 8.5 * W[514] * W[3062]) / (8.0 * W[121]);
+    W[3482] = (-12.0 * W[3281] * W[338] - 11.5 * W[2888] * W[731] - 11.0 * W[2495] * W[1124] - 10.5 * W[2102] * W[1517]
+            - 10.0 * W[1709] * W[1910] - 9.5 * W[1316] * W[2303] - 9.0 * W[923] * W[2696] - 8.5 * W[530] * W[3089]) / (8.0 * W[137]);
+    W[3311] = W[48] * W[3310] + W[441] * W[2917] + W[834] * W[2524] + W[1227] * W[2131] + W[1620] * W[1738]
+            + W[2013] * W[1345] + W[2406] * W[952] + W[2799] * W[559] + W[3192] * W[166];
+    W[3315] = W[37] * W[3314] + W[430] * W[2921] + W[823] * W[2528] + W[1216] * W[2135] + W[1609] * W[1742]
+            + W[2002] * W[1349] + W[2395] * W[956] + W[2788] * W[563] + W[3181] * W[170];
+    W[3320] = W[26] * W[3319] + W[419] * W[2926] + W[812] * W[2533] + W[1205] * W[2140] + W[1598] * W[1747]
+            + W[1991] * W[1354] + W[2384] * W[961] + W[2777] * W[568] + W[3170] * W[175];
+    W[3325] = W[15] * W[3324] + W[408] * W[2931] + W[801] * W[2538] + W[1194] * W[2145] + W[1587] * W[1752]
+            + W[1980] * W[1359] + W[2373] * W[966] + W[2766] * W[573] + W[3159] * W[180];
+    W[3330] = W[2] * W[3329] + W[395] * W[2936] + W[788] * W[2543] + W[1181] * W[2150] + W[1574] * W[1757]
+            + W[1967] * W[1364] + W[2360] * W[971] + W[2753] * W[578] + W[3146] * W[185];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_155(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3403] = W[71] * W[3374] + W[464] * W[2981] + W[857] * W[2588] + W[1250] * W[2195] + W[1643] * W[1802]
+            + W[2036] * W[1409] + W[2429] * W[1016] + W[2822] * W[623] + W[3215] * W[230];
+    W[3406] = W[63] * W[3379] + W[456] * W[2986] + W[849] * W[2593] + W[1242] * W[2200] + W[1635] * W[1807]
+            + W[2028] * W[1414] + W[2421] * W[1021] + W[2814] * W[628] + W[3207] * W[235];
+    W[3413] = W[106] * W[3412] + W[499] * W[3019] + W[892] * W[2626] + W[1285] * W[2233] + W[1678] * W[1840]
+            + W[2071] * W[1447] + W[2464] * W[1054] + W[2857] * W[661] + W[3250] * W[268];
+    W[3417] = W[98] * W[3416] + W[491] * W[3023] + W[884] * W[2630] + W[1277] * W[2237] + W[1670] * W[1844]
+            + W[2063] * W[1451] + W[2456] * W[1058] + W[2849] * W[665] + W[3242] * W[272];
+    W[3422] = W[90] * W[3421] + W[483] * W[3028] + W[876] * W[2635] + W[1269] * W[2242] + W[1662] * W[1849]
+            + W[2055] * W[1456] + W[2448] * W[1063] + W[2841] * W[670] + W[3234] * W[277];
+    W[3428] = W[108] * W[3412] + W[501] * W[3019] + W[894] * W[2626] + W[1287] * W[2233] + W[1680] * W[1840]
+            + W[2073] * W[1447] + W[2466] * W[1054] + W[2859] * W[661] + W[3252] * W[268];
+    W[3430] = W[100] * W[3416] + W[493] * W[3023] + W[886] * W[2630] + W[1279] * W[2237] + W[1672] * W[1844]
+            + W[2065] * W[1451] + W[2458] * W[1058] + W[2851] * W[665] + W[3244] * W[272];
+    W[3433] = W[92] * W[3421] + W[485] * W[3028] + W[878] * W[2635] + W[1271] * W[2242] + W[1664] * W[1849]
+            + W[2057] * W[1456] + W[2450] * W[1063] + W[2843] * W[670] + W[3236] * W[277];
+    W[3439] = W[111] * W[3412] + W[504] * W[3019] + W[897] * W[2626] + W[1290] * W[2233] + W[1683] * W[1840]
+            + W[2076] * W[1447] + W[2469] * W[1054] + W[2862] * W[661] + W[3255] * W[268];
+    W[3441] = W[103] * W[3416] + W[496] * W[3023] + W[889] * W[2630] + W[1282] * W[2237] + W[1675] * W[1844]
+            + W[2068] * W[1451] + W[2461] * W[1058] + W[2854] * W[665] + W[3247] * W[272];
+    W[3444] = W[95] * W[3421] + W[488] * W[3028] + W[881] * W[2635] + W[1274] * W[2242] + W[1667] * W[1849]
+            + W[2060] * W[1456] + W[2453] * W[1063] + W[2846] * W[670] + W[3239] * W[277];
+    W[3452] = W[122] * W[3451] + W[515] * W[3058] + W[908] * W[2665] + W[1301] * W[2272] + W[1694] * W[1879]
+            + W[2087] * W[1486] + W[2480] * W[1093] + W[2873] * W[700] + W[3266] * W[307];
+    W[3456] = W[114] * W[3455] + W[507] * W[3062] + W[900] * W[2669] + W[1293] * W[2276] + W[1686] * W[1883]
+            + W[2079] * W[1490] + W[2472] * W[1097] + W[2865] * W[704] + W[3258] * W[311];
+    W[3463] = W[124] * W[3451] + W[517] * W[3058] + W[910] * W[2665] + W[1303] * W[2272] + W[1696] * W[1879]
+            + W[2089] * W[1486] + W[2482] * W[1093] + W[2875] * W[700] + W[3268] * W[307];
+    W[3465] = W[116] * W[3455] + W[509] * W[3062] + W[902] * W[2669] + W[1295] * W[2276] + W[1688] * W[1883]
+            + W[2081] * W[1490] + W[2474] * W[1097] + W[2867] * W[704] + W[3260] * W[311];
+    W[3472] = W[127] * W[3451] + W[520] * W[3058] + W[913] * W[2665] + W[1306] * W[2272] + W[1699] * W[1879]
+            + W[2092] * W[1486] + W[2485] * W[1093] + W[2878] * W[700] + W[3271] * W[307];
+    W[3474] = W[119] * W[3455] + W[512] * W[3062] + W[905] * W[2669] + W[1298] * W[2276] + W[1691] * W[1883]
+            + W[2084] * W[1490] + W[2477] * W[1097] + W[2870] * W[704] + W[3263] * W[311];
+    W[3483] = W[130] * W[3482] + W[523] * W[3089] + W[916] * W[2696] + W[1309] * W[2303] + W[1702] * W[1910]
+            + W[2095] * W[1517] + W[2488] * W[1124] + W[2881] * W[731] + W[3274] * W[338];
+    W[3490] = W[132] * W[3482] + W[525] * W[3089] + W[918] * W[2696] + W[1311] * W[2303] + W[1704] * W[1910]
+            + W[2097] * W[1517] + W[2490] * W[1124] + W[2883] * W[731] + W[3276] * W[338];
+    W[3497] = W[135] * W[3482] + W[528] * W[3089] + W[921] * W[2696] + W[1314] * W[2303] + W[1707] * W[1910]
+            + W[2100] * W[1517] + W[2493] * W[1124] + W[2886] * W[731] + W[3279] * W[338];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_160(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3515] = W[3440] + W[3514];
+    W[3327] = W[3322] + W[3326];
+    W[3344] = W[3341] + W[3343];
+    W[3359] = W[3356] + W[3358];
+    W[3382] = W[3377] + W[3381];
+    W[3395] = W[3392] + W[3394];
+    W[3408] = W[3405] + W[3407];
+    W[3425] = W[3424] - W[3381];
+    W[3436] = W[3435] - W[3394];
+    W[3447] = W[3446] - W[3407];
+    W[3460] = W[3459] - W[3376];
+    W[3469] = W[3468] - W[3391];
+    W[3478] = W[3477] - W[3404];
+    W[3487] = W[3486] - W[3371];
+    W[3494] = W[3493] - W[3388];
+    W[3501] = W[3500] - W[3401];
+    W[3506] = W[3367] + W[3505];
+    W[3511] = W[3386] + W[3510];
+    W[3516] = W[3399] + W[3515];
+    W[3332] = W[3327] + W[3331];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_162(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3384] = W[161] * W[3383];
+    W[3397] = W[161] * W[3396];
+    W[3410] = W[161] * W[3409];
+    W[3427] = W[161] * W[3426];
+    W[3438] = W[161] * W[3437];
+    W[3449] = W[161] * W[3448];
+    W[3462] = W[161] * W[3461];
+    W[3471] = W[161] * W[3470];
+    W[3480] = W[161] * W[3479];
+    W[3489] = W[161] * W[3488];
+    W[3496] = W[161] * W[3495];
+    W[3503] = W[161] * W[3502];
+    W[3508] = W[163] * W[3507];
+    W[3513] = W[163] * W[3512];
+    W[3518] = W[163] * W[3517];
+    X[324] = X[306] / 9.0;
+    X[325] = X[307] / 9.0;
+    X[326] = X[308] / 9.0;
+    X[327] = X[309] / 9.0;
+    X[328] = X[310] / 9.0;
+    return 0;
+}
+
+/* Lines 340 .. 350 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_164(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[349] = -W[3438] / W[141] / 9.0;
+    X[350] = -W[3449] / W[141] / 9.0;
+    X[351] = -W[3462] / W[142] / 9.0;
+    X[352] = -W[3471] / W[142] / 9.0;
+    X[353] = -W[3480] / W[142] / 9.0;
+    X[354] = -W[3489] / W[143] / 9.0;
+    X[355] = -W[3496] / W[143] / 9.0;
+    X[356] = -W[3503] / W[143] / 9.0;
+    X[357] = -W[3508] / W[144] / 9.0;
+    X[358] = -W[3513] / W[144] / 9.0;
+    X[359] = -W[3518] / W[144] / 9.0;
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 9, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_166(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3608] = X[329] - X[335];
+    W[3611] = X[327] - X[336];
+    W[3613] = X[328] - X[337];
+    W[3616] = X[329] - X[338];
+    W[3619] = X[327] - X[339];
+    W[3621] = X[328] - X[340];
+    W[3624] = X[329] - X[341];
+    W[3627] = X[330] - X[333];
+    W[3629] = X[331] - X[334];
+    W[3632] = X[332] - X[335];
+    W[3635] = X[330] - X[336];
+    W[3637] = X[331] - X[337];
+    W[3640] = X[332] - X[338];
+    W[3643] = X[330] - X[339];
+    W[3645] = X[331] - X[340];
+    W[3648] = X[332] - X[341];
+    W[3651] = X[333] - X[336];
+    W[3653] = X[334] - X[337];
+    W[3656] = X[335] - X[338];
+    W[3659] = X[333] - X[339];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 9, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_168(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3596] = (W[58] * W[3595] + W[451] * W[3202] + W[844] * W[2809] + W[1237] * W[2416] + W[1630] * W[2023]) * 2.0;
+    W[3598] = (W[60] * W[3597] + W[453] * W[3204] + W[846] * W[2811] + W[1239] * W[2418] + W[1632] * W[2025]) * 2.0;
+    W[3601] = (W[63] * W[3600] + W[456] * W[3207] + W[849] * W[2814] + W[1242] * W[2421] + W[1635] * W[2028]) * 2.0;
+    W[3604] = (W[66] * W[3603] + W[459] * W[3210] + W[852] * W[2817] + W[1245] * W[2424] + W[1638] * W[2031]) * 2.0;
+    W[3606] = (W[68] * W[3605] + W[461] * W[3212] + W[854] * W[2819] + W[1247] * W[2426] + W[1640] * W[2033]) * 2.0;
+    W[3609] = (W[71] * W[3608] + W[464] * W[3215] + W[857] * W[2822] + W[1250] * W[2429] + W[1643] * W[2036]) * 2.0;
+    W[3612] = (W[74] * W[3611] + W[467] * W[3218] + W[860] * W[2825] + W[1253] * W[2432] + W[1646] * W[2039]) * 2.0;
+    W[3614] = (W[76] * W[3613] + W[469] * W[3220] + W[862] * W[2827] + W[1255] * W[2434] + W[1648] * W[2041]) * 2.0;
+    W[3617] = (W[79] * W[3616] + W[472] * W[3223] + W[865] * W[2830] + W[1258] * W[2437] + W[1651] * W[2044]) * 2.0;
+    W[3620] = (W[82] * W[3619] + W[475] * W[3226] + W[868] * W[2833] + W[1261] * W[2440] + W[1654] * W[2047]) * 2.0;
+    W[3622] = (W[84] * W[3621] + W[477] * W[3228] + W[870] * W[2835] + W[1263] * W[2442] + W[1656] * W[2049]) * 2.0;
+    W[3625] = (W[87] * W[3624] + W[480] * W[3231] + W[873] * W[2838] + W[1266] * W[2445] + W[1659] * W[2052]) * 2.0;
+    W[3628] = (W[90] * W[3627] + W[483] * W[3234] + W[876] * W[2841] + W[1269] * W[2448] + W[1662] * W[2055]) * 2.0;
+    W[3630] = (W[92] * W[3629] + W[485] * W[3236] + W[878] * W[2843] + W[1271] * W[2450] + W[1664] * W[2057]) * 2.0;
+    W[3633] = (W[95] * W[3632] + W[488] * W[3239] + W[881] * W[2846] + W[1274] * W[2453] + W[1667] * W[2060]) * 2.0;
+    W[3636] = (W[98] * W[3635] + W[491] * W[3242] + W[884] * W[2849] + W[1277] * W[2456] + W[1670] * W[2063]) * 2.0;
+    W[3638] = (W[100] * W[3637] + W[493] * W[3244] + W[886] * W[2851] + W[1279] * W[2458] + W[1672] * W[2065]) * 2.0;
+    W[3641] = (W[103] * W[3640] + W[496] * W[3247] + W[889] * W[2854] + W[1282] * W[2461] + W[1675] * W[2068]) * 2.0;
+    W[3644] = (W[106] * W[3643] + W[499] * W[3250] + W[892] * W[2857] + W[1285] * W[2464] + W[1678] * W[2071]) * 2.0;
+    W[3646] = (W[108] * W[3645] + W[501] * W[3252] + W[894] * W[2859] + W[1287] * W[2466] + W[1680] * W[2073]) * 2.0;
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 9, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_170(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3639] = W[3636] + W[3638];
+    W[3647] = W[3644] + W[3646];
+    W[3655] = W[3652] + W[3654];
+    W[3663] = W[3660] + W[3662];
+    W[3671] = W[3668] + W[3670];
+    W[3550] = W[3545] + W[3549];
+    W[3561] = W[3557] + W[3560];
+    W[3572] = W[3568] + W[3571];
+    W[3583] = W[3579] + W[3582];
+    W[3594] = W[3590] + W[3593];
+    W[3602] = W[3599] + W[3601];
+    W[3610] = W[3607] + W[3609];
+    W[3618] = W[3615] + W[3617];
+    W[3626] = W[3623] + W[3625];
+    W[3634] = W[3631] + W[3633];
+    W[3642] = W[3639] + W[3641];
+    W[3650] = W[3647] + W[3649];
+    W[3658] = W[3655] + W[3657];
+    W[3666] = W[3663] + W[3665];
+    W[3674] = W[3671] + W[3673];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 9, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_171(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3703] = (-13.5 * W[3594] * W[166] - 13.0 * W[3201] * W[559] - 12.5 * W[2808] * W[952] - 12.0 * W[2415] * W[1345]
+            - 11.5 * W[2022] * W[1738] - 11.0 * W[1629] * W[2131] - 10.5 * W[1236] * W[2524] - 10.0 * W[843] * W[2917]
+            - 9.5 * W[450] * W[3310]) / (9.0 * W[57]);
+    W[3707] = (-13.5 * W[3583] * W[170] - 13.0 * W[3190] * W[563] - 12.5 * W[2797] * W[956] - 12.0 * W[2404] * W[1349]
+            - 11.5 * W[2011] * W[1742] - 11.0 * W[1618] * W[2135] - 10.5 * W[1225] * W[2528] - 10.0 * W[832] * W[2921]
+            - 9.5 * W[439] * W[3314]) / (9.0 * W[46]);
+    W[3712] = (-13.5 * W[3572] * W[175] - 13.0 * W[3179] * W[568] - 12.5 * W[2786] * W[961] - 12.0 * W[2393] * W[1354]
+            - 11.5 * W[2000] * W[1747] - 11.0 * W[1607] * W[2140] - 10.5 * W[1214] * W[2533] - 10.0 * W[821] * W[2926]
+            - 9.5 * W[428] * W[3319]) / (9.0 * W[35]);
+    W[3717] = (-13.5 * W[3561] * W[180] - 13.0 * W[3168] * W[573] - 12.5 * W[2775] * W[966] - 12.0 * W[2382] * W[1359]
+            - 11.5 * W[1989] * W[1752] - 11.0 * W[1596] * W[2145] - 10.5 * W[1203] * W[2538] - 10.0 * W[810] * W[2931]
+            - 9.5 * W[417] * W[3324]) / (9.0 * W[24]);
+    W[3722] = (-13.5 * W[3550] * W[185] - 13.0 * W[3157] * W[578] - 12.5 * W[2764] * W[971] - 12.0 * W[2371] * W[1364]
+            - 11.5 * W[1978] * W[1757] - 11.0 * W[1585] * W[2150] - 10.5 * W[1192] * W[2543] - 10.0 * W[799] * W[2936]
+            - 9.5 * W[406] * W[3329]) / (9.0 * W[13]);
+    W[3758] = (-13.5 * W[3626] * W[221] - 13.0 * W[3233] * W[614] - 12.5 * W[2840] * W[1007] - 12.0 * W[2447] * W[1400]
+            - 11.5 * W[2054] * W[1793] - 11.0 * W[1661] * W[2186] - 10.5 * W[1268] * W[2579] - 10.0 * W[875] * W[2972]
+            - 9.5 * W[482] * W[3365]) / (9.0 * W[89]);
+    W[3762] = (-13.5 * W[3618] * W[225] - 13.0 * W[3225] * W[618] - 12.5 * W[2832] * W[1011] - 12.0 * W[2439] * W[1404]
+            - 11.5 * W[2046] * W[1797] - 11.0 * W[1653] * W[2190] - 10.5 * W[1260] * W[2583] - 10.0 * W[867] * W[2976]
+            - 9.5 * W[474] * W[3369]) / (9.0 * W[81]);
+    W[3767] = (-13.5 * W[3610] * W[230] - 13.0 * W[3217] * W[623] - 12.5 * W[2824] * W[1016] - 12.0 * W[2431] * W[1409]
+            - 11.5 * W[2038] * W[1802] - 11.0 * W[1645] * W[2195] - 10.5 * W[1252] * W[2588] - 10.0 * W[859] * W[2981]
+            - 9.5 * W[466] * W[3374]) / (9.0 * W[73]);
+    W[3772] = (-13.5 * W[3602] * W[235] - 13.0 * W[3209] * W[628] - 12.5 * W[2816] * W[1021] - 12.0 * W[2423] * W[1414]
+            - 11.5 * W[2030] * W[1807] - 11.0 * W[1637] * W[2200] - 10.5 * W[1244] * W[2593] - 10.0 * W[851] * W[2986]
+            - 9.5 * W[458] * W[3379]) / (9.0 * W[65]);
+    W[3805] = (-13.5 * W[3650] * W[268] - 13.0 * W[3257] * W[661] - 12.5 * W[2864] * W[1054] - 12.0 * W[2471] * W[1447]
+            - 11.5 * W[2078] * W[1840] - 11.0 * W[1685] * W[2233] - 10.5 * W[1292] * W[2626] - 10.0 * W[899] * W[3019]
+            - 9.5 * W[506] * W[3412]) / (9.0 * W[113]);
+    W[3809] = (-13.5 * W[3642] * W[272] - 13.0 * W[3249] * W[665] - 12.5 * W[2856] * W[1058] - 12.0 * W[2463] * W[1451]
+            - 11.5 * W[2070] * W[1844] - 11.0 * W[1677] * W[2237] - 10.5 * W[1284] * W[2630] - 10.0 * W[891] * W[3023]
+            - 9.5 * W[498] * W[3416]) / (9.0 * W[105]);
+    W[3814] = (-13.5 * W[3634] * W[277] - 13.0 * W[3241] * W[670] - 12.5 * W[2848] * W[1063] - 12.0 * W[2455] * W[1456]
+            - 11.5 * W[2062] * W[1849] - 11.0 * W[1669] * W[2242] - 10.5 * W[1276] * W[2635] - 10.0 * W[883] * W[3028]
+            - 9.5 * W[490] * W[3421]) / (9.0 * W[97]);
+    W[3844] = (-13.5 * W[3666] * W[307] - 13.0 * W[3273] * W[700] - 12.5 * W[2880] * W[1093] - 12.0 * W[2487] * W[1486]
+            - 11.5 * W[2094] * W[1879] - 11.0 * W[1701] * W[2272] - 10.5 * W[1308] * W[2665] - 10.0 * W[915] * W[3058]
+            - 9.5 * W[522] * W[3451]) / (9.0 * W[129]);
+    W[3848] = (-13.5 * W[3658] * W[311] - 13.0 * W[3265] * W[704] - 12.5 * W[2872] * W[1097] - 12.0 * W[2479] * W[1490]
+            - 11.5 * W[2086] * W[1883] - 11.0 * W[1693] * W[2276] - 10.5 * W[1300] * W[2669] - 10.0 * W[907] * W[3062]
+            - 9.5 * W[514] * W[3455]) / (9.0 * W[121]);
+    W[3875] = (-13.5 * W[3674] * W[338] - 13.0 * W[3281] * W[731] - 12.5 * W[2888] * W[1124] - 12.0 * W[2495] * W[1517]
+            - 11.5 * W[2102] * W[1910] - 11.0 * W[1709] * W[2303] - 10.5 * W[1316] * W[2696] - 10.0 * W[923] * W[3089]
+            - 9.5 * W[530] * W[3482]) / (9.0 * W[137]);
+    W[3704] = W[48] * W[3703] + W[441] * W[3310] + W[834] * W[2917] + W[1227] * W[2524] + W[1620] * W[2131]
+            + W[2013] * W[1738] + W[2406] * W[1345] + W[2799] * W[952] + W[3192] * W[559] + W[3585] * W[166];
+    W[3708] = W[37] * W[3707] + W[430] * W[3314] + W[823] * W[2921] + W[1216] * W[2528] + W[1609] * W[2135]
+            + W[2002] * W[1742] + W[2395] * W[1349] + W[2788] * W[956] + W[3181] * W[563] + W[3574] * W[170];
+    W[3713] = W[26] * W[3712] + W[419] * W[3319] + W[812] * W[2926] + W[1205] * W[2533] + W[1598] * W[2140]
+            + W[1991] * W[1747] + W[2384] * W[1354] + W[2777] * W[961] + W[3170] * W[568] + W[3563] * W[175];
+    W[3718] = W[15] * W[3717] + W[408] * W[3324] + W[801] * W[2931] + W[1194] * W[2538] + W[1587] * W[2145]
+            + W[1980] * W[1752] + W[2373] * W[1359] + W[2766] * W[966] + W[3159] * W[573] + W[3552] * W[180];
+    W[3723] = W[2] * W[3722] + W[395] * W[3329] + W[788] * W[2936] + W[1181] * W[2543] + W[1574] * W[2150]
+            + W[1967] * W[1757] + W[2360] * W[1364] + W[2753] * W[971] + W[3146] * W[578] + W[3539] * W[185];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 9, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_173(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3796] = W[71] * W[3767] + W[464] * W[3374] + W[857] * W[2981] + W[1250] * W[2588] + W[1643] * W[2195]
+            + W[2036] * W[1802] + W[2429] * W[1409] + W[2822] * W[1016] + W[3215] * W[623] + W[3608] * W[230];
+    W[3799] = W[63] * W[3772] + W[456] * W[3379] + W[849] * W[2986] + W[1242] * W[2593] + W[1635] * W[2200]
+            + W[2028] * W[1807] + W[2421] * W[1414] + W[2814] * W[1021] + W[3207] * W[628] + W[3600] * W[235];
+    W[3806] = W[106] * W[3805] + W[499] * W[3412] + W[892] * W[3019] + W[1285] * W[2626] + W[1678] * W[2233]
+            + W[2071] * W[1840] + W[2464] * W[1447] + W[2857] * W[1054] + W[3250] * W[661] + W[3643] * W[268];
+    W[3810] = W[98] * W[3809] + W[491] * W[3416] + W[884] * W[3023] + W[1277] * W[2630] + W[1670] * W[2237]
+            + W[2063] * W[1844] + W[2456] * W[1451] + W[2849] * W[1058] + W[3242] * W[665] + W[3635] * W[272];
+    W[3815] = W[90] * W[3814] + W[483] * W[3421] + W[876] * W[3028] + W[1269] * W[2635] + W[1662] * W[2242]
+            + W[2055] * W[1849] + W[2448] * W[1456] + W[2841] * W[1063] + W[3234] * W[670] + W[3627] * W[277];
+    W[3821] = W[108] * W[3805] + W[501] * W[3412] + W[894] * W[3019] + W[1287] * W[2626] + W[1680] * W[2233]
+            + W[2073] * W[1840] + W[2466] * W[1447] + W[2859] * W[1054] + W[3252] * W[661] + W[3645] * W[268];
+    W[3823] = W[100] * W[3809] + W[493] * W[3416] + W[886] * W[3023] + W[1279] * W[2630] + W[1672] * W[2237]
+            + W[2065] * W[1844] + W[2458] * W[1451] + W[2851] * W[1058] + W[3244] * W[665] + W[3637] * W[272];
+    W[3826] = W[92] * W[3814] + W[485] * W[3421] + W[878] * W[3028] + W[1271] * W[2635] + W[1664] * W[2242]
+            + W[2057] * W[1849] + W[2450] * W[1456] + W[2843] * W[1063] + W[3236] * W[670] + W[3629] * W[277];
+    W[3832] = W[111] * W[3805] + W[504] * W[3412] + W[897] * W[3019] + W[1290] * W[2626] + W[1683] * W[2233]
+            + W[2076] * W[1840] + W[2469] * W[1447] + W[2862] * W[1054] + W[3255] * W[661] + W[3648] * W[268];
+    W[3834] = W[103] * W[3809] + W[496] * W[3416] + W[889] * W[3023] + W[1282] * W[2630] + W[1675] * W[2237]
+            + W[2068] * W[1844] + W[2461] * W[1451] + W[2854] * W[1058] + W[3247] * W[665] + W[3640] * W[272];
+    W[3837] = W[95] * W[3814] + W[488] * W[3421] + W[881] * W[3028] + W[1274] * W[2635] + W[1667] * W[2242]
+            + W[2060] * W[1849] + W[2453] * W[1456] + W[2846] * W[1063] + W[3239] * W[670] + W[3632] * W[277];
+    W[3845] = W[122] * W[3844] + W[515] * W[3451] + W[908] * W[3058] + W[1301] * W[2665] + W[1694] * W[2272]
+            + W[2087] * W[1879] + W[2480] * W[1486] + W[2873] * W[1093] + W[3266] * W[700] + W[3659] * W[307];
+    W[3849] = W[114] * W[3848] + W[507] * W[3455] + W[900] * W[3062] + W[1293] * W[2669] + W[1686] * W[2276]
+            + W[2079] * W[1883] + W[2472] * W[1490] + W[2865] * W[1097] + W[3258] * W[704] + W[3651] * W[311];
+    W[3856] = W[124] * W[3844] + W[517] * W[3451] + W[910] * W[3058] + W[1303] * W[2665] + W[1696] * W[2272]
+            + W[2089] * W[1879] + W[2482] * W[1486] + W[2875] * W[1093] + W[3268] * W[700] + W[3661] * W[307];
+    W[3858] = W[116] * W[3848] + W[509] * W[3455] + W[902] * W[3062] + W[1295] * W[2669] + W[1688] * W[2276]
+            + W[2081] * W[1883] + W[2474] * W[1490] + W[2867] * W[1097] + W[3260] * W[704] + W[3653] * W[311];
+    W[3865] = W[127] * W[3844] + W[520] * W[3451] + W[913] * W[3058] + W[1306] * W[2665] + W[1699] * W[2272]
+            + W[2092] * W[1879] + W[2485] * W[1486] + W[2878] * W[1093] + W[3271] * W[700] + W[3664] * W[307];
+    W[3867] = W[119] * W[3848] + W[512] * W[3455] + W[905] * W[3062] + W[1298] * W[2669] + W[1691] * W[2276]
+            + W[2084] * W[1883] + W[2477] * W[1490] + W[2870] * W[1097] + W[3263] * W[704] + W[3656] * W[311];
+    W[3876] = W[130] * W[3875] + W[523] * W[3482] + W[916] * W[3089] + W[1309] * W[2696] + W[1702] * W[2303]
+            + W[2095] * W[1910] + W[2488] * W[1517] + W[2881] * W[1124] + W[3274] * W[731] + W[3667] * W[338];
+    W[3883] = W[132] * W[3875] + W[525] * W[3482] + W[918] * W[3089] + W[1311] * W[2696] + W[1704] * W[2303]
+            + W[2097] * W[1910] + W[2490] * W[1517] + W[2883] * W[1124] + W[3276] * W[731] + W[3669] * W[338];
+    W[3890] = W[135] * W[3875] + W[528] * W[3482] + W[921] * W[3089] + W[1314] * W[2696] + W[1707] * W[2303]
+            + W[2100] * W[1910] + W[2493] * W[1517] + W[2886] * W[1124] + W[3279] * W[731] + W[3672] * W[338];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 9, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_179(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3740] = W[3737] + W[3739];
+    W[3755] = W[3752] + W[3754];
+    W[3776] = W[3775] - W[3724];
+    W[3789] = W[3788] - W[3739];
+    W[3802] = W[3801] - W[3754];
+    W[3819] = W[3818] - W[3719];
+    W[3830] = W[3829] - W[3736];
+    W[3841] = W[3840] - W[3751];
+    W[3854] = W[3853] - W[3714];
+    W[3863] = W[3862] - W[3733];
+    W[3872] = W[3871] - W[3748];
+    W[3881] = W[3880] - W[3709];
+    W[3888] = W[3887] - W[3730];
+    W[3895] = W[3894] - W[3745];
+    W[3900] = W[3705] + W[3899];
+    W[3905] = W[3728] + W[3904];
+    W[3910] = W[3743] + W[3909];
+    W[3726] = W[161] * W[3725];
+    W[3741] = W[161] * W[3740];
+    W[3756] = W[161] * W[3755];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 9, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_181(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[365] = X[347] / 10.0;
+    X[366] = X[348] / 10.0;
+    X[367] = X[349] / 10.0;
+    X[368] = X[350] / 10.0;
+    X[369] = X[351] / 10.0;
+    X[370] = X[352] / 10.0;
+    X[371] = X[353] / 10.0;
+    X[372] = X[354] / 10.0;
+    X[373] = X[355] / 10.0;
+    X[374] = X[356] / 10.0;
+    X[375] = X[357] / 10.0;
+    X[376] = X[358] / 10.0;
+    X[377] = X[359] / 10.0;
+    X[378] = -W[3726] / W[138] / 10.0;
+    X[379] = -W[3741] / W[138] / 10.0;
+    X[380] = -W[3756] / W[138] / 10.0;
+    X[381] = -W[3777] / W[140] / 10.0;
+    X[382] = -W[3790] / W[140] / 10.0;
+    X[383] = -W[3803] / W[140] / 10.0;
+    X[384] = -W[3820] / W[141] / 10.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_183(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3932] = X[360] - X[363];
+    W[3936] = X[361] - X[364];
+    W[3941] = X[362] - X[365];
+    W[3945] = X[360] - X[366];
+    W[3948] = X[361] - X[367];
+    W[3952] = X[362] - X[368];
+    W[3956] = X[360] - X[369];
+    W[3959] = X[361] - X[370];
+    W[3963] = X[362] - X[371];
+    W[3967] = X[360] - X[372];
+    W[3970] = X[361] - X[373];
+    W[3974] = X[362] - X[374];
+    W[3978] = X[360] - X[375];
+    W[3981] = X[361] - X[376];
+    W[3985] = X[362] - X[377];
+    W[3988] = X[363] - X[366];
+    W[3990] = X[364] - X[367];
+    W[3993] = X[365] - X[368];
+    W[3996] = X[363] - X[369];
+    W[3998] = X[364] - X[370];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_185(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4054] = X[370] - X[376];
+    W[4057] = X[371] - X[377];
+    W[4060] = X[372] - X[375];
+    W[4062] = X[373] - X[376];
+    W[4065] = X[374] - X[377];
+    W[3933] = (W[2] * W[3932] + W[395] * W[3539] + W[788] * W[3146] + W[1181] * W[2753] + W[1574] * W[2360]) * 2.0
+            + W[1967] * W[1967];
+    W[3937] = (W[6] * W[3936] + W[399] * W[3543] + W[792] * W[3150] + W[1185] * W[2757] + W[1578] * W[2364]) * 2.0
+            + W[1971] * W[1971];
+    W[3942] = (W[11] * W[3941] + W[404] * W[3548] + W[797] * W[3155] + W[1190] * W[2762] + W[1583] * W[2369]) * 2.0
+            + W[1976] * W[1976];
+    W[3946] = (W[15] * W[3945] + W[408] * W[3552] + W[801] * W[3159] + W[1194] * W[2766] + W[1587] * W[2373]) * 2.0
+            + W[1980] * W[1980];
+    W[3949] = (W[18] * W[3948] + W[411] * W[3555] + W[804] * W[3162] + W[1197] * W[2769] + W[1590] * W[2376]) * 2.0
+            + W[1983] * W[1983];
+    W[3953] = (W[22] * W[3952] + W[415] * W[3559] + W[808] * W[3166] + W[1201] * W[2773] + W[1594] * W[2380]) * 2.0
+            + W[1987] * W[1987];
+    W[3957] = (W[26] * W[3956] + W[419] * W[3563] + W[812] * W[3170] + W[1205] * W[2777] + W[1598] * W[2384]) * 2.0
+            + W[1991] * W[1991];
+    W[3960] = (W[29] * W[3959] + W[422] * W[3566] + W[815] * W[3173] + W[1208] * W[2780] + W[1601] * W[2387]) * 2.0
+            + W[1994] * W[1994];
+    W[3964] = (W[33] * W[3963] + W[426] * W[3570] + W[819] * W[3177] + W[1212] * W[2784] + W[1605] * W[2391]) * 2.0
+            + W[1998] * W[1998];
+    W[3968] = (W[37] * W[3967] + W[430] * W[3574] + W[823] * W[3181] + W[1216] * W[2788] + W[1609] * W[2395]) * 2.0
+            + W[2002] * W[2002];
+    W[3971] = (W[40] * W[3970] + W[433] * W[3577] + W[826] * W[3184] + W[1219] * W[2791] + W[1612] * W[2398]) * 2.0
+            + W[2005] * W[2005];
+    W[3975] = (W[44] * W[3974] + W[437] * W[3581] + W[830] * W[3188] + W[1223] * W[2795] + W[1616] * W[2402]) * 2.0
+            + W[2009] * W[2009];
+    W[3979] = (W[48] * W[3978] + W[441] * W[3585] + W[834] * W[3192] + W[1227] * W[2799] + W[1620] * W[2406]) * 2.0
+            + W[2013] * W[2013];
+    W[3982] = (W[51] * W[3981] + W[444] * W[3588] + W[837] * W[3195] + W[1230] * W[2802] + W[1623] * W[2409]) * 2.0
+            + W[2016] * W[2016];
+    W[3986] = (W[55] * W[3985] + W[448] * W[3592] + W[841] * W[3199] + W[1234] * W[2806] + W[1627] * W[2413]) * 2.0
+            + W[2020] * W[2020];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_187(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4042] = (W[111] * W[4041] + W[504] * W[3648] + W[897] * W[3255] + W[1290] * W[2862] + W[1683] * W[2469]) * 2.0
+            + W[2076] * W[2076];
+    W[4045] = (W[114] * W[4044] + W[507] * W[3651] + W[900] * W[3258] + W[1293] * W[2865] + W[1686] * W[2472]) * 2.0
+            + W[2079] * W[2079];
+    W[4047] = (W[116] * W[4046] + W[509] * W[3653] + W[902] * W[3260] + W[1295] * W[2867] + W[1688] * W[2474]) * 2.0
+            + W[2081] * W[2081];
+    W[4050] = (W[119] * W[4049] + W[512] * W[3656] + W[905] * W[3263] + W[1298] * W[2870] + W[1691] * W[2477]) * 2.0
+            + W[2084] * W[2084];
+    W[4053] = (W[122] * W[4052] + W[515] * W[3659] + W[908] * W[3266] + W[1301] * W[2873] + W[1694] * W[2480]) * 2.0
+            + W[2087] * W[2087];
+    W[4055] = (W[124] * W[4054] + W[517] * W[3661] + W[910] * W[3268] + W[1303] * W[2875] + W[1696] * W[2482]) * 2.0
+            + W[2089] * W[2089];
+    W[4058] = (W[127] * W[4057] + W[520] * W[3664] + W[913] * W[3271] + W[1306] * W[2878] + W[1699] * W[2485]) * 2.0
+            + W[2092] * W[2092];
+    W[4061] = (W[130] * W[4060] + W[523] * W[3667] + W[916] * W[3274] + W[1309] * W[2881] + W[1702] * W[2488]) * 2.0
+            + W[2095] * W[2095];
+    W[4063] = (W[132] * W[4062] + W[525] * W[3669] + W[918] * W[3276] + W[1311] * W[2883] + W[1704] * W[2490]) * 2.0
+            + W[2097] * W[2097];
+    W[4066] = (W[135] * W[4065] + W[528] * W[3672] + W[921] * W[3279] + W[1314] * W[2886] + W[1707] * W[2493]) * 2.0
+            + W[2100] * W[2100];
+    W[3938] = W[3933] + W[3937];
+    W[3950] = W[3946] + W[3949];
+    W[3961] = W[3957] + W[3960];
+    W[3972] = W[3968] + W[3971];
+    W[3983] = W[3979] + W[3982];
+    W[3992] = W[3989] + W[3991];
+    W[4000] = W[3997] + W[3999];
+    W[4008] = W[4005] + W[4007];
+    W[4016] = W[4013] + W[4015];
+    W[4024] = W[4021] + W[4023];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_189(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4096] = (-15.0 * W[3987] * W[166] - 14.5 * W[3594] * W[559] - 14.0 * W[3201] * W[952] - 13.5 * W[2808] * W[1345]
+            - 13.0 * W[2415] * W[1738] - 12.5 * W[2022] * W[2131] - 12.0 * W[1629] * W[2524] - 11.5 * W[1236] * W[2917]
+            - 11.0 * W[843] * W[3310] - 10.5 * W[450] * W[3703]) / (10.0 * W[57]);
+    W[4100] = (-15.0 * W[3976] * W[170] - 14.5 * W[3583] * W[563] - 14.0 * W[3190] * W[956] - 13.5 * W[2797] * W[1349]
+            - 13.0 * W[2404] * W[1742] - 12.5 * W[2011] * W[2135] - 12.0 * W[1618] * W[2528] - 11.5 * W[1225] * W[2921]
+            - 11.0 * W[832] * W[3314] - 10.5 * W[439] * W[3707]) / (10.0 * W[46]);
+    W[4105] = (-15.0 * W[3965] * W[175] - 14.5 * W[3572] * W[568] - 14.0 * W[3179] * W[961] - 13.5 * W[2786] * W[1354]
+            - 13.0 * W[2393] * W[1747] - 12.5 * W[2000] * W[2140] - 12.0 * W[1607] * W[2533] - 11.5 * W[1214] * W[2926]
+            - 11.0 * W[821] * W[3319] - 10.5 * W[428] * W[3712]) / (10.0 * W[35]);
+    W[4110] = (-15.0 * W[3954] * W[180] - 14.5 * W[3561] * W[573] - 14.0 * W[3168] * W[966] - 13.5 * W[2775] * W[1359]
+            - 13.0 * W[2382] * W[1752] - 12.5 * W[1989] * W[2145] - 12.0 * W[1596] * W[2538] - 11.5 * W[1203] * W[2931]
+            - 11.0 * W[810] * W[3324] - 10.5 * W[417] * W[3717]) / (10.0 * W[24]);
+    W[4115] = (-15.0 * W[3943] * W[185] - 14.5 * W[3550] * W[578] - 14.0 * W[3157] * W[971] - 13.5 * W[2764] * W[1364]
+            - 13.0 * W[2371] * W[1757] - 12.5 * W[1978] * W[2150] - 12.0 * W[1585] * W[2543] - 11.5 * W[1192] * W[2936]
+            - 11.0 * W[799] * W[3329] - 10.5 * W[406] * W[3722]) / (10.0 * W[13]);
+    W[4151] = (-15.0 * W[4019] * W[221] - 14.5 * W[3626] * W[614] - 14.0 * W[3233] * W[1007] - 13.5 * W[2840] * W[1400]
+            - 13.0 * W[2447] * W[1793] - 12.5 * W[2054] * W[2186] - 12.0 * W[1661] * W[2579] - 11.5 * W[1268] * W[2972]
+            - 11.0 * W[875] * W[3365] - 10.5 * W[482] * W[3758]) / (10.0 * W[89]);
+    W[4155] = (-15.0 * W[4011] * W[225] - 14.5 * W[3618] * W[618] - 14.0 * W[3225] * W[1011] - 13.5 * W[2832] * W[1404]
+            - 13.0 * W[2439] * W[1797] - 12.5 * W[2046] * W[2190] - 12.0 * W[1653] * W[2583] - 11.5 * W[1260] * W[2976]
+            - 11.0 * W[867] * W[3369] - 10.5 * W[474] * W[3762]) / (10.0 * W[81]);
+    W[4160] = (-15.0 * W[4003] * W[230] - 14.5 * W[3610] * W[623] - 14.0 * W[3217] * W[1016] - 13.5 * W[2824] * W[1409]
+            - 13.0 * W[2431] * W[1802] - 12.5 * W[2038] * W[2195] - 12.0 * W[1645] * W[2588] - 11.5 * W[1252] * W[2981]
+            - 11.0 * W[859] * W[3374] - 10.5 * W[466] * W[3767]) / (10.0 * W[73]);
+    W[4165] = (-15.0 * W[3995] * W[235] - 14.5 * W[3602] * W[628] - 14.0 * W[3209] * W[1021] - 13.5 * W[2816] * W[1414]
+            - 13.0 * W[2423] * W[1807] - 12.5 * W[2030] * W[2200] - 12.0 * W[1637] * W[2593] - 11.5 * W[1244] * W[2986]
+            - 11.0 * W[851] * W[3379] - 10.5 * W[458] * W[3772]) / (10.0 * W[65]);
+    W[4198] = (-15.0 * W[4043] * W[268] - 14.5 * W[3650] * W[661] - 14.0 * W[3257] * W[1054] - 13.5 * W[2864] * W[1447]
+            - 13.0 * W[2471] * W[1840] - 12.5 * W[2078] * W[2233] - 12.0 * W[1685] * W[2626] - 11.5 * W[1292] * W[3019]
+            - 11.0 * W[899] * W[3412] - 10.5 * W[506] * W[3805]) / (10.0 * W[113]);
+    W[4202] = (-15.0 * W[4035] * W[272] - 14.5 * W[3642] * W[665] - 14.0 * W[3249] * W[1058] - 13.5 * W[2856] * W[1451]
+            - 13.0 * W[2463] * W[1844] - 12.5 * W[2070] * W[2237] - 12.0 * W[1677] * W[2630] - 11.5 * W[1284] * W[3023]
+            - 11.0 * W[891] * W[3416] - 10.5 * W[498] * W[3809]) / (10.0 * W[105]);
+    W[4207] = (-15.0 * W[4027] * W[277] - 14.5 * W[3634] * W[670] - 14.0 * W[3241] * W[1063] - 13.5 * W[2848] * W[1456]
+            - 13.0 * W[2455] * W[1849] - 12.5 * W[2062] * W[2242] - 12.0 * W[1669] * W[2635] - 11.5 * W[1276] * W[3028]
+            - 11.0 * W[883] * W[3421] - 10.5 * W[490] * W[3814]) / (10.0 * W[97]);
+    W[4237] = (-15.0 * W[4059] * W[307] - 14.5 * W[3666] * W[700] - 14.0 * W[3273] * W[1093] - 13.5 * W[2880] * W[1486]
+            - 13.0 * W[2487] * W[1879] - 12.5 * W[2094] * W[2272] - 12.0 * W[1701] * W[2665] - 11.5 * W[1308] * W[3058]
+            - 11.0 * W[915] * W[3451] - 10.5 * W[522] * W[3844]) / (10.0 * W[129]);
+    W[4241] = (-15.0 * W[4051] * W[311] - 14.5 * W[3658] * W[704] - 14.0 * W[3265] * W[1097] - 13.5 * W[2872] * W[1490]
+            - 13.0 * W[2479] * W[1883] - 12.5 * W[2086] * W[2276] - 12.0 * W[1693] * W[2669] - 11.5 * W[1300] * W[3062]
+            - 11.0 * W[907] * W[3455] - 10.5 * W[514] * W[3848]) / (10.0 * W[121]);
+    W[4268] = (-15.0 * W[4067] * W[338] - 14.5 * W[3674] * W[731] - 14.0 * W[3281] * W[1124] - 13.5 * W[2888] * W[1517]
+            - 13.0 * W[2495] * W[1910] - 12.5 * W[2102] * W[2303] - 12.0 * W[1709] * W[2696] - 11.5 * W[1316] * W[3089]
+            - 11.0 * W[923] * W[3482] - 10.5 * W[530] * W[3875]) / (10.0 * W[137]);
+    W[4097] = W[48] * W[4096] + W[441] * W[3703] + W[834] * W[3310] + W[1227] * W[2917] + W[1620] * W[2524]
+            + W[2013] * W[2131] + W[2406] * W[1738] + W[2799] * W[1345] + W[3192] * W[952] + W[3585] * W[559]
+            + W[3978] * W[166];
+    W[4101] = W[37] * W[4100] + W[430] * W[3707] + W[823] * W[3314] + W[1216] * W[2921] + W[1609] * W[2528]
+            + W[2002] * W[2135] + W[2395] * W[1742] + W[2788] * W[1349] + W[3181] * W[956] + W[3574] * W[563]
+            + W[3967] * W[170];
+    W[4106] = W[26] * W[4105] + W[419] * W[3712] + W[812] * W[3319] + W[1205] * W[2926] + W[1598] * W[2533]
+            + W[1991] * W[2140] + W[2384] * W[1747] + W[2777] * W[1354] + W[3170] * W[961] + W[3563] * W[568]
+            + W[3956] * W[175];
+    W[4111] = W[15] * W[4110] + W[408] * W[3717] + W[801] * W[3324] + W[1194] * W[2931] + W[1587] * W[2538]
+            + W[1980] * W[2145] + W[2373] * W[1752] + W[2766] * W[1359] + W[3159] * W[966] + W[3552] * W[573]
+            + W[3945] * W[180];
+    W[4116] = W[2] * W[4115] + W[395] * W[3722] + W[788] * W[3329] + W[1181] * W[2936] + W[1574] * W[2543]
+            + W[1967] * W[2150] + W[2360] * W[1757] + W[2753] * W[1364] + W[3146] * W[971] + W[3539] * W[578]
+            + W[3932] * W[185];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_191(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4189] = W[71] * W[4160] + W[464] * W[3767] + W[857] * W[3374] + W[1250] * W[2981] + W[1643] * W[2588]
+            + W[2036] * W[2195] + W[2429] * W[1802] + W[2822] * W[1409] + W[3215] * W[1016] + W[3608] * W[623]
+            + W[4001] * W[230];
+    W[4192] = W[63] * W[4165] + W[456] * W[3772] + W[849] * W[3379] + W[1242] * W[2986] + W[1635] * W[2593]
+            + W[2028] * W[2200] + W[2421] * W[1807] + W[2814] * W[1414] + W[3207] * W[1021] + W[3600] * W[628]
+            + W[3993] * W[235];
+    W[4199] = W[106] * W[4198] + W[499] * W[3805] + W[892] * W[3412] + W[1285] * W[3019] + W[1678] * W[2626]
+            + W[2071] * W[2233] + W[2464] * W[1840] + W[2857] * W[1447] + W[3250] * W[1054] + W[3643] * W[661]
+            + W[4036] * W[268];
+    W[4203] = W[98] * W[4202] + W[491] * W[3809] + W[884] * W[3416] + W[1277] * W[3023] + W[1670] * W[2630]
+            + W[2063] * W[2237] + W[2456] * W[1844] + W[2849] * W[1451] + W[3242] * W[1058] + W[3635] * W[665]
+            + W[4028] * W[272];
+    W[4208] = W[90] * W[4207] + W[483] * W[3814] + W[876] * W[3421] + W[1269] * W[3028] + W[1662] * W[2635]
+            + W[2055] * W[2242] + W[2448] * W[1849] + W[2841] * W[1456] + W[3234] * W[1063] + W[3627] * W[670]
+            + W[4020] * W[277];
+    W[4214] = W[108] * W[4198] + W[501] * W[3805] + W[894] * W[3412] + W[1287] * W[3019] + W[1680] * W[2626]
+            + W[2073] * W[2233] + W[2466] * W[1840] + W[2859] * W[1447] + W[3252] * W[1054] + W[3645] * W[661]
+            + W[4038] * W[268];
+    W[4216] = W[100] * W[4202] + W[493] * W[3809] + W[886] * W[3416] + W[1279] * W[3023] + W[1672] * W[2630]
+            + W[2065] * W[2237] + W[2458] * W[1844] + W[2851] * W[1451] + W[3244] * W[1058] + W[3637] * W[665]
+            + W[4030] * W[272];
+    W[4219] = W[92] * W[4207] + W[485] * W[3814] + W[878] * W[3421] + W[1271] * W[3028] + W[1664] * W[2635]
+            + W[2057] * W[2242] + W[2450] * W[1849] + W[2843] * W[1456] + W[3236] * W[1063] + W[3629] * W[670]
+            + W[4022] * W[277];
+    W[4225] = W[111] * W[4198] + W[504] * W[3805] + W[897] * W[3412] + W[1290] * W[3019] + W[1683] * W[2626]
+            + W[2076] * W[2233] + W[2469] * W[1840] + W[2862] * W[1447] + W[3255] * W[1054] + W[3648] * W[661]
+            + W[4041] * W[268];
+    W[4227] = W[103] * W[4202] + W[496] * W[3809] + W[889] * W[3416] + W[1282] * W[3023] + W[1675] * W[2630]
+            + W[2068] * W[2237] + W[2461] * W[1844] + W[2854] * W[1451] + W[3247] * W[1058] + W[3640] * W[665]
+            + W[4033] * W[272];
+    W[4230] = W[95] * W[4207] + W[488] * W[3814] + W[881] * W[3421] + W[1274] * W[3028] + W[1667] * W[2635]
+            + W[2060] * W[2242] + W[2453] * W[1849] + W[2846] * W[1456] + W[3239] * W[1063] + W[3632] * W[670]
+            + W[4025] * W[277];
+    W[4238] = W[122] * W[4237] + W[515] * W[3844] + W[908] * W[3451] + W[1301] * W[3058] + W[1694] * W[2665]
+            + W[2087] * W[2272] + W[2480] * W[1879] + W[2873] * W[1486] + W[3266] * W[1093] + W[3659] * W[700]
+            + W[4052] * W[307];
+    W[4242] = W[114] * W[4241] + W[507] * W[3848] + W[900] * W[3455] + W[1293] * W[3062] + W[1686] * W[2669]
+            + W[2079] * W[2276] + W[2472] * W[1883] + W[2865] * W[1490] + W[3258] * W[1097] + W[3651] * W[704]
+            + W[4044] * W[311];
+    W[4249] = W[124] * W[4237] + W[517] * W[3844] + W[910] * W[3451] + W[1303] * W[3058] + W[1696] * W[2665]
+            + W[2089] * W[2272] + W[2482] * W[1879] + W[2875] * W[1486] + W[3268] * W[1093] + W[3661] * W[700]
+            + W[4054] * W[307];
+    W[4251] = W[116] * W[4241] + W[509] * W[3848] + W[902] * W[3455] + W[1295] * W[3062] + W[1688] * W[2669]
+            + W[2081] * W[2276] + W[2474] * W[1883] + W[2867] * W[1490] + W[3260] * W[1097] + W[3653] * W[704]
+            + W[4046] * W[311];
+    W[4258] = W[127] * W[4237] + W[520] * W[3844] + W[913] * W[3451] + W[1306] * W[3058] + W[1699] * W[2665]
+            + W[2092] * W[2272] + W[2485] * W[1879] + W[2878] * W[1486] + W[3271] * W[1093] + W[3664] * W[700]
+            + W[4057] * W[307];
+    W[4260] = W[119] * W[4241] + W[512] * W[3848] + W[905] * W[3455] + W[1298] * W[3062] + W[1691] * W[2669]
+            + W[2084] * W[2276] + W[2477] * W[1883] + W[2870] * W[1490] + W[3263] * W[1097] + W[3656] * W[704]
+            + W[4049] * W[311];
+    W[4269] = W[130] * W[4268] + W[523] * W[3875] + W[916] * W[3482] + W[1309] * W[3089] + W[1702] * W[2696]
+            + W[2095] * W[2303] + W[2488] * W[1910] + W[2881] * W[1517] + W[3274] * W[1124] + W[3667] * W[731]
+            + W[4060] * W[338];
+    W[4276] = W[132] * W[4268] + W[525] * W[3875] + W[918] * W[3482] + W[1311] * W[3089] + W[1704] * W[2696]
+            + W[2097] * W[2303] + W[2490] * W[1910] + W[2883] * W[1517] + W[3276] * W[1124] + W[3669] * W[731]
+            + W[4062] * W[338];
+    W[4283] = W[135] * W[4268] + W[528] * W[3875] + W[921] * W[3482] + W[1314] * W[3089] + W[1707] * W[2696]
+            + W[2100] * W[2303] + W[2493] * W[1910] + W[2886] * W[1517] + W[3279] * W[1124] + W[3672] * W[731]
+            + W[4065] * W[338];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_197(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4133] = W[4130] + W[4132];
+    W[4148] = W[4145] + W[4147];
+    W[4169] = W[4168] - W[4117];
+    W[4182] = W[4181] - W[4132];
+    W[4195] = W[4194] - W[4147];
+    W[4212] = W[4211] - W[4112];
+    W[4223] = W[4222] - W[4129];
+    W[4234] = W[4233] - W[4144];
+    W[4247] = W[4246] - W[4107];
+    W[4256] = W[4255] - W[4126];
+    W[4265] = W[4264] - W[4141];
+    W[4274] = W[4273] - W[4102];
+    W[4281] = W[4280] - W[4123];
+    W[4288] = W[4287] - W[4138];
+    W[4293] = W[4098] + W[4292];
+    W[4298] = W[4121] + W[4297];
+    W[4303] = W[4136] + W[4302];
+    W[4119] = W[161] * W[4118];
+    W[4134] = W[161] * W[4133];
+    W[4149] = W[161] * W[4148];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_199(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[401] = X[383] / 11.0;
+    X[402] = X[384] / 11.0;
+    X[403] = X[385] / 11.0;
+    X[404] = X[386] / 11.0;
+    X[405] = X[387] / 11.0;
+    X[406] = X[388] / 11.0;
+    X[407] = X[389] / 11.0;
+    X[408] = X[390] / 11.0;
+    X[409] = X[391] / 11.0;
+    X[410] = X[392] / 11.0;
+    X[411] = X[393] / 11.0;
+    X[412] = X[394] / 11.0;
+    X[413] = X[395] / 11.0;
+    X[414] = -W[4119] / W[138] / 11.0;
+    X[415] = -W[4134] / W[138] / 11.0;
+    X[416] = -W[4149] / W[138] / 11.0;
+    X[417] = -W[4170] / W[140] / 11.0;
+    X[418] = -W[4183] / W[140] / 11.0;
+    X[419] = -W[4196] / W[140] / 11.0;
+    X[420] = -W[4213] / W[141] / 11.0;
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 11, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_202(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4394] = X[401] - X[407];
+    W[4397] = X[399] - X[408];
+    W[4399] = X[400] - X[409];
+    W[4402] = X[401] - X[410];
+    W[4405] = X[399] - X[411];
+    W[4407] = X[400] - X[412];
+    W[4410] = X[401] - X[413];
+    W[4413] = X[402] - X[405];
+    W[4415] = X[403] - X[406];
+    W[4418] = X[404] - X[407];
+    W[4421] = X[402] - X[408];
+    W[4423] = X[403] - X[409];
+    W[4426] = X[404] - X[410];
+    W[4429] = X[402] - X[411];
+    W[4431] = X[403] - X[412];
+    W[4434] = X[404] - X[413];
+    W[4437] = X[405] - X[408];
+    W[4439] = X[406] - X[409];
+    W[4442] = X[407] - X[410];
+    W[4445] = X[405] - X[411];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 11, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_204(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4382] = (W[58] * W[4381] + W[451] * W[3988] + W[844] * W[3595] + W[1237] * W[3202] + W[1630] * W[2809]
+            + W[2023] * W[2416]) * 2.0;
+    W[4384] = (W[60] * W[4383] + W[453] * W[3990] + W[846] * W[3597] + W[1239] * W[3204] + W[1632] * W[2811]
+            + W[2025] * W[2418]) * 2.0;
+    W[4387] = (W[63] * W[4386] + W[456] * W[3993] + W[849] * W[3600] + W[1242] * W[3207] + W[1635] * W[2814]
+            + W[2028] * W[2421]) * 2.0;
+    W[4390] = (W[66] * W[4389] + W[459] * W[3996] + W[852] * W[3603] + W[1245] * W[3210] + W[1638] * W[2817]
+            + W[2031] * W[2424]) * 2.0;
+    W[4392] = (W[68] * W[4391] + W[461] * W[3998] + W[854] * W[3605] + W[1247] * W[3212] + W[1640] * W[2819]
+            + W[2033] * W[2426]) * 2.0;
+    W[4395] = (W[71] * W[4394] + W[464] * W[4001] + W[857] * W[3608] + W[1250] * W[3215] + W[1643] * W[2822]
+            + W[2036] * W[2429]) * 2.0;
+    W[4398] = (W[74] * W[4397] + W[467] * W[4004] + W[860] * W[3611] + W[1253] * W[3218] + W[1646] * W[2825]
+            + W[2039] * W[2432]) * 2.0;
+    W[4400] = (W[76] * W[4399] + W[469] * W[4006] + W[862] * W[3613] + W[1255] * W[3220] + W[1648] * W[2827]
+            + W[2041] * W[2434]) * 2.0;
+    W[4403] = (W[79] * W[4402] + W[472] * W[4009] + W[865] * W[3616] + W[1258] * W[3223] + W[1651] * W[2830]
+            + W[2044] * W[2437]) * 2.0;
+    W[4406] = (W[82] * W[4405] + W[475] * W[4012] + W[868] * W[3619] + W[1261] * W[3226] + W[1654] * W[2833]
+            + W[2047] * W[2440]) * 2.0;
+    W[4408] = (W[84] * W[4407] + W[477] * W[4014] + W[870] * W[3621] + W[1263] * W[3228] + W[1656] * W[2835]
+            + W[2049] * W[2442]) * 2.0;
+    W[4411] = (W[87] * W[4410] + W[480] * W[4017] + W[873] * W[3624] + W[1266] * W[3231] + W[1659] * W[2838]
+            + W[2052] * W[2445]) * 2.0;
+    W[4414] = (W[90] * W[4413] + W[483] * W[4020] + W[876] * W[3627] + W[1269] * W[3234] + W[1662] * W[2841]
+            + W[2055] * W[2448]) * 2.0;
+    W[4416] = (W[92] * W[4415] + W[485] * W[4022] + W[878] * W[3629] + W[1271] * W[3236] + W[1664] * W[2843]
+            + W[2057] * W[2450]) * 2.0;
+    W[4419] = (W[95] * W[4418] + W[488] * W[4025] + W[881] * W[3632] + W[1274] * W[3239] + W[1667] * W[2846]
+            + W[2060] * W[2453]) * 2.0;
+    W[4422] = (W[98] * W[4421] + W[491] * W[4028] + W[884] * W[3635] + W[1277] * W[3242] + W[1670] * W[2849]
+            + W[2063] * W[2456]) * 2.0;
+    W[4424] = (W[100] * W[4423] + W[493] * W[4030] + W[886] * W[3637] + W[1279] * W[3244] + W[1672] * W[2851]
+            + W[2065] * W[2458]) * 2.0;
+    W[4427] = (W[103] * W[4426] + W[496] * W[4033] + W[889] * W[3640] + W[1282] * W[3247] + W[1675] * W[2854]
+            + W[2068] * W[2461]) * 2.0;
+    W[4430] = (W[106] * W[4429] + W[499] * W[4036] + W[892] * W[3643] + W[1285] * W[3250] + W[1678] * W[2857]
+            + W[2071] * W[2464]) * 2.0;
+    W[4432] = (W[108] * W[4431] + W[501] * W[4038] + W[894] * W[3645] + W[1287] * W[3252] + W[1680] * W[2859]
+            + W[2073] * W[2466]) * 2.0;
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 11, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_206(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4425] = W[4422] + W[4424];
+    W[4433] = W[4430] + W[4432];
+    W[4441] = W[4438] + W[4440];
+    W[4449] = W[4446] + W[4448];
+    W[4457] = W[4454] + W[4456];
+    W[4336] = W[4331] + W[4335];
+    W[4347] = W[4343] + W[4346];
+    W[4358] = W[4354] + W[4357];
+    W[4369] = W[4365] + W[4368];
+    W[4380] = W[4376] + W[4379];
+    W[4388] = W[4385] + W[4387];
+    W[4396] = W[4393] + W[4395];
+    W[4404] = W[4401] + W[4403];
+    W[4412] = W[4409] + W[4411];
+    W[4420] = W[4417] + W[4419];
+    W[4428] = W[4425] + W[4427];
+    W[4436] = W[4433] + W[4435];
+    W[4444] = W[4441] + W[4443];
+    W[4452] = W[4449] + W[4451];
+    W[4460] = W[4457] + W[4459];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 11, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_207(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4489] = (-16.5 * W[4380] * W[166] - 16.0 * W[3987] * W[559] - 15.5 * W[3594] * W[952] - 15.0 * W[3201] * W[1345]
+            - 14.5 * W[2808] * W[1738] - 14.0 * W[2415] * W[2131] - 13.5 * W[2022] * W[2524] - 13.0 * W[1629] * W[2917]
+            - 12.5 * W[1236] * W[3310] - 12.0 * W[843] * W[3703] - 11.5 * W[450] * W[4096]) / (11.0 * W[57]);
+    W[4493] = (-16.5 * W[4369] * W[170] - 16.0 * W[3976] * W[563] - 15.5 * W[3583] * W[956] - 15.0 * W[3190] * W[1349]
+            - 14.5 * W[2797] * W[1742] - 14.0 * W[2404] * W[2135] - 13.5 * W[2011] * W[2528] - 13.0 * W[1618] * W[2921]
+            - 12.5 * W[1225] * W[3314] - 12.0 * W[832] * W[3707] - 11.5 * W[439] * W[4100]) / (11.0 * W[46]);
+    W[4498] = (-16.5 * W[4358] * W[175] - 16.0 * W[3965] * W[568] - 15.5 * W[3572] * W[961] - 15.0 * W[3179] * W[1354]
+            - 14.5 * W[2786] * W[1747] - 14.0 * W[2393] * W[2140] - 13.5 * W[2000] * W[2533] - 13.0 * W[1607] * W[2926]
+            - 12.5 * W[1214] * W[3319] - 12.0 * W[821] * W[3712] - 11.5 * W[428] * W[4105]) / (11.0 * W[35]);
+    W[4503] = (-16.5 * W[4347] * W[180] - 16.0 * W[3954] * W[573] - 15.5 * W[3561] * W[966] - 15.0 * W[3168] * W[1359]
+            - 14.5 * W[2775] * W[1752] - 14.0 * W[2382] * W[2145] - 13.5 * W[1989] * W[2538] - 13.0 * W[1596] * W[2931]
+            - 12.5 * W[1203] * W[3324] - 12.0 * W[810] * W[3717] - 11.5 * W[417] * W[4110]) / (11.0 * W[24]);
+    W[4508] = (-16.5 * W[4336] * W[185] - 16.0 * W[3943] * W[578] - 15.5 * W[3550] * W[971] - 15.0 * W[3157] * W[1364]
+            - 14.5 * W[2764] * W[1757] - 14.0 * W[2371] * W[2150] - 13.5 * W[1978] * W[2543] - 13.0 * W[1585] * W[2936]
+            - 12.5 * W[1192] * W[3329] - 12.0 * W[799] * W[3722] - 11.5 * W[406] * W[4115]) / (11.0 * W[13]);
+    W[4544] = (-16.5 * W[4412] * W[221] - 16.0 * W[4019] * W[614] - 15.5 * W[3626] * W[1007] - 15.0 * W[3233] * W[1400]
+            - 14.5 * W[2840] * W[1793] - 14.0 * W[2447] * W[2186] - 13.5 * W[2054] * W[2579] - 13.0 * W[1661] * W[2972]
+            - 12.5 * W[1268] * W[3365] - 12.0 * W[875] * W[3758] - 11.5 * W[482] * W[4151]) / (11.0 * W[89]);
+    W[4548] = (-16.5 * W[4404] * W[225] - 16.0 * W[4011] * W[618] - 15.5 * W[3618] * W[1011] - 15.0 * W[3225] * W[1404]
+            - 14.5 * W[2832] * W[1797] - 14.0 * W[2439] * W[2190] - 13.5 * W[2046] * W[2583] - 13.0 * W[1653] * W[2976]
+            - 12.5 * W[1260] * W[3369] - 12.0 * W[867] * W[3762] - 11.5 * W[474] * W[4155]) / (11.0 * W[81]);
+    W[4553] = (-16.5 * W[4396] * W[230] - 16.0 * W[4003] * W[623] - 15.5 * W[3610] * W[1016] - 15.0 * W[3217] * W[1409]
+            - 14.5 * W[2824] * W[1802] - 14.0 * W[2431] * W[2195] - 13.5 * W[2038] * W[2588] - 13.0 * W[1645] * W[2981]
+            - 12.5 * W[1252] * W[3374] - 12.0 * W[859] * W[3767] - 11.5 * W[466] * W[4160]) / (11.0 * W[73]);
+    W[4558] = (-16.5 * W[4388] * W[235] - 16.0 * W[3995] * W[628] - 15.5 * W[3602] * W[1021] - 15.0 * W[3209] * W[1414]
+            - 14.5 * W[2816] * W[1807] - 14.0 * W[2423] * W[2200] - 13.5 * W[2030] * W[2593] - 13.0 * W[1637] * W[2986]
+            - 12.5 * W[1244] * W[3379] - 12.0 * W[851] * W[3772] - 11.5 * W[458] * W[4165]) / (11.0 * W[65]);
+    W[4591] = (-16.5 * W[4436] * W[268] - 16.0 * W[4043] * W[661] - 15.5 * W[3650] * W[1054] - 15.0 * W[3257] * W[1447]
+            - 14.5 * W[2864] * W[1840] - 14.0 * W[2471] * W[2233] - 13.5 * W[2078] * W[2626] - 13.0 * W[1685] * W[3019]
+            - 12.5 * W[1292] * W[3412] - 12.0 * W[899] * W[3805] - 11.5 * W[506] * W[4198]) / (11.0 * W[113]);
+    W[4595] = (-16.5 * W[4428] * W[272] - 16.0 * W[4035] * W[665] - 15.5 * W[3642] * W[1058] - 15.0 * W[3249] * W[1451]
+            - 14.5 * W[2856] * W[1844] - 14.0 * W[2463] * W[2237] - 13.5 * W[2070] * W[2630] - 13.0 * W[1677] * W[3023]
+            - 12.5 * W[1284] * W[3416] - 12.0 * W[891] * W[3809] - 11.5 * W[498] * W[4202]) / (11.0 * W[105]);
+    W[4600] = (-16.5 * W[4420] * W[277] - 16.0 * W[4027] * W[670] - 15.5 * W[3634] * W[1063] - 15.0 * W[3241] * W[1456]
+            - 14.5 * W[2848] * W[1849] - 14.0 * W[2455] * W[2242] - 13.5 * W[2062] * W[2635] - 13.0 * W[1669] * W[3028]
+            - 12.5 * W[1276] * W[3421] - 12.0 * W[883] * W[3814] - 11.5 * W[490] * W[4207]) / (11.0 * W[97]);
+    W[4630] = (-16.5 * W[4452] * W[307] - 16.0 * W[4059] * W[700] - 15.5 * W[3666] * W[1093] - 15.0 * W[3273] * W[1486]
+            - 14.5 * W[2880] * W[1879] - 14.0 * W[2487] * W[2272] - 13.5 * W[2094] * W[2665] - 13.0 * W[1701] * W[3058]
+            - 12.5 * W[1308] * W[3451] - 12.0 * W[915] * W[3844] - 11.5 * W[522] * W[4237]) / (11.0 * W[129]);
+    W[4634] = (-16.5 * W[4444] * W[311] - 16.0 * W[4051] * W[704] - 15.5 * W[3658] * W[1097] - 15.0 * W[3265] * W[1490]
+            - 14.5 * W[2872] * W[1883] - 14.0 * W[2479] * W[2276] - 13.5 * W[2086] * W[2669] - 13.0 * W[1693] * W[3062]
+            - 12.5 * W[1300] * W[3455] - 12.0 * W[907] * W[3848] - 11.5 * W[514] * W[4241]) / (11.0 * W[121]);
+    W[4661] = (-16.5 * W[4460] * W[338] - 16.0 * W[4067] * W[731] - 15.5 * W[3674] * W[1124] - 15.0 * W[3281] * W[1517]
+            - 14.5 * W[2888] * W[1910] - 14.0 * W[2495] * W[2303] - 13.5 * W[2102] * W[2696] - 13.0 * W[1709] * W[3089]
+            - 12.5 * W[1316] * W[3482] - 12.0 * W[923] * W[3875] - 11.5 * W[530] * W[4268]) / (11.0 * W[137]);
+    W[4490] = W[48] * W[4489] + W[441] * W[4096] + W[834] * W[3703] + W[1227] * W[3310] + W[1620] * W[2917]
+            + W[2013] * W[2524] + W[2406] * W[2131] + W[2799] * W[1738] + W[3192] * W[1345] + W[3585] * W[952]
+            + W[3978] * W[559] + W[4371] * W[166];
+    W[4494] = W[37] * W[4493] + W[430] * W[4100] + W[823] * W[3707] + W[1216] * W[3314] + W[1609] * W[2921]
+            + W[2002] * W[2528] + W[2395] * W[2135] + W[2788] * W[1742] + W[3181] * W[1349] + W[3574] * W[956]
+            + W[3967] * W[563] + W[4360] * W[170];
+    W[4499] = W[26] * W[4498] + W[419] * W[4105] + W[812] * W[3712] + W[1205] * W[3319] + W[1598] * W[2926]
+            + W[1991] * W[2533] + W[2384] * W[2140] + W[2777] * W[1747] + W[3170] * W[1354] + W[3563] * W[961]
+            + W[3956] * W[568] + W[4349] * W[175];
+    W[4504] = W[15] * W[4503] + W[408] * W[4110] + W[801] * W[3717] + W[1194] * W[3324] + W[1587] * W[2931]
+            + W[1980] * W[2538] + W[2373] * W[2145] + W[2766] * W[1752] + W[3159] * W[1359] + W[3552] * W[966]
+            + W[3945] * W[573] + W[4338] * W[180];
+    W[4509] = W[2] * W[4508] + W[395] * W[4115] + W[788] * W[3722] + W[1181] * W[3329] + W[1574] * W[2936]
+            + W[1967] * W[2543] + W[2360] * W[2150] + W[2753] * W[1757] + W[3146] * W[1364] + W[3539] * W[971]
+            + W[3932] * W[578] + W[4325] * W[185];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 11, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_209(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4582] = W[71] * W[4553] + W[464] * W[4160] + W[857] * W[3767] + W[1250] * W[3374] + W[1643] * W[2981]
+            + W[2036] * W[2588] + W[2429] * W[2195] + W[2822] * W[1802] + W[3215] * W[1409] + W[3608] * W[1016]
+            + W[4001] * W[623] + W[4394] * W[230];
+    W[4585] = W[63] * W[4558] + W[456] * W[4165] + W[849] * W[3772] + W[1242] * W[3379] + W[1635] * W[2986]
+            + W[2028] * W[2593] + W[2421] * W[2200] + W[2814] * W[1807] + W[3207] * W[1414] + W[3600] * W[1021]
+            + W[3993] * W[628] + W[4386] * W[235];
+    W[4592] = W[106] * W[4591] + W[499] * W[4198] + W[892] * W[3805] + W[1285] * W[3412] + W[1678] * W[3019]
+            + W[2071] * W[2626] + W[2464] * W[2233] + W[2857] * W[1840] + W[3250] * W[1447] + W[3643] * W[1054]
+            + W[4036] * W[661] + W[4429] * W[268];
+    W[4596] = W[98] * W[4595] + W[491] * W[4202] + W[884] * W[3809] + W[1277] * W[3416] + W[1670] * W[3023]
+            + W[2063] * W[2630] + W[2456] * W[2237] + W[2849] * W[1844] + W[3242] * W[1451] + W[3635] * W[1058]
+            + W[4028] * W[665] + W[4421] * W[272];
+    W[4601] = W[90] * W[4600] + W[483] * W[4207] + W[876] * W[3814] + W[1269] * W[3421] + W[1662] * W[3028]
+            + W[2055] * W[2635] + W[2448] * W[2242] + W[2841] * W[1849] + W[3234] * W[1456] + W[3627] * W[1063]
+            + W[4020] * W[670] + W[4413] * W[277];
+    W[4607] = W[108] * W[4591] + W[501] * W[4198] + W[894] * W[3805] + W[1287] * W[3412] + W[1680] * W[3019]
+            + W[2073] * W[2626] + W[2466] * W[2233] + W[2859] * W[1840] + W[3252] * W[1447] + W[3645] * W[1054]
+            + W[4038] * W[661] + W[4431] * W[268];
+    W[4609] = W[100] * W[4595] + W[493] * W[4202] + W[886] * W[3809] + W[1279] * W[3416] + W[1672] * W[3023]
+            + W[2065] * W[2630] + W[2458] * W[2237] + W[2851] * W[1844] + W[3244] * W[1451] + W[3637] * W[1058]
+            + W[4030] * W[665] + W[4423] * W[272];
+    W[4612] = W[92] * W[4600] + W[485] * W[4207] + W[878] * W[3814] + W[1271] * W[3421] + W[1664] * W[3028]
+            + W[2057] * W[2635] + W[2450] * W[2242] + W[2843] * W[1849] + W[3236] * W[1456] + W[3629] * W[1063]
+            + W[4022] * W[670] + W[4415] * W[277];
+    W[4618] = W[111] * W[4591] + W[504] * W[4198] + W[897] * W[3805] + W[1290] * W[3412] + W[1683] * W[3019]
+            + W[2076] * W[2626] + W[2469] * W[2233] + W[2862] * W[1840] + W[3255] * W[1447] + W[3648] * W[1054]
+            + W[4041] * W[661] + W[4434] * W[268];
+    W[4620] = W[103] * W[4595] + W[496] * W[4202] + W[889] * W[3809] + W[1282] * W[3416] + W[1675] * W[3023]
+            + W[2068] * W[2630] + W[2461] * W[2237] + W[2854] * W[1844] + W[3247] * W[1451] + W[3640] * W[1058]
+            + W[4033] * W[665] + W[4426] * W[272];
+    W[4623] = W[95] * W[4600] + W[488] * W[4207] + W[881] * W[3814] + W[1274] * W[3421] + W[1667] * W[3028]
+            + W[2060] * W[2635] + W[2453] * W[2242] + W[2846] * W[1849] + W[3239] * W[1456] + W[3632] * W[1063]
+            + W[4025] * W[670] + W[4418] * W[277];
+    W[4631] = W[122] * W[4630] + W[515] * W[4237] + W[908] * W[3844] + W[1301] * W[3451] + W[1694] * W[3058]
+            + W[2087] * W[2665] + W[2480] * W[2272] + W[2873] * W[1879] + W[3266] * W[1486] + W[3659] * W[1093]
+            + W[4052] * W[700] + W[4445] * W[307];
+    W[4635] = W[114] * W[4634] + W[507] * W[4241] + W[900] * W[3848] + W[1293] * W[3455] + W[1686] * W[3062]
+            + W[2079] * W[2669] + W[2472] * W[2276] + W[2865] * W[1883] + W[3258] * W[1490] + W[3651] * W[1097]
+            + W[4044] * W[704] + W[4437] * W[311];
+    W[4642] = W[124] * W[4630] + W[517] * W[4237] + W[910] * W[3844] + W[1303] * W[3451] + W[1696] * W[3058]
+            + W[2089] * W[2665] + W[2482] * W[2272] + W[2875] * W[1879] + W[3268] * W[1486] + W[3661] * W[1093]
+            + W[4054] * W[700] + W[4447] * W[307];
+    W[4644] = W[116] * W[4634] + W[509] * W[4241] + W[902] * W[3848] + W[1295] * W[3455] + W[1688] * W[3062]
+            + W[2081] * W[2669] + W[2474] * W[2276] + W[2867] * W[1883] + W[3260] * W[1490] + W[3653] * W[1097]
+            + W[4046] * W[704] + W[4439] * W[311];
+    W[4651] = W[127] * W[4630] + W[520] * W[4237] + W[913] * W[3844] + W[1306] * W[3451] + W[1699] * W[3058]
+            + W[2092] * W[2665] + W[2485] * W[2272] + W[2878] * W[1879] + W[3271] * W[1486] + W[3664] * W[1093]
+            + W[4057] * W[700] + W[4450] * W[307];
+    W[4653] = W[119] * W[4634] + W[512] * W[4241] + W[905] * W[3848] + W[1298] * W[3455] + W[1691] * W[3062]
+            + W[2084] * W[2669] + W[2477] * W[2276] + W[2870] * W[1883] + W[3263] * W[1490] + W[3656] * W[1097]
+            + W[4049] * W[704] + W[4442] * W[311];
+    W[4662] = W[130] * W[4661] + W[523] * W[4268] + W[916] * W[3875] + W[1309] * W[3482] + W[1702] * W[3089]
+            + W[2095] * W[2696] + W[2488] * W[2303] + W[2881] * W[1910] + W[3274] * W[1517] + W[3667] * W[1124]
+            + W[4060] * W[731] + W[4453] * W[338];
+    W[4669] = W[132] * W[4661] + W[525] * W[4268] + W[918] * W[3875] + W[1311] * W[3482] + W[1704] * W[3089]
+            + W[2097] * W[2696] + W[2490] * W[2303] + W[2883] * W[1910] + W[3276] * W[1517] + W[3669] * W[1124]
+            + W[4062] * W[731] + W[4455] * W[338];
+    W[4676] = W[135] * W[4661] + W[528] * W[4268] + W[921] * W[3875] + W[1314] * W[3482] + W[1707] * W[3089]
+            + W[2100] * W[2696] + W[2493] * W[2303] + W[2886] * W[1910] + W[3279] * W[1517] + W[3672] * W[1124]
+            + W[4065] * W[731] + W[4458] * W[338];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 11, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_215(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4526] = W[4523] + W[4525];
+    W[4541] = W[4538] + W[4540];
+    W[4562] = W[4561] - W[4510];
+    W[4575] = W[4574] - W[4525];
+    W[4588] = W[4587] - W[4540];
+    W[4605] = W[4604] - W[4505];
+    W[4616] = W[4615] - W[4522];
+    W[4627] = W[4626] - W[4537];
+    W[4640] = W[4639] - W[4500];
+    W[4649] = W[4648] - W[4519];
+    W[4658] = W[4657] - W[4534];
+    W[4667] = W[4666] - W[4495];
+    W[4674] = W[4673] - W[4516];
+    W[4681] = W[4680] - W[4531];
+    W[4686] = W[4491] + W[4685];
+    W[4691] = W[4514] + W[4690];
+    W[4696] = W[4529] + W[4695];
+    W[4512] = W[161] * W[4511];
+    W[4527] = W[161] * W[4526];
+    W[4542] = W[161] * W[4541];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 11, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_217(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[437] = X[419] / 12.0;
+    X[438] = X[420] / 12.0;
+    X[439] = X[421] / 12.0;
+    X[440] = X[422] / 12.0;
+    X[441] = X[423] / 12.0;
+    X[442] = X[424] / 12.0;
+    X[443] = X[425] / 12.0;
+    X[444] = X[426] / 12.0;
+    X[445] = X[427] / 12.0;
+    X[446] = X[428] / 12.0;
+    X[447] = X[429] / 12.0;
+    X[448] = X[430] / 12.0;
+    X[449] = X[431] / 12.0;
+    X[450] = -W[4512] / W[138] / 12.0;
+    X[451] = -W[4527] / W[138] / 12.0;
+    X[452] = -W[4542] / W[138] / 12.0;
+    X[453] = -W[4563] / W[140] / 12.0;
+    X[454] = -W[4576] / W[140] / 12.0;
+    X[455] = -W[4589] / W[140] / 12.0;
+    X[456] = -W[4606] / W[141] / 12.0;
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 12, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_220(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4787] = X[437] - X[443];
+    W[4790] = X[435] - X[444];
+    W[4792] = X[436] - X[445];
+    W[4795] = X[437] - X[446];
+    W[4798] = X[435] - X[447];
+    W[4800] = X[436] - X[448];
+    W[4803] = X[437] - X[449];
+    W[4806] = X[438] - X[441];
+    W[4808] = X[439] - X[442];
+    W[4811] = X[440] - X[443];
+    W[4814] = X[438] - X[444];
+    W[4816] = X[439] - X[445];
+    W[4819] = X[440] - X[446];
+    W[4822] = X[438] - X[447];
+    W[4824] = X[439] - X[448];
+    W[4827] = X[440] - X[449];
+    W[4830] = X[441] - X[444];
+    W[4832] = X[442] - X[445];
+    W[4835] = X[443] - X[446];
+    W[4838] = X[441] - X[447];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 12, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_222(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4775] = (W[58] * W[4774] + W[451] * W[4381] + W[844] * W[3988] + W[1237] * W[3595] + W[1630] * W[3202]
+            + W[2023] * W[2809]) * 2.0 + W[2416] * W[2416];
+    W[4777] = (W[60] * W[4776] + W[453] * W[4383] + W[846] * W[3990] + W[1239] * W[3597] + W[1632] * W[3204]
+            + W[2025] * W[2811]) * 2.0 + W[2418] * W[2418];
+    W[4780] = (W[63] * W[4779] + W[456] * W[4386] + W[849] * W[3993] + W[1242] * W[3600] + W[1635] * W[3207]
+            + W[2028] * W[2814]) * 2.0 + W[2421] * W[2421];
+    W[4783] = (W[66] * W[4782] + W[459] * W[4389] + W[852] * W[3996] + W[1245] * W[3603] + W[1638] * W[3210]
+            + W[2031] * W[2817]) * 2.0 + W[2424] * W[2424];
+    W[4785] = (W[68] * W[4784] + W[461] * W[4391] + W[854] * W[3998] + W[1247] * W[3605] + W[1640] * W[3212]
+            + W[2033] * W[2819]) * 2.0 + W[2426] * W[2426];
+    W[4788] = (W[71] * W[4787] + W[464] * W[4394] + W[857] * W[4001] + W[1250] * W[3608] + W[1643] * W[3215]
+            + W[2036] * W[2822]) * 2.0 + W[2429] * W[2429];
+    W[4791] = (W[74] * W[4790] + W[467] * W[4397] + W[860] * W[4004] + W[1253] * W[3611] + W[1646] * W[3218]
+            + W[2039] * W[2825]) * 2.0 + W[2432] * W[2432];
+    W[4793] = (W[76] * W[4792] + W[469] * W[4399] + W[862] * W[4006] + W[1255] * W[3613] + W[1648] * W[3220]
+            + W[2041] * W[2827]) * 2.0 + W[2434] * W[2434];
+    W[4796] = (W[79] * W[4795] + W[472] * W[4402] + W[865] * W[4009] + W[1258] * W[3616] + W[1651] * W[3223]
+            + W[2044] * W[2830]) * 2.0 + W[2437] * W[2437];
+    W[4799] = (W[82] * W[4798] + W[475] * W[4405] + W[868] * W[4012] + W[1261] * W[3619] + W[1654] * W[3226]
+            + W[2047] * W[2833]) * 2.0 + W[2440] * W[2440];
+    W[4801] = (W[84] * W[4800] + W[477] * W[4407] + W[870] * W[4014] + W[1263] * W[3621] + W[1656] * W[3228]
+            + W[2049] * W[2835]) * 2.0 + W[2442] * W[2442];
+    W[4804] = (W[87] * W[4803] + W[480] * W[4410] + W[873] * W[4017] + W[1266] * W[3624] + W[1659] * W[3231]
+            + W[2052] * W[2838]) * 2.0 + W[2445] * W[2445];
+    W[4807] = (W[90] * W[4806] + W[483] * W[4413] + W[876] * W[4020] + W[1269] * W[3627] + W[1662] * W[3234]
+            + W[2055] * W[2841]) * 2.0 + W[2448] * W[2448];
+    W[4809] = (W[92] * W[4808] + W[485] * W[4415] + W[878] * W[4022] + W[1271] * W[3629] + W[1664] * W[3236]
+            + W[2057] * W[2843]) * 2.0 + W[2450] * W[2450];
+    W[4812] = (W[95] * W[4811] + W[488] * W[4418] + W[881] * W[4025] + W[1274] * W[3632] + W[1667] * W[3239]
+            + W[2060] * W[2846]) * 2.0 + W[2453] * W[2453];
+    W[4815] = (W[98] * W[4814] + W[491] * W[4421] + W[884] * W[4028] + W[1277] * W[3635] + W[1670] * W[3242]
+            + W[2063] * W[2849]) * 2.0 + W[2456] * W[2456];
+    W[4817] = (W[100] * W[4816] + W[493] * W[4423] + W[886] * W[4030] + W[1279] * W[3637] + W[1672] * W[3244]
+            + W[2065] * W[2851]) * 2.0 + W[2458] * W[2458];
+    W[4820] = (W[103] * W[4819] + W[496] * W[4426] + W[889] * W[4033] + W[1282] * W[3640] + W[1675] * W[3247]
+            + W[2068] * W[2854]) * 2.0 + W[2461] * W[2461];
+    W[4823] = (W[106] * W[4822] + W[499] * W[4429] + W[892] * W[4036] + W[1285] * W[3643] + W[1678] * W[3250]
+            + W[2071] * W[2857]) * 2.0 + W[2464] * W[2464];
+    W[4825] = (W[108] * W[4824] + W[501] * W[4431] + W[894] * W[4038] + W[1287] * W[3645] + W[1680] * W[3252]
+            + W[2073] * W[2859]) * 2.0 + W[2466] * W[2466];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 12, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_224(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4818] = W[4815] + W[4817];
+    W[4826] = W[4823] + W[4825];
+    W[4834] = W[4831] + W[4833];
+    W[4842] = W[4839] + W[4841];
+    W[4850] = W[4847] + W[4849];
+    W[4729] = W[4724] + W[4728];
+    W[4740] = W[4736] + W[4739];
+    W[4751] = W[4747] + W[4750];
+    W[4762] = W[4758] + W[4761];
+    W[4773] = W[4769] + W[4772];
+    W[4781] = W[4778] + W[4780];
+    W[4789] = W[4786] + W[4788];
+    W[4797] = W[4794] + W[4796];
+    W[4805] = W[4802] + W[4804];
+    W[4813] = W[4810] + W[4812];
+    W[4821] = W[4818] + W[4820];
+    W[4829] = W[4826] + W[4828];
+    W[4837] = W[4834] + W[4836];
+    W[4845] = W[4842] + W[4844];
+    W[4853] = W[4850] + W[4852];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 12, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_225(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4882] = (-18.0 * W[4773] * W[166] - 17.5 * W[4380] * W[559] - 17.0 * W[3987] * W[952] - 16.5 * W[3594] * W[1345]
+            - 16.0 * W[3201] * W[1738] - 15.5 * W[2808] * W[2131] - 15.0 * W[2415] * W[2524] - 14.5 * W[2022] * W[2917]
+            - 14.0 * W[1629] * W[3310] - 13.5 * W[1236] * W[3703] - 13.0 * W[843] * W[4096] - 12.5 * W[450] * W[4489]) / (12.0 * W[57]);
+    W[4886] = (-18.0 * W[4762] * W[170] - 17.5 * W[4369] * W[563] - 17.0 * W[3976] * W[956] - 16.5 * W[3583] * W[1349]
+            - 16.0 * W[3190] * W[1742] - 15.5 * W[2797] * W[2135] - 15.0 * W[2404] * W[2528] - 14.5 * W[2011] * W[2921]
+            - 14.0 * W[1618] * W[3314] - 13.5 * W[1225] * W[3707] - 13.0 * W[832] * W[4100] - 12.5 * W[439] * W[4493]) / (12.0 * W[46]);
+    W[4891] = (-18.0 * W[4751] * W[175] - 17.5 * W[4358] * W[568] - 17.0 * W[3965] * W[961] - 16.5 * W[3572] * W[1354]
+            - 16.0 * W[3179] * W[1747] - 15.5 * W[2786] * W[2140] - 15.0 * W[2393] * W[2533] - 14.5 * W[2000] * W[2926]
+            - 14.0 * W[1607] * W[3319] - 13.5 * W[1214] * W[3712] - 13.0 * W[821] * W[4105] - 12.5 * W[428] * W[4498]) / (12.0 * W[35]);
+    W[4896] = (-18.0 * W[4740] * W[180] - 17.5 * W[4347] * W[573] - 17.0 * W[3954] * W[966] - 16.5 * W[3561] * W[1359]
+            - 16.0 * W[3168] * W[1752] - 15.5 * W[2775] * W[2145] - 15.0 * W[2382] * W[2538] - 14.5 * W[1989] * W[2931]
+            - 14.0 * W[1596] * W[3324] - 13.5 * W[1203] * W[3717] - 13.0 * W[810] * W[4110] - 12.5 * W[417] * W[4503]) / (12.0 * W[24]);
+    W[4901] = (-18.0 * W[4729] * W[185] - 17.5 * W[4336] * W[578] - 17.0 * W[3943] * W[971] - 16.5 * W[3550] * W[1364]
+            - 16.0 * W[3157] * W[1757] - 15.5 * W[2764] * W[2150] - 15.0 * W[2371] * W[2543] - 14.5 * W[1978] * W[2936]
+            - 14.0 * W[1585] * W[3329] - 13.5 * W[1192] * W[3722] - 13.0 * W[799] * W[4115] - 12.5 * W[406] * W[4508]) / (12.0 * W[13]);
+    W[4937] = (-18.0 * W[4805] * W[221] - 17.5 * W[4412] * W[614] - 17.0 * W[4019] * W[1007] - 16.5 * W[3626] * W[1400]
+            - 16.0 * W[3233] * W[1793] - 15.5 * W[2840] * W[2186] - 15.0 * W[2447] * W[2579] - 14.5 * W[2054] * W[2972]
+            - 14.0 * W[1661] * W[3365] - 13.5 * W[1268] * W[3758] - 13.0 * W[875] * W[4151] - 12.5 * W[482] * W[4544]) / (12.0 * W[89]);
+    W[4941] = (-18.0 * W[4797] * W[225] - 17.5 * W[4404] * W[618] - 17.0 * W[4011] * W[1011] - 16.5 * W[3618] * W[1404]
+            - 16.0 * W[3225] * W[1797] - 15.5 * W[2832] * W[2190] - 15.0 * W[2439] * W[2583] - 14.5 * W[2046] * W[2976]
+            - 14.0 * W[1653] * W[3369] - 13.5 * W[1260] * W[3762] - 13.0 * W[867] * W[4155] - 12.5 * W[474] * W[4548]) / (12.0 * W[81]);
+    W[4946] = (-18.0 * W[4789] * W[230] - 17.5 * W[4396] * W[623] - 17.0 * W[4003] * W[1016] - 16.5 * W[3610] * W[1409]
+            - 16.0 * W[3217] * W[1802] - 15.5 * W[2824] * W[2195] - 15.0 * W[2431] * W[2588] - 14.5 * W[2038] * W[2981]
+            - 14.0 * W[1645] * W[3374] - 13.5 * W[1252] * W[3767] - 13.0 * W[859] * W[4160] - 12.5 * W[466] * W[4553]) / (12.0 * W[73]);
+    W[4951] = (-18.0 * W[4781] * W[235] - 17.5 * W[4388] * W[628] - 17.0 * W[3995] * W[1021] - 16.5 * W[3602] * W[1414]
+            - 16.0 * W[3209] * W[1807] - 15.5 * W[2816] * W[2200] - 15.0 * W[2423] * W[2593] - 14.5 * W[2030] * W[2986]
+            - 14.0 * W[1637] * W[3379] - 13.5 * W[1244] * W[3772] - 13.0 * W[851] * W[4165] - 12.5 * W[458] * W[4558]) / (12.0 * W[65]);
+    W[4984] = (-18.0 * W[4829] * W[268] - 17.5 * W[4436] * W[661] - 17.0 * W[4043] * W[1054] - 16.5 * W[3650] * W[1447]
+            - 16.0 * W[3257] * W[1840] - 15.5 * W[2864] * W[2233] - 15.0 * W[2471] * W[2626] - 14.5 * W[2078] * W[3019]
+            - 14.0 * W[1685] * W[3412] - 13.5 * W[1292] * W[3805] - 13.0 * W[899] * W[4198] - 12.5 * W[506] * W[4591]) / (12.0 * W[113]);
+    W[4988] = (-18.0 * W[4821] * W[272] - 17.5 * W[4428] * W[665] - 17.0 * W[4035] * W[1058] - 16.5 * W[3642] * W[1451]
+            - 16.0 * W[3249] * W[1844] - 15.5 * W[2856] * W[2237] - 15.0 * W[2463] * W[2630] - 14.5 * W[2070] * W[3023]
+            - 14.0 * W[1677] * W[3416] - 13.5 * W[1284] * W[3809] - 13.0 * W[891] * W[4202] - 12.5 * W[498] * W[4595]) / (12.0 * W[105]);
+    W[4993] = (-18.0 * W[4813] * W[277] - 17.5 * W[4420] * W[670] - 17.0 * W[4027] * W[1063] - 16.5 * W[3634] * W[1456]
+            - 16.0 * W[3241] * W[1849] - 15.5 * W[2848] * W[2242] - 15.0 * W[2455] * W[2635] - 14.5 * W[2062] * W[3028]
+            - 14.0 * W[1669] * W[3421] - 13.5 * W[1276] * W[3814] - 13.0 * W[883] * W[4207] - 12.5 * W[490] * W[4600]) / (12.0 * W[97]);
+    W[5023] = (-18.0 * W[4845] * W[307] - 17.5 * W[4452] * W[700] - 17.0 * W[4059] * W[1093] - 16.5 * W[3666] * W[1486]
+            - 16.0 * W[3273] * W[1879] - 15.5 * W[2880] * W[2272] - 15.0 * W[2487] * W[2665] - 14.5 * W[2094] * W[3058]
+            - 14.0 * W[1701] * W[3451] - 13.5 * W[1308] * W[3844] - 13.0 * W[915] * W[4237] - 12.5 * W[522] * W[4630]) / (12.0 * W[129]);
+    W[5027] = (-18.0 * W[4837] * W[311] - 17.5 * W[4444] * W[704] - 17.0 * W[4051] * W[1097] - 16.5 * W[3658] * W[1490]
+            - 16.0 * W[3265] * W[1883] - 15.5 * W[2872] * W[2276] - 15.0 * W[2479] * W[2669] - 14.5 * W[2086] * W[3062]
+            - 14.0 * W[1693] * W[3455] - 13.5 * W[1300] * W[3848] - 13.0 * W[907] * W[4241] - 12.5 * W[514] * W[4634]) / (12.0 * W[121]);
+    W[5054] = (-18.0 * W[4853] * W[338] - 17.5 * W[4460] * W[731] - 17.0 * W[4067] * W[1124] - 16.5 * W[3674] * W[1517]
+            - 16.0 * W[3281] * W[1910] - 15.5 * W[2888] * W[2303] - 15.0 * W[2495] * W[2696] - 14.5 * W[2102] * W[3089]
+            - 14.0 * W[1709] * W[3482] - 13.5 * W[1316] * W[3875] - 13.0 * W[923] * W[4268] - 12.5 * W[530] * W[4661]) / (12.0 * W[137]);
+    W[4883] = W[48] * W[4882] + W[441] * W[4489] + W[834] * W[4096] + W[1227] * W[3703] + W[1620] * W[3310]
+            + W[2013] * W[2917] + W[2406] * W[2524] + W[2799] * W[2131] + W[3192] * W[1738] + W[3585] * W[1345]
+            + W[3978] * W[952] + W[4371] * W[559] + W[4764] * W[166];
+    W[4887] = W[37] * W[4886] + W[430] * W[4493] + W[823] * W[4100] + W[1216] * W[3707] + W[1609] * W[3314]
+            + W[2002] * W[2921] + W[2395] * W[2528] + W[2788] * W[2135] + W[3181] * W[1742] + W[3574] * W[1349]
+            + W[3967] * W[956] + W[4360] * W[563] + W[4753] * W[170];
+    W[4892] = W[26] * W[4891] + W[419] * W[4498] + W[812] * W[4105] + W[1205] * W[3712] + W[1598] * W[3319]
+            + W[1991] * W[2926] + W[2384] * W[2533] + W[2777] * W[2140] + W[3170] * W[1747] + W[3563] * W[1354]
+            + W[3956] * W[961] + W[4349] * W[568] + W[4742] * W[175];
+    W[4897] = W[15] * W[4896] + W[408] * W[4503] + W[801] * W[4110] + W[1194] * W[3717] + W[1587] * W[3324]
+            + W[1980] * W[2931] + W[2373] * W[2538] + W[2766] * W[2145] + W[3159] * W[1752] + W[3552] * W[1359]
+            + W[3945] * W[966] + W[4338] * W[573] + W[4731] * W[180];
+    W[4902] = W[2] * W[4901] + W[395] * W[4508] + W[788] * W[4115] + W[1181] * W[3722] + W[1574] * W[3329]
+            + W[1967] * W[2936] + W[2360] * W[2543] + W[2753] * W[2150] + W[3146] * W[1757] + W[3539] * W[1364]
+            + W[3932] * W[971] + W[4325] * W[578] + W[4718] * W[185];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 12, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_227(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4975] = W[71] * W[4946] + W[464] * W[4553] + W[857] * W[4160] + W[1250] * W[3767] + W[1643] * W[3374]
+            + W[2036] * W[2981] + W[2429] * W[2588] + W[2822] * W[2195] + W[3215] * W[1802] + W[3608] * W[1409]
+            + W[4001] * W[1016] + W[4394] * W[623] + W[4787] * W[230];
+    W[4978] = W[63] * W[4951] + W[456] * W[4558] + W[849] * W[4165] + W[1242] * W[3772] + W[1635] * W[3379]
+            + W[2028] * W[2986] + W[2421] * W[2593] + W[2814] * W[2200] + W[3207] * W[1807] + W[3600] * W[1414]
+            + W[3993] * W[1021] + W[4386] * W[628] + W[4779] * W[235];
+    W[4985] = W[106] * W[4984] + W[499] * W[4591] + W[892] * W[4198] + W[1285] * W[3805] + W[1678] * W[3412]
+            + W[2071] * W[3019] + W[2464] * W[2626] + W[2857] * W[2233] + W[3250] * W[1840] + W[3643] * W[1447]
+            + W[4036] * W[1054] + W[4429] * W[661] + W[4822] * W[268];
+    W[4989] = W[98] * W[4988] + W[491] * W[4595] + W[884] * W[4202] + W[1277] * W[3809] + W[1670] * W[3416]
+            + W[2063] * W[3023] + W[2456] * W[2630] + W[2849] * W[2237] + W[3242] * W[1844] + W[3635] * W[1451]
+            + W[4028] * W[1058] + W[4421] * W[665] + W[4814] * W[272];
+    W[4994] = W[90] * W[4993] + W[483] * W[4600] + W[876] * W[4207] + W[1269] * W[3814] + W[1662] * W[3421]
+            + W[2055] * W[3028] + W[2448] * W[2635] + W[2841] * W[2242] + W[3234] * W[1849] + W[3627] * W[1456]
+            + W[4020] * W[1063] + W[4413] * W[670] + W[4806] * W[277];
+    W[5000] = W[108] * W[4984] + W[501] * W[4591] + W[894] * W[4198] + W[1287] * W[3805] + W[1680] * W[3412]
+            + W[2073] * W[3019] + W[2466] * W[2626] + W[2859] * W[2233] + W[3252] * W[1840] + W[3645] * W[1447]
+            + W[4038] * W[1054] + W[4431] * W[661] + W[4824] * W[268];
+    W[5002] = W[100] * W[4988] + W[493] * W[4595] + W[886] * W[4202] + W[1279] * W[3809] + W[1672] * W[3416]
+            + W[2065] * W[3023] + W[2458] * W[2630] + W[2851] * W[2237] + W[3244] * W[1844] + W[3637] * W[1451]
+            + W[4030] * W[1058] + W[4423] * W[665] + W[4816] * W[272];
+    W[5005] = W[92] * W[4993] + W[485] * W[4600] + W[878] * W[4207] + W[1271] * W[3814] + W[1664] * W[3421]
+            + W[2057] * W[3028] + W[2450] * W[2635] + W[2843] * W[2242] + W[3236] * W[1849] + W[3629] * W[1456]
+            + W[4022] * W[1063] + W[4415] * W[670] + W[4808] * W[277];
+    W[5011] = W[111] * W[4984] + W[504] * W[4591] + W[897] * W[4198] + W[1290] * W[3805] + W[1683] * W[3412]
+            + W[2076] * W[3019] + W[2469] * W[2626] + W[2862] * W[2233] + W[3255] * W[1840] + W[3648] * W[1447]
+            + W[4041] * W[1054] + W[4434] * W[661] + W[4827] * W[268];
+    W[5013] = W[103] * W[4988] + W[496] * W[4595] + W[889] * W[4202] + W[1282] * W[3809] + W[1675] * W[3416]
+            + W[2068] * W[3023] + W[2461] * W[2630] + W[2854] * W[2237] + W[3247] * W[1844] + W[3640] * W[1451]
+            + W[4033] * W[1058] + W[4426] * W[665] + W[4819] * W[272];
+    W[5016] = W[95] * W[4993] + W[488] * W[4600] + W[881] * W[4207] + W[1274] * W[3814] + W[1667] * W[3421]
+            + W[2060] * W[3028] + W[2453] * W[2635] + W[2846] * W[2242] + W[3239] * W[1849] + W[3632] * W[1456]
+            + W[4025] * W[1063] + W[4418] * W[670] + W[4811] * W[277];
+    W[5024] = W[122] * W[5023] + W[515] * W[4630] + W[908] * W[4237] + W[1301] * W[3844] + W[1694] * W[3451]
+            + W[2087] * W[3058] + W[2480] * W[2665] + W[2873] * W[2272] + W[3266] * W[1879] + W[3659] * W[1486]
+            + W[4052] * W[1093] + W[4445] * W[700] + W[4838] * W[307];
+    W[5028] = W[114] * W[5027] + W[507] * W[4634] + W[900] * W[4241] + W[1293] * W[3848] + W[1686] * W[3455]
+            + W[2079] * W[3062] + W[2472] * W[2669] + W[2865] * W[2276] + W[3258] * W[1883] + W[3651] * W[1490]
+            + W[4044] * W[1097] + W[4437] * W[704] + W[4830] * W[311];
+    W[5035] = W[124] * W[5023] + W[517] * W[4630] + W[910] * W[4237] + W[1303] * W[3844] + W[1696] * W[3451]
+            + W[2089] * W[3058] + W[2482] * W[2665] + W[2875] * W[2272] + W[3268] * W[1879] + W[3661] * W[1486]
+            + W[4054] * W[1093] + W[4447] * W[700] + W[4840] * W[307];
+    W[5037] = W[116] * W[5027] + W[509] * W[4634] + W[902] * W[4241] + W[1295] * W[3848] + W[1688] * W[3455]
+            + W[2081] * W[3062] + W[2474] * W[2669] + W[2867] * W[2276] + W[3260] * W[1883] + W[3653] * W[1490]
+            + W[4046] * W[1097] + W[4439] * W[704] + W[4832] * W[311];
+    W[5044] = W[127] * W[5023] + W[520] * W[4630] + W[913] * W[4237] + W[1306] * W[3844] + W[1699] * W[3451]
+            + W[2092] * W[3058] + W[2485] * W[2665] + W[2878] * W[2272] + W[3271] * W[1879] + W[3664] * W[1486]
+            + W[4057] * W[1093] + W[4450] * W[700] + W[4843] * W[307];
+    W[5046] = W[119] * W[5027] + W[512] * W[4634] + W[905] * W[4241] + W[1298] * W[3848] + W[1691] * W[3455]
+            + W[2084] * W[3062] + W[2477] * W[2669] + W[2870] * W[2276] + W[3263] * W[1883] + W[3656] * W[1490]
+            + W[4049] * W[1097] + W[4442] * W[704] + W[4835] * W[311];
+    W[5055] = W[130] * W[5054] + W[523] * W[4661] + W[916] * W[4268] + W[1309] * W[3875] + W[1702] * W[3482]
+            + W[2095] * W[3089] + W[2488] * W[2696] + W[2881] * W[2303] + W[3274] * W[1910] + W[3667] * W[1517]
+            + W[4060] * W[1124] + W[4453] * W[731] + W[4846] * W[338];
+    W[5062] = W[132] * W[5054] + W[525] * W[4661] + W[918] * W[4268] + W[1311] * W[3875] + W[1704] * W[3482]
+            + W[2097] * W[3089] + W[2490] * W[2696] + W[2883] * W[2303] + W[3276] * W[1910] + W[3669] * W[1517]
+            + W[4062] * W[1124] + W[4455] * W[731] + W[4848] * W[338];
+    W[5069] = W[135] * W[5054] + W[528] * W[4661] + W[921] * W[4268] + W[1314] * W[3875] + W[1707] * W[3482]
+            + W[2100] * W[3089] + W[2493] * W[2696] + W[2886] * W[2303] + W[3279] * W[1910] + W[3672] * W[1517]
+            + W[4065] * W[1124] + W[4458] * W[731] + W[4851] * W[338];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 12, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_233(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4919] = W[4916] + W[4918];
+    W[4934] = W[4931] + W[4933];
+    W[4955] = W[4954] - W[4903];
+    W[4968] = W[4967] - W[4918];
+    W[4981] = W[4980] - W[4933];
+    W[4998] = W[4997] - W[4898];
+    W[5009] = W[5008] - W[4915];
+    W[5020] = W[5019] - W[4930];
+    W[5033] = W[5032] - W[4893];
+    W[5042] = W[5041] - W[4912];
+    W[5051] = W[5050] - W[4927];
+    W[5060] = W[5059] - W[4888];
+    W[5067] = W[5066] - W[4909];
+    W[5074] = W[5073] - W[4924];
+    W[5079] = W[4884] + W[5078];
+    W[5084] = W[4907] + W[5083];
+    W[5089] = W[4922] + W[5088];
+    W[4905] = W[161] * W[4904];
+    W[4920] = W[161] * W[4919];
+    W[4935] = W[161] * W[4934];
+    return 0;
+}
+
+/* Lines 340 .. 350 of taylor_run's order 12, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_236(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[493] = -W[5010] / W[141] / 13.0;
+    X[494] = -W[5021] / W[141] / 13.0;
+    X[495] = -W[5034] / W[142] / 13.0;
+    X[496] = -W[5043] / W[142] / 13.0;
+    X[497] = -W[5052] / W[142] / 13.0;
+    X[498] = -W[5061] / W[143] / 13.0;
+    X[499] = -W[5068] / W[143] / 13.0;
+    X[500] = -W[5075] / W[143] / 13.0;
+    X[501] = -W[5080] / W[144] / 13.0;
+    X[502] = -W[5085] / W[144] / 13.0;
+    X[503] = -W[5090] / W[144] / 13.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_237(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5111] = X[468] - X[471];
+    W[5115] = X[469] - X[472];
+    W[5120] = X[470] - X[473];
+    W[5124] = X[468] - X[474];
+    W[5127] = X[469] - X[475];
+    W[5131] = X[470] - X[476];
+    W[5135] = X[468] - X[477];
+    W[5138] = X[469] - X[478];
+    W[5142] = X[470] - X[479];
+    W[5146] = X[468] - X[480];
+    W[5149] = X[469] - X[481];
+    W[5153] = X[470] - X[482];
+    W[5157] = X[468] - X[483];
+    W[5160] = X[469] - X[484];
+    W[5164] = X[470] - X[485];
+    W[5167] = X[471] - X[474];
+    W[5169] = X[472] - X[475];
+    W[5172] = X[473] - X[476];
+    W[5175] = X[471] - X[477];
+    W[5177] = X[472] - X[478];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_239(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5233] = X[478] - X[484];
+    W[5236] = X[479] - X[485];
+    W[5239] = X[480] - X[483];
+    W[5241] = X[481] - X[484];
+    W[5244] = X[482] - X[485];
+    W[5112] = (W[2] * W[5111] + W[395] * W[4718] + W[788] * W[4325] + W[1181] * W[3932] + W[1574] * W[3539]
+            + W[1967] * W[3146] + W[2360] * W[2753]) * 2.0;
+    W[5116] = (W[6] * W[5115] + W[399] * W[4722] + W[792] * W[4329] + W[1185] * W[3936] + W[1578] * W[3543]
+            + W[1971] * W[3150] + W[2364] * W[2757]) * 2.0;
+    W[5121] = (W[11] * W[5120] + W[404] * W[4727] + W[797] * W[4334] + W[1190] * W[3941] + W[1583] * W[3548]
+            + W[1976] * W[3155] + W[2369] * W[2762]) * 2.0;
+    W[5125] = (W[15] * W[5124] + W[408] * W[4731] + W[801] * W[4338] + W[1194] * W[3945] + W[1587] * W[3552]
+            + W[1980] * W[3159] + W[2373] * W[2766]) * 2.0;
+    W[5128] = (W[18] * W[5127] + W[411] * W[4734] + W[804] * W[4341] + W[1197] * W[3948] + W[1590] * W[3555]
+            + W[1983] * W[3162] + W[2376] * W[2769]) * 2.0;
+    W[5132] = (W[22] * W[5131] + W[415] * W[4738] + W[808] * W[4345] + W[1201] * W[3952] + W[1594] * W[3559]
+            + W[1987] * W[3166] + W[2380] * W[2773]) * 2.0;
+    W[5136] = (W[26] * W[5135] + W[419] * W[4742] + W[812] * W[4349] + W[1205] * W[3956] + W[1598] * W[3563]
+            + W[1991] * W[3170] + W[2384] * W[2777]) * 2.0;
+    W[5139] = (W[29] * W[5138] + W[422] * W[4745] + W[815] * W[4352] + W[1208] * W[3959] + W[1601] * W[3566]
+            + W[1994] * W[3173] + W[2387] * W[2780]) * 2.0;
+    W[5143] = (W[33] * W[5142] + W[426] * W[4749] + W[819] * W[4356] + W[1212] * W[3963] + W[1605] * W[3570]
+            + W[1998] * W[3177] + W[2391] * W[2784]) * 2.0;
+    W[5147] = (W[37] * W[5146] + W[430] * W[4753] + W[823] * W[4360] + W[1216] * W[3967] + W[1609] * W[3574]
+            + W[2002] * W[3181] + W[2395] * W[2788]) * 2.0;
+    W[5150] = (W[40] * W[5149] + W[433] * W[4756] + W[826] * W[4363] + W[1219] * W[3970] + W[1612] * W[3577]
+            + W[2005] * W[3184] + W[2398] * W[2791]) * 2.0;
+    W[5154] = (W[44] * W[5153] + W[437] * W[4760] + W[830] * W[4367] + W[1223] * W[3974] + W[1616] * W[3581]
+            + W[2009] * W[3188] + W[2402] * W[2795]) * 2.0;
+    W[5158] = (W[48] * W[5157] + W[441] * W[4764] + W[834] * W[4371] + W[1227] * W[3978] + W[1620] * W[3585]
+            + W[2013] * W[3192] + W[2406] * W[2799]) * 2.0;
+    W[5161] = (W[51] * W[5160] + W[444] * W[4767] + W[837] * W[4374] + W[1230] * W[3981] + W[1623] * W[3588]
+            + W[2016] * W[3195] + W[2409] * W[2802]) * 2.0;
+    W[5165] = (W[55] * W[5164] + W[448] * W[4771] + W[841] * W[4378] + W[1234] * W[3985] + W[1627] * W[3592]
+            + W[2020] * W[3199] + W[2413] * W[2806]) * 2.0;
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_241(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5221] = (W[111] * W[5220] + W[504] * W[4827] + W[897] * W[4434] + W[1290] * W[4041] + W[1683] * W[3648]
+            + W[2076] * W[3255] + W[2469] * W[2862]) * 2.0;
+    W[5224] = (W[114] * W[5223] + W[507] * W[4830] + W[900] * W[4437] + W[1293] * W[4044] + W[1686] * W[3651]
+            + W[2079] * W[3258] + W[2472] * W[2865]) * 2.0;
+    W[5226] = (W[116] * W[5225] + W[509] * W[4832] + W[902] * W[4439] + W[1295] * W[4046] + W[1688] * W[3653]
+            + W[2081] * W[3260] + W[2474] * W[2867]) * 2.0;
+    W[5229] = (W[119] * W[5228] + W[512] * W[4835] + W[905] * W[4442] + W[1298] * W[4049] + W[1691] * W[3656]
+            + W[2084] * W[3263] + W[2477] * W[2870]) * 2.0;
+    W[5232] = (W[122] * W[5231] + W[515] * W[4838] + W[908] * W[4445] + W[1301] * W[4052] + W[1694] * W[3659]
+            + W[2087] * W[3266] + W[2480] * W[2873]) * 2.0;
+    W[5234] = (W[124] * W[5233] + W[517] * W[4840] + W[910] * W[4447] + W[1303] * W[4054] + W[1696] * W[3661]
+            + W[2089] * W[3268] + W[2482] * W[2875]) * 2.0;
+    W[5237] = (W[127] * W[5236] + W[520] * W[4843] + W[913] * W[4450] + W[1306] * W[4057] + W[1699] * W[3664]
+            + W[2092] * W[3271] + W[2485] * W[2878]) * 2.0;
+    W[5240] = (W[130] * W[5239] + W[523] * W[4846] + W[916] * W[4453] + W[1309] * W[4060] + W[1702] * W[3667]
+            + W[2095] * W[3274] + W[2488] * W[2881]) * 2.0;
+    W[5242] = (W[132] * W[5241] + W[525] * W[4848] + W[918] * W[4455] + W[1311] * W[4062] + W[1704] * W[3669]
+            + W[2097] * W[3276] + W[2490] * W[2883]) * 2.0;
+    W[5245] = (W[135] * W[5244] + W[528] * W[4851] + W[921] * W[4458] + W[1314] * W[4065] + W[1707] * W[3672]
+            + W[2100] * W[3279] + W[2493] * W[2886]) * 2.0;
+    W[5117] = W[5112] + W[5116];
+    W[5129] = W[5125] + W[5128];
+    W[5140] = W[5136] + W[5139];
+    W[5151] = W[5147] + W[5150];
+    W[5162] = W[5158] + W[5161];
+    W[5171] = W[5168] + W[5170];
+    W[5179] = W[5176] + W[5178];
+    W[5187] = W[5184] + W[5186];
+    W[5195] = W[5192] + W[5194];
+    W[5203] = W[5200] + W[5202];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_244(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5299] = W[51] * W[5275] + W[444] * W[4882] + W[837] * W[4489] + W[1230] * W[4096] + W[1623] * W[3703]
+            + W[2016] * W[3310] + W[2409] * W[2917] + W[2802] * W[2524] + W[3195] * W[2131] + W[3588] * W[1738]
+            + W[3981] * W[1345] + W[4374] * W[952] + W[4767] * W[559] + W[5160] * W[166];
+    W[5301] = W[40] * W[5279] + W[433] * W[4886] + W[826] * W[4493] + W[1219] * W[4100] + W[1612] * W[3707]
+            + W[2005] * W[3314] + W[2398] * W[2921] + W[2791] * W[2528] + W[3184] * W[2135] + W[3577] * W[1742]
+            + W[3970] * W[1349] + W[4363] * W[956] + W[4756] * W[563] + W[5149] * W[170];
+    W[5304] = W[29] * W[5284] + W[422] * W[4891] + W[815] * W[4498] + W[1208] * W[4105] + W[1601] * W[3712]
+            + W[1994] * W[3319] + W[2387] * W[2926] + W[2780] * W[2533] + W[3173] * W[2140] + W[3566] * W[1747]
+            + W[3959] * W[1354] + W[4352] * W[961] + W[4745] * W[568] + W[5138] * W[175];
+    W[5307] = W[18] * W[5289] + W[411] * W[4896] + W[804] * W[4503] + W[1197] * W[4110] + W[1590] * W[3717]
+            + W[1983] * W[3324] + W[2376] * W[2931] + W[2769] * W[2538] + W[3162] * W[2145] + W[3555] * W[1752]
+            + W[3948] * W[1359] + W[4341] * W[966] + W[4734] * W[573] + W[5127] * W[180];
+    W[5310] = W[6] * W[5294] + W[399] * W[4901] + W[792] * W[4508] + W[1185] * W[4115] + W[1578] * W[3722]
+            + W[1971] * W[3329] + W[2364] * W[2936] + W[2757] * W[2543] + W[3150] * W[2150] + W[3543] * W[1757]
+            + W[3936] * W[1364] + W[4329] * W[971] + W[4722] * W[578] + W[5115] * W[185];
+    W[5314] = W[55] * W[5275] + W[448] * W[4882] + W[841] * W[4489] + W[1234] * W[4096] + W[1627] * W[3703]
+            + W[2020] * W[3310] + W[2413] * W[2917] + W[2806] * W[2524] + W[3199] * W[2131] + W[3592] * W[1738]
+            + W[3985] * W[1345] + W[4378] * W[952] + W[4771] * W[559] + W[5164] * W[166];
+    W[5316] = W[44] * W[5279] + W[437] * W[4886] + W[830] * W[4493] + W[1223] * W[4100] + W[1616] * W[3707]
+            + W[2009] * W[3314] + W[2402] * W[2921] + W[2795] * W[2528] + W[3188] * W[2135] + W[3581] * W[1742]
+            + W[3974] * W[1349] + W[4367] * W[956] + W[4760] * W[563] + W[5153] * W[170];
+    W[5319] = W[33] * W[5284] + W[426] * W[4891] + W[819] * W[4498] + W[1212] * W[4105] + W[1605] * W[3712]
+            + W[1998] * W[3319] + W[2391] * W[2926] + W[2784] * W[2533] + W[3177] * W[2140] + W[3570] * W[1747]
+            + W[3963] * W[1354] + W[4356] * W[961] + W[4749] * W[568] + W[5142] * W[175];
+    W[5322] = W[22] * W[5289] + W[415] * W[4896] + W[808] * W[4503] + W[1201] * W[4110] + W[1594] * W[3717]
+            + W[1987] * W[3324] + W[2380] * W[2931] + W[2773] * W[2538] + W[3166] * W[2145] + W[3559] * W[1752]
+            + W[3952] * W[1359] + W[4345] * W[966] + W[4738] * W[573] + W[5131] * W[180];
+    W[5325] = W[11] * W[5294] + W[404] * W[4901] + W[797] * W[4508] + W[1190] * W[4115] + W[1583] * W[3722]
+            + W[1976] * W[3329] + W[2369] * W[2936] + W[2762] * W[2543] + W[3155] * W[2150] + W[3548] * W[1757]
+            + W[3941] * W[1364] + W[4334] * W[971] + W[4727] * W[578] + W[5120] * W[185];
+    W[5331] = W[82] * W[5330] + W[475] * W[4937] + W[868] * W[4544] + W[1261] * W[4151] + W[1654] * W[3758]
+            + W[2047] * W[3365] + W[2440] * W[2972] + W[2833] * W[2579] + W[3226] * W[2186] + W[3619] * W[1793]
+            + W[4012] * W[1400] + W[4405] * W[1007] + W[4798] * W[614] + W[5191] * W[221];
+    W[5335] = W[74] * W[5334] + W[467] * W[4941] + W[860] * W[4548] + W[1253] * W[4155] + W[1646] * W[3762]
+            + W[2039] * W[3369] + W[2432] * W[2976] + W[2825] * W[2583] + W[3218] * W[2190] + W[3611] * W[1797]
+            + W[4004] * W[1404] + W[4397] * W[1011] + W[4790] * W[618] + W[5183] * W[225];
+    W[5340] = W[66] * W[5339] + W[459] * W[4946] + W[852] * W[4553] + W[1245] * W[4160] + W[1638] * W[3767]
+            + W[2031] * W[3374] + W[2424] * W[2981] + W[2817] * W[2588] + W[3210] * W[2195] + W[3603] * W[1802]
+            + W[3996] * W[1409] + W[4389] * W[1016] + W[4782] * W[623] + W[5175] * W[230];
+    W[5345] = W[58] * W[5344] + W[451] * W[4951] + W[844] * W[4558] + W[1237] * W[4165] + W[1630] * W[3772]
+            + W[2023] * W[3379] + W[2416] * W[2986] + W[2809] * W[2593] + W[3202] * W[2200] + W[3595] * W[1807]
+            + W[3988] * W[1414] + W[4381] * W[1021] + W[4774] * W[628] + W[5167] * W[235];
+    W[5350] = W[84] * W[5330] + W[477] * W[4937] + W[870] * W[4544] + W[1263] * W[4151] + W[1656] * W[3758]
+            + W[2049] * W[3365] + W[2442] * W[2972] + W[2835] * W[2579] + W[3228] * W[2186] + W[3621] * W[1793]
+            + W[4014] * W[1400] + W[4407] * W[1007] + W[4800] * W[614] + W[5193] * W[221];
+    W[5352] = W[76] * W[5334] + W[469] * W[4941] + W[862] * W[4548] + W[1255] * W[4155] + W[1648] * W[3762]
+            + W[2041] * W[3369] + W[2434] * W[2976] + W[2827] * W[2583] + W[3220] * W[2190] + W[3613] * W[1797]
+            + W[4006] * W[1404] + W[4399] * W[1011] + W[4792] * W[618] + W[5185] * W[225];
+    W[5355] = W[68] * W[5339] + W[461] * W[4946] + W[854] * W[4553] + W[1247] * W[4160] + W[1640] * W[3767]
+            + W[2033] * W[3374] + W[2426] * W[2981] + W[2819] * W[2588] + W[3212] * W[2195] + W[3605] * W[1802]
+            + W[3998] * W[1409] + W[4391] * W[1016] + W[4784] * W[623] + W[5177] * W[230];
+    W[5358] = W[60] * W[5344] + W[453] * W[4951] + W[846] * W[4558] + W[1239] * W[4165] + W[1632] * W[3772]
+            + W[2025] * W[3379] + W[2418] * W[2986] + W[2811] * W[2593] + W[3204] * W[2200] + W[3597] * W[1807]
+            + W[3990] * W[1414] + W[4383] * W[1021] + W[4776] * W[628] + W[5169] * W[235];
+    W[5363] = W[87] * W[5330] + W[480] * W[4937] + W[873] * W[4544] + W[1266] * W[4151] + W[1659] * W[3758]
+            + W[2052] * W[3365] + W[2445] * W[2972] + W[2838] * W[2579] + W[3231] * W[2186] + W[3624] * W[1793]
+            + W[4017] * W[1400] + W[4410] * W[1007] + W[4803] * W[614] + W[5196] * W[221];
+    W[5365] = W[79] * W[5334] + W[472] * W[4941] + W[865] * W[4548] + W[1258] * W[4155] + W[1651] * W[3762]
+            + W[2044] * W[3369] + W[2437] * W[2976] + W[2830] * W[2583] + W[3223] * W[2190] + W[3616] * W[1797]
+            + W[4009] * W[1404] + W[4402] * W[1011] + W[4795] * W[618] + W[5188] * W[225];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_246(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5277] = W[164] * W[5276];
+    W[5281] = W[169] * W[5280];
+    W[5286] = W[174] * W[5285];
+    W[5291] = W[179] * W[5290];
+    W[5296] = W[184] * W[5295];
+    W[5300] = W[164] * W[5299];
+    W[5302] = W[169] * W[5301];
+    W[5305] = W[174] * W[5304];
+    W[5308] = W[179] * W[5307];
+    W[5311] = W[184] * W[5310];
+    W[5315] = W[164] * W[5314];
+    W[5317] = W[169] * W[5316];
+    W[5320] = W[174] * W[5319];
+    W[5323] = W[179] * W[5322];
+    W[5326] = W[184] * W[5325];
+    W[5332] = W[220] * W[5331];
+    W[5336] = W[224] * W[5335];
+    W[5341] = W[229] * W[5340];
+    W[5346] = W[234] * W[5345];
+    W[5351] = W[220] * W[5350];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_247(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5353] = W[224] * W[5352];
+    W[5356] = W[229] * W[5355];
+    W[5359] = W[234] * W[5358];
+    W[5364] = W[220] * W[5363];
+    W[5366] = W[224] * W[5365];
+    W[5369] = W[229] * W[5368];
+    W[5372] = W[234] * W[5371];
+    W[5379] = W[267] * W[5378];
+    W[5383] = W[271] * W[5382];
+    W[5388] = W[276] * W[5387];
+    W[5394] = W[267] * W[5393];
+    W[5396] = W[271] * W[5395];
+    W[5399] = W[276] * W[5398];
+    W[5405] = W[267] * W[5404];
+    W[5407] = W[271] * W[5406];
+    W[5410] = W[276] * W[5409];
+    W[5418] = W[306] * W[5417];
+    W[5422] = W[310] * W[5421];
+    W[5429] = W[306] * W[5428];
+    W[5431] = W[310] * W[5430];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_248(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5438] = W[306] * W[5437];
+    W[5440] = W[310] * W[5439];
+    W[5449] = W[337] * W[5448];
+    W[5456] = W[337] * W[5455];
+    W[5463] = W[337] * W[5462];
+    W[5282] = W[5277] + W[5281];
+    W[5303] = W[5300] + W[5302];
+    W[5318] = W[5315] + W[5317];
+    W[5337] = W[5332] + W[5336];
+    W[5354] = W[5351] + W[5353];
+    W[5367] = W[5364] + W[5366];
+    W[5384] = W[5379] + W[5383];
+    W[5397] = W[5394] + W[5396];
+    W[5408] = W[5405] + W[5407];
+    W[5423] = W[5418] + W[5422];
+    W[5432] = W[5429] + W[5431];
+    W[5441] = W[5438] + W[5440];
+    W[5450] = W[5449] - W[5422];
+    W[5457] = W[5456] - W[5431];
+    W[5464] = W[5463] - W[5440];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_249(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5469] = W[5418] + W[5449];
+    W[5474] = W[5429] + W[5456];
+    W[5479] = W[5438] + W[5463];
+    W[5287] = W[5282] + W[5286];
+    W[5306] = W[5303] + W[5305];
+    W[5321] = W[5318] + W[5320];
+    W[5342] = W[5337] + W[5341];
+    W[5357] = W[5354] + W[5356];
+    W[5370] = W[5367] + W[5369];
+    W[5389] = W[5384] + W[5388];
+    W[5400] = W[5397] + W[5399];
+    W[5411] = W[5408] + W[5410];
+    W[5424] = W[5423] - W[5388];
+    W[5433] = W[5432] - W[5399];
+    W[5442] = W[5441] - W[5410];
+    W[5451] = W[5450] - W[5383];
+    W[5458] = W[5457] - W[5396];
+    W[5465] = W[5464] - W[5407];
+    W[5470] = W[5379] + W[5469];
+    W[5475] = W[5394] + W[5474];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_250(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5480] = W[5405] + W[5479];
+    W[5292] = W[5287] + W[5291];
+    W[5309] = W[5306] + W[5308];
+    W[5324] = W[5321] + W[5323];
+    W[5347] = W[5342] + W[5346];
+    W[5360] = W[5357] + W[5359];
+    W[5373] = W[5370] + W[5372];
+    W[5390] = W[5389] - W[5346];
+    W[5401] = W[5400] - W[5359];
+    W[5412] = W[5411] - W[5372];
+    W[5425] = W[5424] - W[5341];
+    W[5434] = W[5433] - W[5356];
+    W[5443] = W[5442] - W[5369];
+    W[5452] = W[5451] - W[5336];
+    W[5459] = W[5458] - W[5353];
+    W[5466] = W[5465] - W[5366];
+    W[5471] = W[5332] + W[5470];
+    W[5476] = W[5351] + W[5475];
+    W[5481] = W[5364] + W[5480];
+    W[5297] = W[5292] + W[5296];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_251(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5312] = W[5309] + W[5311];
+    W[5327] = W[5324] + W[5326];
+    W[5348] = W[5347] - W[5296];
+    W[5361] = W[5360] - W[5311];
+    W[5374] = W[5373] - W[5326];
+    W[5391] = W[5390] - W[5291];
+    W[5402] = W[5401] - W[5308];
+    W[5413] = W[5412] - W[5323];
+    W[5426] = W[5425] - W[5286];
+    W[5435] = W[5434] - W[5305];
+    W[5444] = W[5443] - W[5320];
+    W[5453] = W[5452] - W[5281];
+    W[5460] = W[5459] - W[5302];
+    W[5467] = W[5466] - W[5317];
+    W[5472] = W[5277] + W[5471];
+    W[5477] = W[5300] + W[5476];
+    W[5482] = W[5315] + W[5481];
+    W[5298] = W[161] * W[5297];
+    W[5313] = W[161] * W[5312];
+    W[5328] = W[161] * W[5327];
+    return 0;
+}
+
+/* Lines 340 .. 350 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_254(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[529] = -W[5403] / W[141] / 14.0;
+    X[530] = -W[5414] / W[141] / 14.0;
+    X[531] = -W[5427] / W[142] / 14.0;
+    X[532] = -W[5436] / W[142] / 14.0;
+    X[533] = -W[5445] / W[142] / 14.0;
+    X[534] = -W[5454] / W[143] / 14.0;
+    X[535] = -W[5461] / W[143] / 14.0;
+    X[536] = -W[5468] / W[143] / 14.0;
+    X[537] = -W[5473] / W[144] / 14.0;
+    X[538] = -W[5478] / W[144] / 14.0;
+    X[539] = -W[5483] / W[144] / 14.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_255(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5504] = X[504] - X[507];
+    W[5508] = X[505] - X[508];
+    W[5513] = X[506] - X[509];
+    W[5517] = X[504] - X[510];
+    W[5520] = X[505] - X[511];
+    W[5524] = X[506] - X[512];
+    W[5528] = X[504] - X[513];
+    W[5531] = X[505] - X[514];
+    W[5535] = X[506] - X[515];
+    W[5539] = X[504] - X[516];
+    W[5542] = X[505] - X[517];
+    W[5546] = X[506] - X[518];
+    W[5550] = X[504] - X[519];
+    W[5553] = X[505] - X[520];
+    W[5557] = X[506] - X[521];
+    W[5560] = X[507] - X[510];
+    W[5562] = X[508] - X[511];
+    W[5565] = X[509] - X[512];
+    W[5568] = X[507] - X[513];
+    W[5570] = X[508] - X[514];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_257(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5626] = X[514] - X[520];
+    W[5629] = X[515] - X[521];
+    W[5632] = X[516] - X[519];
+    W[5634] = X[517] - X[520];
+    W[5637] = X[518] - X[521];
+    W[5505] = (W[2] * W[5504] + W[395] * W[5111] + W[788] * W[4718] + W[1181] * W[4325] + W[1574] * W[3932]
+            + W[1967] * W[3539] + W[2360] * W[3146]) * 2.0 + W[2753] * W[2753];
+    W[5509] = (W[6] * W[5508] + W[399] * W[5115] + W[792] * W[4722] + W[1185] * W[4329] + W[1578] * W[3936]
+            + W[1971] * W[3543] + W[2364] * W[3150]) * 2.0 + W[2757] * W[2757];
+    W[5514] = (W[11] * W[5513] + W[404] * W[5120] + W[797] * W[4727] + W[1190] * W[4334] + W[1583] * W[3941]
+            + W[1976] * W[3548] + W[2369] * W[3155]) * 2.0 + W[2762] * W[2762];
+    W[5518] = (W[15] * W[5517] + W[408] * W[5124] + W[801] * W[4731] + W[1194] * W[4338] + W[1587] * W[3945]
+            + W[1980] * W[3552] + W[2373] * W[3159]) * 2.0 + W[2766] * W[2766];
+    W[5521] = (W[18] * W[5520] + W[411] * W[5127] + W[804] * W[4734] + W[1197] * W[4341] + W[1590] * W[3948]
+            + W[1983] * W[3555] + W[2376] * W[3162]) * 2.0 + W[2769] * W[2769];
+    W[5525] = (W[22] * W[5524] + W[415] * W[5131] + W[808] * W[4738] + W[1201] * W[4345] + W[1594] * W[3952]
+            + W[1987] * W[3559] + W[2380] * W[3166]) * 2.0 + W[2773] * W[2773];
+    W[5529] = (W[26] * W[5528] + W[419] * W[5135] + W[812] * W[4742] + W[1205] * W[4349] + W[1598] * W[3956]
+            + W[1991] * W[3563] + W[2384] * W[3170]) * 2.0 + W[2777] * W[2777];
+    W[5532] = (W[29] * W[5531] + W[422] * W[5138] + W[815] * W[4745] + W[1208] * W[4352] + W[1601] * W[3959]
+            + W[1994] * W[3566] + W[2387] * W[3173]) * 2.0 + W[2780] * W[2780];
+    W[5536] = (W[33] * W[5535] + W[426] * W[5142] + W[819] * W[4749] + W[1212] * W[4356] + W[1605] * W[3963]
+            + W[1998] * W[3570] + W[2391] * W[3177]) * 2.0 + W[2784] * W[2784];
+    W[5540] = (W[37] * W[5539] + W[430] * W[5146] + W[823] * W[4753] + W[1216] * W[4360] + W[1609] * W[3967]
+            + W[2002] * W[3574] + W[2395] * W[3181]) * 2.0 + W[2788] * W[2788];
+    W[5543] = (W[40] * W[5542] + W[433] * W[5149] + W[826] * W[4756] + W[1219] * W[4363] + W[1612] * W[3970]
+            + W[2005] * W[3577] + W[2398] * W[3184]) * 2.0 + W[2791] * W[2791];
+    W[5547] = (W[44] * W[5546] + W[437] * W[5153] + W[830] * W[4760] + W[1223] * W[4367] + W[1616] * W[3974]
+            + W[2009] * W[3581] + W[2402] * W[3188]) * 2.0 + W[2795] * W[2795];
+    W[5551] = (W[48] * W[5550] + W[441] * W[5157] + W[834] * W[4764] + W[1227] * W[4371] + W[1620] * W[3978]
+            + W[2013] * W[3585] + W[2406] * W[3192]) * 2.0 + W[2799] * W[2799];
+    W[5554] = (W[51] * W[5553] + W[444] * W[5160] + W[837] * W[4767] + W[1230] * W[4374] + W[1623] * W[3981]
+            + W[2016] * W[3588] + W[2409] * W[3195]) * 2.0 + W[2802] * W[2802];
+    W[5558] = (W[55] * W[5557] + W[448] * W[5164] + W[841] * W[4771] + W[1234] * W[4378] + W[1627] * W[3985]
+            + W[2020] * W[3592] + W[2413] * W[3199]) * 2.0 + W[2806] * W[2806];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_259(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5614] = (W[111] * W[5613] + W[504] * W[5220] + W[897] * W[4827] + W[1290] * W[4434] + W[1683] * W[4041]
+            + W[2076] * W[3648] + W[2469] * W[3255]) * 2.0 + W[2862] * W[2862];
+    W[5617] = (W[114] * W[5616] + W[507] * W[5223] + W[900] * W[4830] + W[1293] * W[4437] + W[1686] * W[4044]
+            + W[2079] * W[3651] + W[2472] * W[3258]) * 2.0 + W[2865] * W[2865];
+    W[5619] = (W[116] * W[5618] + W[509] * W[5225] + W[902] * W[4832] + W[1295] * W[4439] + W[1688] * W[4046]
+            + W[2081] * W[3653] + W[2474] * W[3260]) * 2.0 + W[2867] * W[2867];
+    W[5622] = (W[119] * W[5621] + W[512] * W[5228] + W[905] * W[4835] + W[1298] * W[4442] + W[1691] * W[4049]
+            + W[2084] * W[3656] + W[2477] * W[3263]) * 2.0 + W[2870] * W[2870];
+    W[5625] = (W[122] * W[5624] + W[515] * W[5231] + W[908] * W[4838] + W[1301] * W[4445] + W[1694] * W[4052]
+            + W[2087] * W[3659] + W[2480] * W[3266]) * 2.0 + W[2873] * W[2873];
+    W[5627] = (W[124] * W[5626] + W[517] * W[5233] + W[910] * W[4840] + W[1303] * W[4447] + W[1696] * W[4054]
+            + W[2089] * W[3661] + W[2482] * W[3268]) * 2.0 + W[2875] * W[2875];
+    W[5630] = (W[127] * W[5629] + W[520] * W[5236] + W[913] * W[4843] + W[1306] * W[4450] + W[1699] * W[4057]
+            + W[2092] * W[3664] + W[2485] * W[3271]) * 2.0 + W[2878] * W[2878];
+    W[5633] = (W[130] * W[5632] + W[523] * W[5239] + W[916] * W[4846] + W[1309] * W[4453] + W[1702] * W[4060]
+            + W[2095] * W[3667] + W[2488] * W[3274]) * 2.0 + W[2881] * W[2881];
+    W[5635] = (W[132] * W[5634] + W[525] * W[5241] + W[918] * W[4848] + W[1311] * W[4455] + W[1704] * W[4062]
+            + W[2097] * W[3669] + W[2490] * W[3276]) * 2.0 + W[2883] * W[2883];
+    W[5638] = (W[135] * W[5637] + W[528] * W[5244] + W[921] * W[4851] + W[1314] * W[4458] + W[1707] * W[4065]
+            + W[2100] * W[3672] + W[2493] * W[3279]) * 2.0 + W[2886] * W[2886];
+    W[5510] = W[5505] + W[5509];
+    W[5522] = W[5518] + W[5521];
+    W[5533] = W[5529] + W[5532];
+    W[5544] = W[5540] + W[5543];
+    W[5555] = W[5551] + W[5554];
+    W[5564] = W[5561] + W[5563];
+    W[5572] = W[5569] + W[5571];
+    W[5580] = W[5577] + W[5579];
+    W[5588] = W[5585] + W[5587];
+    W[5596] = W[5593] + W[5595];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_262(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5692] = W[51] * W[5668] + W[444] * W[5275] + W[837] * W[4882] + W[1230] * W[4489] + W[1623] * W[4096]
+            + W[2016] * W[3703] + W[2409] * W[3310] + W[2802] * W[2917] + W[3195] * W[2524] + W[3588] * W[2131]
+            + W[3981] * W[1738] + W[4374] * W[1345] + W[4767] * W[952] + W[5160] * W[559] + W[5553] * W[166];
+    W[5694] = W[40] * W[5672] + W[433] * W[5279] + W[826] * W[4886] + W[1219] * W[4493] + W[1612] * W[4100]
+            + W[2005] * W[3707] + W[2398] * W[3314] + W[2791] * W[2921] + W[3184] * W[2528] + W[3577] * W[2135]
+            + W[3970] * W[1742] + W[4363] * W[1349] + W[4756] * W[956] + W[5149] * W[563] + W[5542] * W[170];
+    W[5697] = W[29] * W[5677] + W[422] * W[5284] + W[815] * W[4891] + W[1208] * W[4498] + W[1601] * W[4105]
+            + W[1994] * W[3712] + W[2387] * W[3319] + W[2780] * W[2926] + W[3173] * W[2533] + W[3566] * W[2140]
+            + W[3959] * W[1747] + W[4352] * W[1354] + W[4745] * W[961] + W[5138] * W[568] + W[5531] * W[175];
+    W[5700] = W[18] * W[5682] + W[411] * W[5289] + W[804] * W[4896] + W[1197] * W[4503] + W[1590] * W[4110]
+            + W[1983] * W[3717] + W[2376] * W[3324] + W[2769] * W[2931] + W[3162] * W[2538] + W[3555] * W[2145]
+            + W[3948] * W[1752] + W[4341] * W[1359] + W[4734] * W[966] + W[5127] * W[573] + W[5520] * W[180];
+    W[5703] = W[6] * W[5687] + W[399] * W[5294] + W[792] * W[4901] + W[1185] * W[4508] + W[1578] * W[4115]
+            + W[1971] * W[3722] + W[2364] * W[3329] + W[2757] * W[2936] + W[3150] * W[2543] + W[3543] * W[2150]
+            + W[3936] * W[1757] + W[4329] * W[1364] + W[4722] * W[971] + W[5115] * W[578] + W[5508] * W[185];
+    W[5707] = W[55] * W[5668] + W[448] * W[5275] + W[841] * W[4882] + W[1234] * W[4489] + W[1627] * W[4096]
+            + W[2020] * W[3703] + W[2413] * W[3310] + W[2806] * W[2917] + W[3199] * W[2524] + W[3592] * W[2131]
+            + W[3985] * W[1738] + W[4378] * W[1345] + W[4771] * W[952] + W[5164] * W[559] + W[5557] * W[166];
+    W[5709] = W[44] * W[5672] + W[437] * W[5279] + W[830] * W[4886] + W[1223] * W[4493] + W[1616] * W[4100]
+            + W[2009] * W[3707] + W[2402] * W[3314] + W[2795] * W[2921] + W[3188] * W[2528] + W[3581] * W[2135]
+            + W[3974] * W[1742] + W[4367] * W[1349] + W[4760] * W[956] + W[5153] * W[563] + W[5546] * W[170];
+    W[5712] = W[33] * W[5677] + W[426] * W[5284] + W[819] * W[4891] + W[1212] * W[4498] + W[1605] * W[4105]
+            + W[1998] * W[3712] + W[2391] * W[3319] + W[2784] * W[2926] + W[3177] * W[2533] + W[3570] * W[2140]
+            + W[3963] * W[1747] + W[4356] * W[1354] + W[4749] * W[961] + W[5142] * W[568] + W[5535] * W[175];
+    W[5715] = W[22] * W[5682] + W[415] * W[5289] + W[808] * W[4896] + W[1201] * W[4503] + W[1594] * W[4110]
+            + W[1987] * W[3717] + W[2380] * W[3324] + W[2773] * W[2931] + W[3166] * W[2538] + W[3559] * W[2145]
+            + W[3952] * W[1752] + W[4345] * W[1359] + W[4738] * W[966] + W[5131] * W[573] + W[5524] * W[180];
+    W[5718] = W[11] * W[5687] + W[404] * W[5294] + W[797] * W[4901] + W[1190] * W[4508] + W[1583] * W[4115]
+            + W[1976] * W[3722] + W[2369] * W[3329] + W[2762] * W[2936] + W[3155] * W[2543] + W[3548] * W[2150]
+            + W[3941] * W[1757] + W[4334] * W[1364] + W[4727] * W[971] + W[5120] * W[578] + W[5513] * W[185];
+    W[5724] = W[82] * W[5723] + W[475] * W[5330] + W[868] * W[4937] + W[1261] * W[4544] + W[1654] * W[4151]
+            + W[2047] * W[3758] + W[2440] * W[3365] + W[2833] * W[2972] + W[3226] * W[2579] + W[3619] * W[2186]
+            + W[4012] * W[1793] + W[4405] * W[1400] + W[4798] * W[1007] + W[5191] * W[614] + W[5584] * W[221];
+    W[5728] = W[74] * W[5727] + W[467] * W[5334] + W[860] * W[4941] + W[1253] * W[4548] + W[1646] * W[4155]
+            + W[2039] * W[3762] + W[2432] * W[3369] + W[2825] * W[2976] + W[3218] * W[2583] + W[3611] * W[2190]
+            + W[4004] * W[1797] + W[4397] * W[1404] + W[4790] * W[1011] + W[5183] * W[618] + W[5576] * W[225];
+    W[5733] = W[66] * W[5732] + W[459] * W[5339] + W[852] * W[4946] + W[1245] * W[4553] + W[1638] * W[4160]
+            + W[2031] * W[3767] + W[2424] * W[3374] + W[2817] * W[2981] + W[3210] * W[2588] + W[3603] * W[2195]
+            + W[3996] * W[1802] + W[4389] * W[1409] + W[4782] * W[1016] + W[5175] * W[623] + W[5568] * W[230];
+    W[5738] = W[58] * W[5737] + W[451] * W[5344] + W[844] * W[4951] + W[1237] * W[4558] + W[1630] * W[4165]
+            + W[2023] * W[3772] + W[2416] * W[3379] + W[2809] * W[2986] + W[3202] * W[2593] + W[3595] * W[2200]
+            + W[3988] * W[1807] + W[4381] * W[1414] + W[4774] * W[1021] + W[5167] * W[628] + W[5560] * W[235];
+    W[5743] = W[84] * W[5723] + W[477] * W[5330] + W[870] * W[4937] + W[1263] * W[4544] + W[1656] * W[4151]
+            + W[2049] * W[3758] + W[2442] * W[3365] + W[2835] * W[2972] + W[3228] * W[2579] + W[3621] * W[2186]
+            + W[4014] * W[1793] + W[4407] * W[1400] + W[4800] * W[1007] + W[5193] * W[614] + W[5586] * W[221];
+    W[5745] = W[76] * W[5727] + W[469] * W[5334] + W[862] * W[4941] + W[1255] * W[4548] + W[1648] * W[4155]
+            + W[2041] * W[3762] + W[2434] * W[3369] + W[2827] * W[2976] + W[3220] * W[2583] + W[3613] * W[2190]
+            + W[4006] * W[1797] + W[4399] * W[1404] + W[4792] * W[1011] + W[5185] * W[618] + W[5578] * W[225];
+    W[5748] = W[68] * W[5732] + W[461] * W[5339] + W[854] * W[4946] + W[1247] * W[4553] + W[1640] * W[4160]
+            + W[2033] * W[3767] + W[2426] * W[3374] + W[2819] * W[2981] + W[3212] * W[2588] + W[3605] * W[2195]
+            + W[3998] * W[1802] + W[4391] * W[1409] + W[4784] * W[1016] + W[5177] * W[623] + W[5570] * W[230];
+    W[5751] = W[60] * W[5737] + W[453] * W[5344] + W[846] * W[4951] + W[1239] * W[4558] + W[1632] * W[4165]
+            + W[2025] * W[3772] + W[2418] * W[3379] + W[2811] * W[2986] + W[3204] * W[2593] + W[3597] * W[2200]
+            + W[3990] * W[1807] + W[4383] * W[1414] + W[4776] * W[1021] + W[5169] * W[628] + W[5562] * W[235];
+    W[5756] = W[87] * W[5723] + W[480] * W[5330] + W[873] * W[4937] + W[1266] * W[4544] + W[1659] * W[4151]
+            + W[2052] * W[3758] + W[2445] * W[3365] + W[2838] * W[2972] + W[3231] * W[2579] + W[3624] * W[2186]
+            + W[4017] * W[1793] + W[4410] * W[1400] + W[4803] * W[1007] + W[5196] * W[614] + W[5589] * W[221];
+    W[5758] = W[79] * W[5727] + W[472] * W[5334] + W[865] * W[4941] + W[1258] * W[4548] + W[1651] * W[4155]
+            + W[2044] * W[3762] + W[2437] * W[3369] + W[2830] * W[2976] + W[3223] * W[2583] + W[3616] * W[2190]
+            + W[4009] * W[1797] + W[4402] * W[1404] + W[4795] * W[1011] + W[5188] * W[618] + W[5581] * W[225];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_264(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5670] = W[164] * W[5669];
+    W[5674] = W[169] * W[5673];
+    W[5679] = W[174] * W[5678];
+    W[5684] = W[179] * W[5683];
+    W[5689] = W[184] * W[5688];
+    W[5693] = W[164] * W[5692];
+    W[5695] = W[169] * W[5694];
+    W[5698] = W[174] * W[5697];
+    W[5701] = W[179] * W[5700];
+    W[5704] = W[184] * W[5703];
+    W[5708] = W[164] * W[5707];
+    W[5710] = W[169] * W[5709];
+    W[5713] = W[174] * W[5712];
+    W[5716] = W[179] * W[5715];
+    W[5719] = W[184] * W[5718];
+    W[5725] = W[220] * W[5724];
+    W[5729] = W[224] * W[5728];
+    W[5734] = W[229] * W[5733];
+    W[5739] = W[234] * W[5738];
+    W[5744] = W[220] * W[5743];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_265(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5746] = W[224] * W[5745];
+    W[5749] = W[229] * W[5748];
+    W[5752] = W[234] * W[5751];
+    W[5757] = W[220] * W[5756];
+    W[5759] = W[224] * W[5758];
+    W[5762] = W[229] * W[5761];
+    W[5765] = W[234] * W[5764];
+    W[5772] = W[267] * W[5771];
+    W[5776] = W[271] * W[5775];
+    W[5781] = W[276] * W[5780];
+    W[5787] = W[267] * W[5786];
+    W[5789] = W[271] * W[5788];
+    W[5792] = W[276] * W[5791];
+    W[5798] = W[267] * W[5797];
+    W[5800] = W[271] * W[5799];
+    W[5803] = W[276] * W[5802];
+    W[5811] = W[306] * W[5810];
+    W[5815] = W[310] * W[5814];
+    W[5822] = W[306] * W[5821];
+    W[5824] = W[310] * W[5823];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_266(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5831] = W[306] * W[5830];
+    W[5833] = W[310] * W[5832];
+    W[5842] = W[337] * W[5841];
+    W[5849] = W[337] * W[5848];
+    W[5856] = W[337] * W[5855];
+    W[5675] = W[5670] + W[5674];
+    W[5696] = W[5693] + W[5695];
+    W[5711] = W[5708] + W[5710];
+    W[5730] = W[5725] + W[5729];
+    W[5747] = W[5744] + W[5746];
+    W[5760] = W[5757] + W[5759];
+    W[5777] = W[5772] + W[5776];
+    W[5790] = W[5787] + W[5789];
+    W[5801] = W[5798] + W[5800];
+    W[5816] = W[5811] + W[5815];
+    W[5825] = W[5822] + W[5824];
+    W[5834] = W[5831] + W[5833];
+    W[5843] = W[5842] - W[5815];
+    W[5850] = W[5849] - W[5824];
+    W[5857] = W[5856] - W[5833];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_267(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5862] = W[5811] + W[5842];
+    W[5867] = W[5822] + W[5849];
+    W[5872] = W[5831] + W[5856];
+    W[5680] = W[5675] + W[5679];
+    W[5699] = W[5696] + W[5698];
+    W[5714] = W[5711] + W[5713];
+    W[5735] = W[5730] + W[5734];
+    W[5750] = W[5747] + W[5749];
+    W[5763] = W[5760] + W[5762];
+    W[5782] = W[5777] + W[5781];
+    W[5793] = W[5790] + W[5792];
+    W[5804] = W[5801] + W[5803];
+    W[5817] = W[5816] - W[5781];
+    W[5826] = W[5825] - W[5792];
+    W[5835] = W[5834] - W[5803];
+    W[5844] = W[5843] - W[5776];
+    W[5851] = W[5850] - W[5789];
+    W[5858] = W[5857] - W[5800];
+    W[5863] = W[5772] + W[5862];
+    W[5868] = W[5787] + W[5867];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_268(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5873] = W[5798] + W[5872];
+    W[5685] = W[5680] + W[5684];
+    W[5702] = W[5699] + W[5701];
+    W[5717] = W[5714] + W[5716];
+    W[5740] = W[5735] + W[5739];
+    W[5753] = W[5750] + W[5752];
+    W[5766] = W[5763] + W[5765];
+    W[5783] = W[5782] - W[5739];
+    W[5794] = W[5793] - W[5752];
+    W[5805] = W[5804] - W[5765];
+    W[5818] = W[5817] - W[5734];
+    W[5827] = W[5826] - W[5749];
+    W[5836] = W[5835] - W[5762];
+    W[5845] = W[5844] - W[5729];
+    W[5852] = W[5851] - W[5746];
+    W[5859] = W[5858] - W[5759];
+    W[5864] = W[5725] + W[5863];
+    W[5869] = W[5744] + W[5868];
+    W[5874] = W[5757] + W[5873];
+    W[5690] = W[5685] + W[5689];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_269(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5705] = W[5702] + W[5704];
+    W[5720] = W[5717] + W[5719];
+    W[5741] = W[5740] - W[5689];
+    W[5754] = W[5753] - W[5704];
+    W[5767] = W[5766] - W[5719];
+    W[5784] = W[5783] - W[5684];
+    W[5795] = W[5794] - W[5701];
+    W[5806] = W[5805] - W[5716];
+    W[5819] = W[5818] - W[5679];
+    W[5828] = W[5827] - W[5698];
+    W[5837] = W[5836] - W[5713];
+    W[5846] = W[5845] - W[5674];
+    W[5853] = W[5852] - W[5695];
+    W[5860] = W[5859] - W[5710];
+    W[5865] = W[5670] + W[5864];
+    W[5870] = W[5693] + W[5869];
+    W[5875] = W[5708] + W[5874];
+    W[5691] = W[161] * W[5690];
+    W[5706] = W[161] * W[5705];
+    W[5721] = W[161] * W[5720];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_271(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[545] = X[527] / 15.0;
+    X[546] = X[528] / 15.0;
+    X[547] = X[529] / 15.0;
+    X[548] = X[530] / 15.0;
+    X[549] = X[531] / 15.0;
+    X[550] = X[532] / 15.0;
+    X[551] = X[533] / 15.0;
+    X[552] = X[534] / 15.0;
+    X[553] = X[535] / 15.0;
+    X[554] = X[536] / 15.0;
+    X[555] = X[537] / 15.0;
+    X[556] = X[538] / 15.0;
+    X[557] = X[539] / 15.0;
+    X[558] = -W[5691] / W[138] / 15.0;
+    X[559] = -W[5706] / W[138] / 15.0;
+    X[560] = -W[5721] / W[138] / 15.0;
+    X[561] = -W[5742] / W[140] / 15.0;
+    X[562] = -W[5755] / W[140] / 15.0;
+    X[563] = -W[5768] / W[140] / 15.0;
+    X[564] = -W[5785] / W[141] / 15.0;
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_274(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5966] = X[545] - X[551];
+    W[5969] = X[543] - X[552];
+    W[5971] = X[544] - X[553];
+    W[5974] = X[545] - X[554];
+    W[5977] = X[543] - X[555];
+    W[5979] = X[544] - X[556];
+    W[5982] = X[545] - X[557];
+    W[5985] = X[546] - X[549];
+    W[5987] = X[547] - X[550];
+    W[5990] = X[548] - X[551];
+    W[5993] = X[546] - X[552];
+    W[5995] = X[547] - X[553];
+    W[5998] = X[548] - X[554];
+    W[6001] = X[546] - X[555];
+    W[6003] = X[547] - X[556];
+    W[6006] = X[548] - X[557];
+    W[6009] = X[549] - X[552];
+    W[6011] = X[550] - X[553];
+    W[6014] = X[551] - X[554];
+    W[6017] = X[549] - X[555];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_276(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5954] = (W[58] * W[5953] + W[451] * W[5560] + W[844] * W[5167] + W[1237] * W[4774] + W[1630] * W[4381]
+            + W[2023] * W[3988] + W[2416] * W[3595] + W[2809] * W[3202]) * 2.0;
+    W[5956] = (W[60] * W[5955] + W[453] * W[5562] + W[846] * W[5169] + W[1239] * W[4776] + W[1632] * W[4383]
+            + W[2025] * W[3990] + W[2418] * W[3597] + W[2811] * W[3204]) * 2.0;
+    W[5959] = (W[63] * W[5958] + W[456] * W[5565] + W[849] * W[5172] + W[1242] * W[4779] + W[1635] * W[4386]
+            + W[2028] * W[3993] + W[2421] * W[3600] + W[2814] * W[3207]) * 2.0;
+    W[5962] = (W[66] * W[5961] + W[459] * W[5568] + W[852] * W[5175] + W[1245] * W[4782] + W[1638] * W[4389]
+            + W[2031] * W[3996] + W[2424] * W[3603] + W[2817] * W[3210]) * 2.0;
+    W[5964] = (W[68] * W[5963] + W[461] * W[5570] + W[854] * W[5177] + W[1247] * W[4784] + W[1640] * W[4391]
+            + W[2033] * W[3998] + W[2426] * W[3605] + W[2819] * W[3212]) * 2.0;
+    W[5967] = (W[71] * W[5966] + W[464] * W[5573] + W[857] * W[5180] + W[1250] * W[4787] + W[1643] * W[4394]
+            + W[2036] * W[4001] + W[2429] * W[3608] + W[2822] * W[3215]) * 2.0;
+    W[5970] = (W[74] * W[5969] + W[467] * W[5576] + W[860] * W[5183] + W[1253] * W[4790] + W[1646] * W[4397]
+            + W[2039] * W[4004] + W[2432] * W[3611] + W[2825] * W[3218]) * 2.0;
+    W[5972] = (W[76] * W[5971] + W[469] * W[5578] + W[862] * W[5185] + W[1255] * W[4792] + W[1648] * W[4399]
+            + W[2041] * W[4006] + W[2434] * W[3613] + W[2827] * W[3220]) * 2.0;
+    W[5975] = (W[79] * W[5974] + W[472] * W[5581] + W[865] * W[5188] + W[1258] * W[4795] + W[1651] * W[4402]
+            + W[2044] * W[4009] + W[2437] * W[3616] + W[2830] * W[3223]) * 2.0;
+    W[5978] = (W[82] * W[5977] + W[475] * W[5584] + W[868] * W[5191] + W[1261] * W[4798] + W[1654] * W[4405]
+            + W[2047] * W[4012] + W[2440] * W[3619] + W[2833] * W[3226]) * 2.0;
+    W[5980] = (W[84] * W[5979] + W[477] * W[5586] + W[870] * W[5193] + W[1263] * W[4800] + W[1656] * W[4407]
+            + W[2049] * W[4014] + W[2442] * W[3621] + W[2835] * W[3228]) * 2.0;
+    W[5983] = (W[87] * W[5982] + W[480] * W[5589] + W[873] * W[5196] + W[1266] * W[4803] + W[1659] * W[4410]
+            + W[2052] * W[4017] + W[2445] * W[3624] + W[2838] * W[3231]) * 2.0;
+    W[5986] = (W[90] * W[5985] + W[483] * W[5592] + W[876] * W[5199] + W[1269] * W[4806] + W[1662] * W[4413]
+            + W[2055] * W[4020] + W[2448] * W[3627] + W[2841] * W[3234]) * 2.0;
+    W[5988] = (W[92] * W[5987] + W[485] * W[5594] + W[878] * W[5201] + W[1271] * W[4808] + W[1664] * W[4415]
+            + W[2057] * W[4022] + W[2450] * W[3629] + W[2843] * W[3236]) * 2.0;
+    W[5991] = (W[95] * W[5990] + W[488] * W[5597] + W[881] * W[5204] + W[1274] * W[4811] + W[1667] * W[4418]
+            + W[2060] * W[4025] + W[2453] * W[3632] + W[2846] * W[3239]) * 2.0;
+    W[5994] = (W[98] * W[5993] + W[491] * W[5600] + W[884] * W[5207] + W[1277] * W[4814] + W[1670] * W[4421]
+            + W[2063] * W[4028] + W[2456] * W[3635] + W[2849] * W[3242]) * 2.0;
+    W[5996] = (W[100] * W[5995] + W[493] * W[5602] + W[886] * W[5209] + W[1279] * W[4816] + W[1672] * W[4423]
+            + W[2065] * W[4030] + W[2458] * W[3637] + W[2851] * W[3244]) * 2.0;
+    W[5999] = (W[103] * W[5998] + W[496] * W[5605] + W[889] * W[5212] + W[1282] * W[4819] + W[1675] * W[4426]
+            + W[2068] * W[4033] + W[2461] * W[3640] + W[2854] * W[3247]) * 2.0;
+    W[6002] = (W[106] * W[6001] + W[499] * W[5608] + W[892] * W[5215] + W[1285] * W[4822] + W[1678] * W[4429]
+            + W[2071] * W[4036] + W[2464] * W[3643] + W[2857] * W[3250]) * 2.0;
+    W[6004] = (W[108] * W[6003] + W[501] * W[5610] + W[894] * W[5217] + W[1287] * W[4824] + W[1680] * W[4431]
+            + W[2073] * W[4038] + W[2466] * W[3645] + W[2859] * W[3252]) * 2.0;
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_278(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5997] = W[5994] + W[5996];
+    W[6005] = W[6002] + W[6004];
+    W[6013] = W[6010] + W[6012];
+    W[6021] = W[6018] + W[6020];
+    W[6029] = W[6026] + W[6028];
+    W[5908] = W[5903] + W[5907];
+    W[5919] = W[5915] + W[5918];
+    W[5930] = W[5926] + W[5929];
+    W[5941] = W[5937] + W[5940];
+    W[5952] = W[5948] + W[5951];
+    W[5960] = W[5957] + W[5959];
+    W[5968] = W[5965] + W[5967];
+    W[5976] = W[5973] + W[5975];
+    W[5984] = W[5981] + W[5983];
+    W[5992] = W[5989] + W[5991];
+    W[6000] = W[5997] + W[5999];
+    W[6008] = W[6005] + W[6007];
+    W[6016] = W[6013] + W[6015];
+    W[6024] = W[6021] + W[6023];
+    W[6032] = W[6029] + W[6031];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_279(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6061] = (-22.5 * W[5952] * W[166] - 22.0 * W[5559] * W[559] - 21.5 * W[5166] * W[952] - 21.0 * W[4773] * W[1345]
+            - 20.5 * W[4380] * W[1738] - 20.0 * W[3987] * W[2131] - 19.5 * W[3594] * W[2524] - 19.0 * W[3201] * W[2917]
+            - 18.5 * W[2808] * W[3310] - 18.0 * W[2415] * W[3703] - 17.5 * W[2022] * W[4096] - 17.0 * W[1629] * W[4489]
+            - 16.5 * W[1236] * W[4882] - 16.0 * W[843] * W[5275] - 15.5 * W[450] * W[5668]) / (15.0 * W[57]);
+    W[6065] = (-22.5 * W[5941] * W[170] - 22.0 * W[5548] * W[563] - 21.5 * W[5155] * W[956] - 21.0 * W[4762] * W[1349]
+            - 20.5 * W[4369] * W[1742] - 20.0 * W[3976] * W[2135] - 19.5 * W[3583] * W[2528] - 19.0 * W[3190] * W[2921]
+            - 18.5 * W[2797] * W[3314] - 18.0 * W[2404] * W[3707] - 17.5 * W[2011] * W[4100] - 17.0 * W[1618] * W[4493]
+            - 16.5 * W[1225] * W[4886] - 16.0 * W[832] * W[5279] - 15.5 * W[439] * W[5672]) / (15.0 * W[46]);
+    W[6070] = (-22.5 * W[5930] * W[175] - 22.0 * W[5537] * W[568] - 21.5 * W[5144] * W[961] - 21.0 * W[4751] * W[1354]
+            - 20.5 * W[4358] * W[1747] - 20.0 * W[3965] * W[2140] - 19.5 * W[3572] * W[2533] - 19.0 * W[3179] * W[2926]
+            - 18.5 * W[2786] * W[3319] - 18.0 * W[2393] * W[3712] - 17.5 * W[2000] * W[4105] - 17.0 * W[1607] * W[4498]
+            - 16.5 * W[1214] * W[4891] - 16.0 * W[821] * W[5284] - 15.5 * W[428] * W[5677]) / (15.0 * W[35]);
+    W[6075] = (-22.5 * W[5919] * W[180] - 22.0 * W[5526] * W[573] - 21.5 * W[5133] * W[966] - 21.0 * W[4740] * W[1359]
+            - 20.5 * W[4347] * W[1752] - 20.0 * W[3954] * W[2145] - 19.5 * W[3561] * W[2538] - 19.0 * W[3168] * W[2931]
+            - 18.5 * W[2775] * W[3324] - 18.0 * W[2382] * W[3717] - 17.5 * W[1989] * W[4110] - 17.0 * W[1596] * W[4503]
+            - 16.5 * W[1203] * W[4896] - 16.0 * W[810] * W[5289] - 15.5 * W[417] * W[5682]) / (15.0 * W[24]);
+    W[6080] = (-22.5 * W[5908] * W[185] - 22.0 * W[5515] * W[578] - 21.5 * W[5122] * W[971] - 21.0 * W[4729] * W[1364]
+            - 20.5 * W[4336] * W[1757] - 20.0 * W[3943] * W[2150] - 19.5 * W[3550] * W[2543] - 19.0 * W[3157] * W[2936]
+            - 18.5 * W[2764] * W[3329] - 18.0 * W[2371] * W[3722] - 17.5 * W[1978] * W[4115] - 17.0 * W[1585] * W[4508]
+            - 16.5 * W[1192] * W[4901] - 16.0 * W[799] * W[5294] - 15.5 * W[406] * W[5687]) / (15.0 * W[13]);
+    W[6116] = (-22.5 * W[5984] * W[221] - 22.0 * W[5591] * W[614] - 21.5 * W[5198] * W[1007] - 21.0 * W[4805] * W[1400]
+            - 20.5 * W[4412] * W[1793] - 20.0 * W[4019] * W[2186] - 19.5 * W[3626] * W[2579] - 19.0 * W[3233] * W[2972]
+            - 18.5 * W[2840] * W[3365] - 18.0 * W[2447] * W[3758] - 17.5 * W[2054] * W[4151] - 17.0 * W[1661] * W[4544]
+            - 16.5 * W[1268] * W[4937] - 16.0 * W[875] * W[5330] - 15.5 * W[482] * W[5723]) / (15.0 * W[89]);
+    W[6120] = (-22.5 * W[5976] * W[225] - 22.0 * W[5583] * W[618] - 21.5 * W[5190] * W[1011] - 21.0 * W[4797] * W[1404]
+            - 20.5 * W[4404] * W[1797] - 20.0 * W[4011] * W[2190] - 19.5 * W[3618] * W[2583] - 19.0 * W[3225] * W[2976]
+            - 18.5 * W[2832] * W[3369] - 18.0 * W[2439] * W[3762] - 17.5 * W[2046] * W[4155] - 17.0 * W[1653] * W[4548]
+            - 16.5 * W[1260] * W[4941] - 16.0 * W[867] * W[5334] - 15.5 * W[474] * W[5727]) / (15.0 * W[81]);
+    W[6125] = (-22.5 * W[5968] * W[230] - 22.0 * W[5575] * W[623] - 21.5 * W[5182] * W[1016] - 21.0 * W[4789] * W[1409]
+            - 20.5 * W[4396] * W[1802] - 20.0 * W[4003] * W[2195] - 19.5 * W[3610] * W[2588] - 19.0 * W[3217] * W[2981]
+            - 18.5 * W[2824] * W[3374] - 18.0 * W[2431] * W[3767] - 17.5 * W[2038] * W[4160] - 17.0 * W[1645] * W[4553]
+            - 16.5 * W[1252] * W[4946] - 16.0 * W[859] * W[5339] - 15.5 * W[466] * W[5732]) / (15.0 * W[73]);
+    W[6130] = (-22.5 * W[5960] * W[235] - 22.0 * W[5567] * W[628] - 21.5 * W[5174] * W[1021] - 21.0 * W[4781] * W[1414]
+            - 20.5 * W[4388] * W[1807] - 20.0 * W[3995] * W[2200] - 19.5 * W[3602] * W[2593] - 19.0 * W[3209] * W[2986]
+            - 18.5 * W[2816] * W[3379] - 18.0 * W[2423] * W[3772] - 17.5 * W[2030] * W[4165] - 17.0 * W[1637] * W[4558]
+            - 16.5 * W[1244] * W[4951] - 16.0 * W[851] * W[5344] - 15.5 * W[458] * W[5737]) / (15.0 * W[65]);
+    W[6163] = (-22.5 * W[6008] * W[268] - 22.0 * W[5615] * W[661] - 21.5 * W[5222] * W[1054] - 21.0 * W[4829] * W[1447]
+            - 20.5 * W[4436] * W[1840] - 20.0 * W[4043] * W[2233] - 19.5 * W[3650] * W[2626] - 19.0 * W[3257] * W[3019]
+            - 18.5 * W[2864] * W[3412] - 18.0 * W[2471] * W[3805] - 17.5 * W[2078] * W[4198] - 17.0 * W[1685] * W[4591]
+            - 16.5 * W[1292] * W[4984] - 16.0 * W[899] * W[5377] - 15.5 * W[506] * W[5770]) / (15.0 * W[113]);
+    W[6167] = (-22.5 * W[6000] * W[272] - 22.0 * W[5607] * W[665] - 21.5 * W[5214] * W[1058] - 21.0 * W[4821] * W[1451]
+            - 20.5 * W[4428] * W[1844] - 20.0 * W[4035] * W[2237] - 19.5 * W[3642] * W[2630] - 19.0 * W[3249] * W[3023]
+            - 18.5 * W[2856] * W[3416] - 18.0 * W[2463] * W[3809] - 17.5 * W[2070] * W[4202] - 17.0 * W[1677] * W[4595]
+            - 16.5 * W[1284] * W[4988] - 16.0 * W[891] * W[5381] - 15.5 * W[498] * W[5774]) / (15.0 * W[105]);
+    W[6172] = (-22.5 * W[5992] * W[277] - 22.0 * W[5599] * W[670] - 21.5 * W[5206] * W[1063] - 21.0 * W[4813] * W[1456]
+            - 20.5 * W[4420] * W[1849] - 20.0 * W[4027] * W[2242] - 19.5 * W[3634] * W[2635] - 19.0 * W[3241] * W[3028]
+            - 18.5 * W[2848] * W[3421] - 18.0 * W[2455] * W[3814] - 17.5 * W[2062] * W[4207] - 17.0 * W[1669] * W[4600]
+            - 16.5 * W[1276] * W[4993] - 16.0 * W[883] * W[5386] - 15.5 * W[490] * W[5779]) / (15.0 * W[97]);
+    W[6202] = (-22.5 * W[6024] * W[307] - 22.0 * W[5631] * W[700] - 21.5 * W[5238] * W[1093] - 21.0 * W[4845] * W[1486]
+            - 20.5 * W[4452] * W[1879] - 20.0 * W[4059] * W[2272] - 19.5 * W[3666] * W[2665] - 19.0 * W[3273] * W[3058]
+            - 18.5 * W[2880] * W[3451] - 18.0 * W[2487] * W[3844] - 17.5 * W[2094] * W[4237] - 17.0 * W[1701] * W[4630]
+            - 16.5 * W[1308] * W[5023] - 16.0 * W[915] * W[5416] - 15.5 * W[522] * W[5809]) / (15.0 * W[129]);
+    W[6206] = (-22.5 * W[6016] * W[311] - 22.0 * W[5623] * W[704] - 21.5 * W[5230] * W[1097] - 21.0 * W[4837] * W[1490]
+            - 20.5 * W[4444] * W[1883] - 20.0 * W[4051] * W[2276] - 19.5 * W[3658] * W[2669] - 19.0 * W[3265] * W[3062]
+            - 18.5 * W[2872] * W[3455] - 18.0 * W[2479] * W[3848] - 17.5 * W[2086] * W[4241] - 17.0 * W[1693] * W[4634]
+            - 16.5 * W[1300] * W[5027] - 16.0 * W[907] * W[5420] - 15.5 * W[514] * W[5813]) / (15.0 * W[121]);
+    W[6233] = (-22.5 * W[6032] * W[338] - 22.0 * W[5639] * W[731] - 21.5 * W[5246] * W[1124] - 21.0 * W[4853] * W[1517]
+            - 20.5 * W[4460] * W[1910] - 20.0 * W[4067] * W[2303] - 19.5 * W[3674] * W[2696] - 19.0 * W[3281] * W[3089]
+            - 18.5 * W[2888] * W[3482] - 18.0 * W[2495] * W[3875] - 17.5 * W[2102] * W[4268] - 17.0 * W[1709] * W[4661]
+            - 16.5 * W[1316] * W[5054] - 16.0 * W[923] * W[5447] - 15.5 * W[530] * W[5840]) / (15.0 * W[137]);
+    W[6062] = W[48] * W[6061] + W[441] * W[5668] + W[834] * W[5275] + W[1227] * W[4882] + W[1620] * W[4489]
+            + W[2013] * W[4096] + W[2406] * W[3703] + W[2799] * W[3310] + W[3192] * W[2917] + W[3585] * W[2524]
+            + W[3978] * W[2131] + W[4371] * W[1738] + W[4764] * W[1345] + W[5157] * W[952] + W[5550] * W[559]
+            + W[5943] * W[166];
+    W[6066] = W[37] * W[6065] + W[430] * W[5672] + W[823] * W[5279] + W[1216] * W[4886] + W[1609] * W[4493]
+            + W[2002] * W[4100] + W[2395] * W[3707] + W[2788] * W[3314] + W[3181] * W[2921] + W[3574] * W[2528]
+            + W[3967] * W[2135] + W[4360] * W[1742] + W[4753] * W[1349] + W[5146] * W[956] + W[5539] * W[563]
+            + W[5932] * W[170];
+    W[6071] = W[26] * W[6070] + W[419] * W[5677] + W[812] * W[5284] + W[1205] * W[4891] + W[1598] * W[4498]
+            + W[1991] * W[4105] + W[2384] * W[3712] + W[2777] * W[3319] + W[3170] * W[2926] + W[3563] * W[2533]
+            + W[3956] * W[2140] + W[4349] * W[1747] + W[4742] * W[1354] + W[5135] * W[961] + W[5528] * W[568]
+            + W[5921] * W[175];
+    W[6076] = W[15] * W[6075] + W[408] * W[5682] + W[801] * W[5289] + W[1194] * W[4896] + W[1587] * W[4503]
+            + W[1980] * W[4110] + W[2373] * W[3717] + W[2766] * W[3324] + W[3159] * W[2931] + W[3552] * W[2538]
+            + W[3945] * W[2145] + W[4338] * W[1752] + W[4731] * W[1359] + W[5124] * W[966] + W[5517] * W[573]
+            + W[5910] * W[180];
+    W[6081] = W[2] * W[6080] + W[395] * W[5687] + W[788] * W[5294] + W[1181] * W[4901] + W[1574] * W[4508]
+            + W[1967] * W[4115] + W[2360] * W[3722] + W[2753] * W[3329] + W[3146] * W[2936] + W[3539] * W[2543]
+            + W[3932] * W[2150] + W[4325] * W[1757] + W[4718] * W[1364] + W[5111] * W[971] + W[5504] * W[578]
+            + W[5897] * W[185];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_281(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6154] = W[71] * W[6125] + W[464] * W[5732] + W[857] * W[5339] + W[1250] * W[4946] + W[1643] * W[4553]
+            + W[2036] * W[4160] + W[2429] * W[3767] + W[2822] * W[3374] + W[3215] * W[2981] + W[3608] * W[2588]
+            + W[4001] * W[2195] + W[4394] * W[1802] + W[4787] * W[1409] + W[5180] * W[1016] + W[5573] * W[623]
+            + W[5966] * W[230];
+    W[6157] = W[63] * W[6130] + W[456] * W[5737] + W[849] * W[5344] + W[1242] * W[4951] + W[1635] * W[4558]
+            + W[2028] * W[4165] + W[2421] * W[3772] + W[2814] * W[3379] + W[3207] * W[2986] + W[3600] * W[2593]
+            + W[3993] * W[2200] + W[4386] * W[1807] + W[4779] * W[1414] + W[5172] * W[1021] + W[5565] * W[628]
+            + W[5958] * W[235];
+    W[6164] = W[106] * W[6163] + W[499] * W[5770] + W[892] * W[5377] + W[1285] * W[4984] + W[1678] * W[4591]
+            + W[2071] * W[4198] + W[2464] * W[3805] + W[2857] * W[3412] + W[3250] * W[3019] + W[3643] * W[2626]
+            + W[4036] * W[2233] + W[4429] * W[1840] + W[4822] * W[1447] + W[5215] * W[1054] + W[5608] * W[661]
+            + W[6001] * W[268];
+    W[6168] = W[98] * W[6167] + W[491] * W[5774] + W[884] * W[5381] + W[1277] * W[4988] + W[1670] * W[4595]
+            + W[2063] * W[4202] + W[2456] * W[3809] + W[2849] * W[3416] + W[3242] * W[3023] + W[3635] * W[2630]
+            + W[4028] * W[2237] + W[4421] * W[1844] + W[4814] * W[1451] + W[5207] * W[1058] + W[5600] * W[665]
+            + W[5993] * W[272];
+    W[6173] = W[90] * W[6172] + W[483] * W[5779] + W[876] * W[5386] + W[1269] * W[4993] + W[1662] * W[4600]
+            + W[2055] * W[4207] + W[2448] * W[3814] + W[2841] * W[3421] + W[3234] * W[3028] + W[3627] * W[2635]
+            + W[4020] * W[2242] + W[4413] * W[1849] + W[4806] * W[1456] + W[5199] * W[1063] + W[5592] * W[670]
+            + W[5985] * W[277];
+    W[6179] = W[108] * W[6163] + W[501] * W[5770] + W[894] * W[5377] + W[1287] * W[4984] + W[1680] * W[4591]
+            + W[2073] * W[4198] + W[2466] * W[3805] + W[2859] * W[3412] + W[3252] * W[3019] + W[3645] * W[2626]
+            + W[4038] * W[2233] + W[4431] * W[1840] + W[4824] * W[1447] + W[5217] * W[1054] + W[5610] * W[661]
+            + W[6003] * W[268];
+    W[6181] = W[100] * W[6167] + W[493] * W[5774] + W[886] * W[5381] + W[1279] * W[4988] + W[1672] * W[4595]
+            + W[2065] * W[4202] + W[2458] * W[3809] + W[2851] * W[3416] + W[3244] * W[3023] + W[3637] * W[2630]
+            + W[4030] * W[2237] + W[4423] * W[1844] + W[4816] * W[1451] + W[5209] * W[1058] + W[5602] * W[665]
+            + W[5995] * W[272];
+    W[6184] = W[92] * W[6172] + W[485] * W[5779] + W[878] * W[5386] + W[1271] * W[4993] + W[1664] * W[4600]
+            + W[2057] * W[4207] + W[2450] * W[3814] + W[2843] * W[3421] + W[3236] * W[3028] + W[3629] * W[2635]
+            + W[4022] * W[2242] + W[4415] * W[1849] + W[4808] * W[1456] + W[5201] * W[1063] + W[5594] * W[670]
+            + W[5987] * W[277];
+    W[6190] = W[111] * W[6163] + W[504] * W[5770] + W[897] * W[5377] + W[1290] * W[4984] + W[1683] * W[4591]
+            + W[2076] * W[4198] + W[2469] * W[3805] + W[2862] * W[3412] + W[3255] * W[3019] + W[3648] * W[2626]
+            + W[4041] * W[2233] + W[4434] * W[1840] + W[4827] * W[1447] + W[5220] * W[1054] + W[5613] * W[661]
+            + W[6006] * W[268];
+    W[6192] = W[103] * W[6167] + W[496] * W[5774] + W[889] * W[5381] + W[1282] * W[4988] + W[1675] * W[4595]
+            + W[2068] * W[4202] + W[2461] * W[3809] + W[2854] * W[3416] + W[3247] * W[3023] + W[3640] * W[2630]
+            + W[4033] * W[2237] + W[4426] * W[1844] + W[4819] * W[1451] + W[5212] * W[1058] + W[5605] * W[665]
+            + W[5998] * W[272];
+    W[6195] = W[95] * W[6172] + W[488] * W[5779] + W[881] * W[5386] + W[1274] * W[4993] + W[1667] * W[4600]
+            + W[2060] * W[4207] + W[2453] * W[3814] + W[2846] * W[3421] + W[3239] * W[3028] + W[3632] * W[2635]
+            + W[4025] * W[2242] + W[4418] * W[1849] + W[4811] * W[1456] + W[5204] * W[1063] + W[5597] * W[670]
+            + W[5990] * W[277];
+    W[6203] = W[122] * W[6202] + W[515] * W[5809] + W[908] * W[5416] + W[1301] * W[5023] + W[1694] * W[4630]
+            + W[2087] * W[4237] + W[2480] * W[3844] + W[2873] * W[3451] + W[3266] * W[3058] + W[3659] * W[2665]
+            + W[4052] * W[2272] + W[4445] * W[1879] + W[4838] * W[1486] + W[5231] * W[1093] + W[5624] * W[700]
+            + W[6017] * W[307];
+    W[6207] = W[114] * W[6206] + W[507] * W[5813] + W[900] * W[5420] + W[1293] * W[5027] + W[1686] * W[4634]
+            + W[2079] * W[4241] + W[2472] * W[3848] + W[2865] * W[3455] + W[3258] * W[3062] + W[3651] * W[2669]
+            + W[4044] * W[2276] + W[4437] * W[1883] + W[4830] * W[1490] + W[5223] * W[1097] + W[5616] * W[704]
+            + W[6009] * W[311];
+    W[6214] = W[124] * W[6202] + W[517] * W[5809] + W[910] * W[5416] + W[1303] * W[5023] + W[1696] * W[4630]
+            + W[2089] * W[4237] + W[2482] * W[3844] + W[2875] * W[3451] + W[3268] * W[3058] + W[3661] * W[2665]
+            + W[4054] * W[2272] + W[4447] * W[1879] + W[4840] * W[1486] + W[5233] * W[1093] + W[5626] * W[700]
+            + W[6019] * W[307];
+    W[6216] = W[116] * W[6206] + W[509] * W[5813] + W[902] * W[5420] + W[1295] * W[5027] + W[1688] * W[4634]
+            + W[2081] * W[4241] + W[2474] * W[3848] + W[2867] * W[3455] + W[3260] * W[3062] + W[3653] * W[2669]
+            + W[4046] * W[2276] + W[4439] * W[1883] + W[4832] * W[1490] + W[5225] * W[1097] + W[5618] * W[704]
+            + W[6011] * W[311];
+    W[6223] = W[127] * W[6202] + W[520] * W[5809] + W[913] * W[5416] + W[1306] * W[5023] + W[1699] * W[4630]
+            + W[2092] * W[4237] + W[2485] * W[3844] + W[2878] * W[3451] + W[3271] * W[3058] + W[3664] * W[2665]
+            + W[4057] * W[2272] + W[4450] * W[1879] + W[4843] * W[1486] + W[5236] * W[1093] + W[5629] * W[700]
+            + W[6022] * W[307];
+    W[6225] = W[119] * W[6206] + W[512] * W[5813] + W[905] * W[5420] + W[1298] * W[5027] + W[1691] * W[4634]
+            + W[2084] * W[4241] + W[2477] * W[3848] + W[2870] * W[3455] + W[3263] * W[3062] + W[3656] * W[2669]
+            + W[4049] * W[2276] + W[4442] * W[1883] + W[4835] * W[1490] + W[5228] * W[1097] + W[5621] * W[704]
+            + W[6014] * W[311];
+    W[6234] = W[130] * W[6233] + W[523] * W[5840] + W[916] * W[5447] + W[1309] * W[5054] + W[1702] * W[4661]
+            + W[2095] * W[4268] + W[2488] * W[3875] + W[2881] * W[3482] + W[3274] * W[3089] + W[3667] * W[2696]
+            + W[4060] * W[2303] + W[4453] * W[1910] + W[4846] * W[1517] + W[5239] * W[1124] + W[5632] * W[731]
+            + W[6025] * W[338];
+    W[6241] = W[132] * W[6233] + W[525] * W[5840] + W[918] * W[5447] + W[1311] * W[5054] + W[1704] * W[4661]
+            + W[2097] * W[4268] + W[2490] * W[3875] + W[2883] * W[3482] + W[3276] * W[3089] + W[3669] * W[2696]
+            + W[4062] * W[2303] + W[4455] * W[1910] + W[4848] * W[1517] + W[5241] * W[1124] + W[5634] * W[731]
+            + W[6027] * W[338];
+    W[6248] = W[135] * W[6233] + W[528] * W[5840] + W[921] * W[5447] + W[1314] * W[5054] + W[1707] * W[4661]
+            + W[2100] * W[4268] + W[2493] * W[3875] + W[2886] * W[3482] + W[3279] * W[3089] + W[3672] * W[2696]
+            + W[4065] * W[2303] + W[4458] * W[1910] + W[4851] * W[1517] + W[5244] * W[1124] + W[5637] * W[731]
+            + W[6030] * W[338];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_288(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6135] = W[161] * W[6134];
+    W[6148] = W[161] * W[6147];
+    W[6161] = W[161] * W[6160];
+    W[6178] = W[161] * W[6177];
+    W[6189] = W[161] * W[6188];
+    W[6200] = W[161] * W[6199];
+    W[6213] = W[161] * W[6212];
+    W[6222] = W[161] * W[6221];
+    W[6231] = W[161] * W[6230];
+    W[6240] = W[161] * W[6239];
+    W[6247] = W[161] * W[6246];
+    W[6254] = W[161] * W[6253];
+    W[6259] = W[163] * W[6258];
+    W[6264] = W[163] * W[6263];
+    W[6269] = W[163] * W[6268];
+    X[576] = X[558] / 16.0;
+    X[577] = X[559] / 16.0;
+    X[578] = X[560] / 16.0;
+    X[579] = X[561] / 16.0;
+    X[580] = X[562] / 16.0;
+    return 0;
+}
+
+/* Lines 340 .. 350 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_290(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[601] = -W[6189] / W[141] / 16.0;
+    X[602] = -W[6200] / W[141] / 16.0;
+    X[603] = -W[6213] / W[142] / 16.0;
+    X[604] = -W[6222] / W[142] / 16.0;
+    X[605] = -W[6231] / W[142] / 16.0;
+    X[606] = -W[6240] / W[143] / 16.0;
+    X[607] = -W[6247] / W[143] / 16.0;
+    X[608] = -W[6254] / W[143] / 16.0;
+    X[609] = -W[6259] / W[144] / 16.0;
+    X[610] = -W[6264] / W[144] / 16.0;
+    X[611] = -W[6269] / W[144] / 16.0;
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 16, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_292(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6359] = X[581] - X[587];
+    W[6362] = X[579] - X[588];
+    W[6364] = X[580] - X[589];
+    W[6367] = X[581] - X[590];
+    W[6370] = X[579] - X[591];
+    W[6372] = X[580] - X[592];
+    W[6375] = X[581] - X[593];
+    W[6378] = X[582] - X[585];
+    W[6380] = X[583] - X[586];
+    W[6383] = X[584] - X[587];
+    W[6386] = X[582] - X[588];
+    W[6388] = X[583] - X[589];
+    W[6391] = X[584] - X[590];
+    W[6394] = X[582] - X[591];
+    W[6396] = X[583] - X[592];
+    W[6399] = X[584] - X[593];
+    W[6402] = X[585] - X[588];
+    W[6404] = X[586] - X[589];
+    W[6407] = X[587] - X[590];
+    W[6410] = X[585] - X[591];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 16, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_294(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6347] = (W[58] * W[6346] + W[451] * W[5953] + W[844] * W[5560] + W[1237] * W[5167] + W[1630] * W[4774]
+            + W[2023] * W[4381] + W[2416] * W[3988] + W[2809] * W[3595]) * 2.0 + W[3202] * W[3202];
+    W[6349] = (W[60] * W[6348] + W[453] * W[5955] + W[846] * W[5562] + W[1239] * W[5169] + W[1632] * W[4776]
+            + W[2025] * W[4383] + W[2418] * W[3990] + W[2811] * W[3597]) * 2.0 + W[3204] * W[3204];
+    W[6352] = (W[63] * W[6351] + W[456] * W[5958] + W[849] * W[5565] + W[1242] * W[5172] + W[1635] * W[4779]
+            + W[2028] * W[4386] + W[2421] * W[3993] + W[2814] * W[3600]) * 2.0 + W[3207] * W[3207];
+    W[6355] = (W[66] * W[6354] + W[459] * W[5961] + W[852] * W[5568] + W[1245] * W[5175] + W[1638] * W[4782]
+            + W[2031] * W[4389] + W[2424] * W[3996] + W[2817] * W[3603]) * 2.0 + W[3210] * W[3210];
+    W[6357] = (W[68] * W[6356] + W[461] * W[5963] + W[854] * W[5570] + W[1247] * W[5177] + W[1640] * W[4784]
+            + W[2033] * W[4391] + W[2426] * W[3998] + W[2819] * W[3605]) * 2.0 + W[3212] * W[3212];
+    W[6360] = (W[71] * W[6359] + W[464] * W[5966] + W[857] * W[5573] + W[1250] * W[5180] + W[1643] * W[4787]
+            + W[2036] * W[4394] + W[2429] * W[4001] + W[2822] * W[3608]) * 2.0 + W[3215] * W[3215];
+    W[6363] = (W[74] * W[6362] + W[467] * W[5969] + W[860] * W[5576] + W[1253] * W[5183] + W[1646] * W[4790]
+            + W[2039] * W[4397] + W[2432] * W[4004] + W[2825] * W[3611]) * 2.0 + W[3218] * W[3218];
+    W[6365] = (W[76] * W[6364] + W[469] * W[5971] + W[862] * W[5578] + W[1255] * W[5185] + W[1648] * W[4792]
+            + W[2041] * W[4399] + W[2434] * W[4006] + W[2827] * W[3613]) * 2.0 + W[3220] * W[3220];
+    W[6368] = (W[79] * W[6367] + W[472] * W[5974] + W[865] * W[5581] + W[1258] * W[5188] + W[1651] * W[4795]
+            + W[2044] * W[4402] + W[2437] * W[4009] + W[2830] * W[3616]) * 2.0 + W[3223] * W[3223];
+    W[6371] = (W[82] * W[6370] + W[475] * W[5977] + W[868] * W[5584] + W[1261] * W[5191] + W[1654] * W[4798]
+            + W[2047] * W[4405] + W[2440] * W[4012] + W[2833] * W[3619]) * 2.0 + W[3226] * W[3226];
+    W[6373] = (W[84] * W[6372] + W[477] * W[5979] + W[870] * W[5586] + W[1263] * W[5193] + W[1656] * W[4800]
+            + W[2049] * W[4407] + W[2442] * W[4014] + W[2835] * W[3621]) * 2.0 + W[3228] * W[3228];
+    W[6376] = (W[87] * W[6375] + W[480] * W[5982] + W[873] * W[5589] + W[1266] * W[5196] + W[1659] * W[4803]
+            + W[2052] * W[4410] + W[2445] * W[4017] + W[2838] * W[3624]) * 2.0 + W[3231] * W[3231];
+    W[6379] = (W[90] * W[6378] + W[483] * W[5985] + W[876] * W[5592] + W[1269] * W[5199] + W[1662] * W[4806]
+            + W[2055] * W[4413] + W[2448] * W[4020] + W[2841] * W[3627]) * 2.0 + W[3234] * W[3234];
+    W[6381] = (W[92] * W[6380] + W[485] * W[5987] + W[878] * W[5594] + W[1271] * W[5201] + W[1664] * W[4808]
+            + W[2057] * W[4415] + W[2450] * W[4022] + W[2843] * W[3629]) * 2.0 + W[3236] * W[3236];
+    W[6384] = (W[95] * W[6383] + W[488] * W[5990] + W[881] * W[5597] + W[1274] * W[5204] + W[1667] * W[4811]
+            + W[2060] * W[4418] + W[2453] * W[4025] + W[2846] * W[3632]) * 2.0 + W[3239] * W[3239];
+    W[6387] = (W[98] * W[6386] + W[491] * W[5993] + W[884] * W[5600] + W[1277] * W[5207] + W[1670] * W[4814]
+            + W[2063] * W[4421] + W[2456] * W[4028] + W[2849] * W[3635]) * 2.0 + W[3242] * W[3242];
+    W[6389] = (W[100] * W[6388] + W[493] * W[5995] + W[886] * W[5602] + W[1279] * W[5209] + W[1672] * W[4816]
+            + W[2065] * W[4423] + W[2458] * W[4030] + W[2851] * W[3637]) * 2.0 + W[3244] * W[3244];
+    W[6392] = (W[103] * W[6391] + W[496] * W[5998] + W[889] * W[5605] + W[1282] * W[5212] + W[1675] * W[4819]
+            + W[2068] * W[4426] + W[2461] * W[4033] + W[2854] * W[3640]) * 2.0 + W[3247] * W[3247];
+    W[6395] = (W[106] * W[6394] + W[499] * W[6001] + W[892] * W[5608] + W[1285] * W[5215] + W[1678] * W[4822]
+            + W[2071] * W[4429] + W[2464] * W[4036] + W[2857] * W[3643]) * 2.0 + W[3250] * W[3250];
+    W[6397] = (W[108] * W[6396] + W[501] * W[6003] + W[894] * W[5610] + W[1287] * W[5217] + W[1680] * W[4824]
+            + W[2073] * W[4431] + W[2466] * W[4038] + W[2859] * W[3645]) * 2.0 + W[3252] * W[3252];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 16, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_296(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6390] = W[6387] + W[6389];
+    W[6398] = W[6395] + W[6397];
+    W[6406] = W[6403] + W[6405];
+    W[6414] = W[6411] + W[6413];
+    W[6422] = W[6419] + W[6421];
+    W[6301] = W[6296] + W[6300];
+    W[6312] = W[6308] + W[6311];
+    W[6323] = W[6319] + W[6322];
+    W[6334] = W[6330] + W[6333];
+    W[6345] = W[6341] + W[6344];
+    W[6353] = W[6350] + W[6352];
+    W[6361] = W[6358] + W[6360];
+    W[6369] = W[6366] + W[6368];
+    W[6377] = W[6374] + W[6376];
+    W[6385] = W[6382] + W[6384];
+    W[6393] = W[6390] + W[6392];
+    W[6401] = W[6398] + W[6400];
+    W[6409] = W[6406] + W[6408];
+    W[6417] = W[6414] + W[6416];
+    W[6425] = W[6422] + W[6424];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 16, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_297(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6454] = (-24.0 * W[6345] * W[166] - 23.5 * W[5952] * W[559] - 23.0 * W[5559] * W[952] - 22.5 * W[5166] * W[1345]
+            - 22.0 * W[4773] * W[1738] - 21.5 * W[4380] * W[2131] - 21.0 * W[3987] * W[2524] - 20.5 * W[3594] * W[2917]
+            - 20.0 * W[3201] * W[3310] - 19.5 * W[2808] * W[3703] - 19.0 * W[2415] * W[4096] - 18.5 * W[2022] * W[4489]
+            - 18.0 * W[1629] * W[4882] - 17.5 * W[1236] * W[5275] - 17.0 * W[843] * W[5668] - 16.5 * W[450] * W[6061]) / (16.0 * W[57]);
+    W[6458] = (-24.0 * W[6334] * W[170] - 23.5 * W[5941] * W[563] - 23.0 * W[5548] * W[956] - 22.5 * W[5155] * W[1349]
+            - 22.0 * W[4762] * W[1742] - 21.5 * W[4369] * W[2135] - 21.0 * W[3976] * W[2528] - 20.5 * W[3583] * W[2921]
+            - 20.0 * W[3190] * W[3314] - 19.5 * W[2797] * W[3707] - 19.0 * W[2404] * W[4100] - 18.5 * W[2011] * W[4493]
+            - 18.0 * W[1618] * W[4886] - 17.5 * W[1225] * W[5279] - 17.0 * W[832] * W[5672] - 16.5 * W[439] * W[6065]) / (16.0 * W[46]);
+    W[6463] = (-24.0 * W[6323] * W[175] - 23.5 * W[5930] * W[568] - 23.0 * W[5537] * W[961] - 22.5 * W[5144] * W[1354]
+            - 22.0 * W[4751] * W[1747] - 21.5 * W[4358] * W[2140] - 21.0 * W[3965] * W[2533] - 20.5 * W[3572] * W[2926]
+            - 20.0 * W[3179] * W[3319] - 19.5 * W[2786] * W[3712] - 19.0 * W[2393] * W[4105] - 18.5 * W[2000] * W[4498]
+            - 18.0 * W[1607] * W[4891] - 17.5 * W[1214] * W[5284] - 17.0 * W[821] * W[5677] - 16.5 * W[428] * W[6070]) / (16.0 * W[35]);
+    W[6468] = (-24.0 * W[6312] * W[180] - 23.5 * W[5919] * W[573] - 23.0 * W[5526] * W[966] - 22.5 * W[5133] * W[1359]
+            - 22.0 * W[4740] * W[1752] - 21.5 * W[4347] * W[2145] - 21.0 * W[3954] * W[2538] - 20.5 * W[3561] * W[2931]
+            - 20.0 * W[3168] * W[3324] - 19.5 * W[2775] * W[3717] - 19.0 * W[2382] * W[4110] - 18.5 * W[1989] * W[4503]
+            - 18.0 * W[1596] * W[4896] - 17.5 * W[1203] * W[5289] - 17.0 * W[810] * W[5682] - 16.5 * W[417] * W[6075]) / (16.0 * W[24]);
+    W[6473] = (-24.0 * W[6301] * W[185] - 23.5 * W[5908] * W[578] - 23.0 * W[5515] * W[971] - 22.5 * W[5122] * W[1364]
+            - 22.0 * W[4729] * W[1757] - 21.5 * W[4336] * W[2150] - 21.0 * W[3943] * W[2543] - 20.5 * W[3550] * W[2936]
+            - 20.0 * W[3157] * W[3329] - 19.5 * W[2764] * W[3722] - 19.0 * W[2371] * W[4115] - 18.5 * W[1978] * W[4508]
+            - 18.0 * W[1585] * W[4901] - 17.5 * W[1192] * W[5294] - 17.0 * W[799] * W[5687] - 16.5 * W[406] * W[6080]) / (16.0 * W[13]);
+    W[6509] = (-24.0 * W[6377] * W[221] - 23.5 * W[5984] * W[614] - 23.0 * W[5591] * W[1007] - 22.5 * W[5198] * W[1400]
+            - 22.0 * W[4805] * W[1793] - 21.5 * W[4412] * W[2186] - 21.0 * W[4019] * W[2579] - 20.5 * W[3626] * W[2972]
+            - 20.0 * W[3233] * W[3365] - 19.5 * W[2840] * W[3758] - 19.0 * W[2447] * W[4151] - 18.5 * W[2054] * W[4544]
+            - 18.0 * W[1661] * W[4937] - 17.5 * W[1268] * W[5330] - 17.0 * W[875] * W[5723] - 16.5 * W[482] * W[6116]) / (16.0 * W[89]);
+    W[6513] = (-24.0 * W[6369] * W[225] - 23.5 * W[5976] * W[618] - 23.0 * W[5583] * W[1011] - 22.5 * W[5190] * W[1404]
+            - 22.0 * W[4797] * W[1797] - 21.5 * W[4404] * W[2190] - 21.0 * W[4011] * W[2583] - 20.5 * W[3618] * W[2976]
+            - 20.0 * W[3225] * W[3369] - 19.5 * W[2832] * W[3762] - 19.0 * W[2439] * W[4155] - 18.5 * W[2046] * W[4548]
+            - 18.0 * W[1653] * W[4941] - 17.5 * W[1260] * W[5334] - 17.0 * W[867] * W[5727] - 16.5 * W[474] * W[6120]) / (16.0 * W[81]);
+    W[6518] = (-24.0 * W[6361] * W[230] - 23.5 * W[5968] * W[623] - 23.0 * W[5575] * W[1016] - 22.5 * W[5182] * W[1409]
+            - 22.0 * W[4789] * W[1802] - 21.5 * W[4396] * W[2195] - 21.0 * W[4003] * W[2588] - 20.5 * W[3610] * W[2981]
+            - 20.0 * W[3217] * W[3374] - 19.5 * W[2824] * W[3767] - 19.0 * W[2431] * W[4160] - 18.5 * W[2038] * W[4553]
+            - 18.0 * W[1645] * W[4946] - 17.5 * W[1252] * W[5339] - 17.0 * W[859] * W[5732] - 16.5 * W[466] * W[6125]) / (16.0 * W[73]);
+    W[6523] = (-24.0 * W[6353] * W[235] - 23.5 * W[5960] * W[628] - 23.0 * W[5567] * W[1021] - 22.5 * W[5174] * W[1414]
+            - 22.0 * W[4781] * W[1807] - 21.5 * W[4388] * W[2200] - 21.0 * W[3995] * W[2593] - 20.5 * W[3602] * W[2986]
+            - 20.0 * W[3209] * W[3379] - 19.5 * W[2816] * W[3772] - 19.0 * W[2423] * W[4165] - 18.5 * W[2030] * W[4558]
+            - 18.0 * W[1637] * W[4951] - 17.5 * W[1244] * W[5344] - 17.0 * W[851] * W[5737] - 16.5 * W[458] * W[6130]) / (16.0 * W[65]);
+    W[6556] = (-24.0 * W[6401] * W[268] - 23.5 * W[6008] * W[661] - 23.0 * W[5615] * W[1054] - 22.5 * W[5222] * W[1447]
+            - 22.0 * W[4829] * W[1840] - 21.5 * W[4436] * W[2233] - 21.0 * W[4043] * W[2626] - 20.5 * W[3650] * W[3019]
+            - 20.0 * W[3257] * W[3412] - 19.5 * W[2864] * W[3805] - 19.0 * W[2471] * W[4198] - 18.5 * W[2078] * W[4591]
+            - 18.0 * W[1685] * W[4984] - 17.5 * W[1292] * W[5377] - 17.0 * W[899] * W[5770] - 16.5 * W[506] * W[6163]) / (16.0 * W[113]);
+    W[6560] = (-24.0 * W[6393] * W[272] - 23.5 * W[6000] * W[665] - 23.0 * W[5607] * W[1058] - 22.5 * W[5214] * W[1451]
+            - 22.0 * W[4821] * W[1844] - 21.5 * W[4428] * W[2237] - 21.0 * W[4035] * W[2630] - 20.5 * W[3642] * W[3023]
+            - 20.0 * W[3249] * W[3416] - 19.5 * W[2856] * W[3809] - 19.0 * W[2463] * W[4202] - 18.5 * W[2070] * W[4595]
+            - 18.0 * W[1677] * W[4988] - 17.5 * W[1284] * W[5381] - 17.0 * W[891] * W[5774] - 16.5 * W[498] * W[6167]) / (16.0 * W[105]);
+    W[6565] = (-24.0 * W[6385] * W[277] - 23.5 * W[5992] * W[670] - 23.0 * W[5599] * W[1063] - 22.5 * W[5206] * W[1456]
+            - 22.0 * W[4813] * W[1849] - 21.5 * W[4420] * W[2242] - 21.0 * W[4027] * W[2635] - 20.5 * W[3634] * W[3028]
+            - 20.0 * W[3241] * W[3421] - 19.5 * W[2848] * W[3814] - 19.0 * W[2455] * W[4207] - 18.5 * W[2062] * W[4600]
+            - 18.0 * W[1669] * W[4993] - 17.5 * W[1276] * W[5386] - 17.0 * W[883] * W[5779] - 16.5 * W[490] * W[6172]) / (16.0 * W[97]);
+    W[6595] = (-24.0 * W[6417] * W[307] - 23.5 * W[6024] * W[700] - 23.0 * W[5631] * W[1093] - 22.5 * W[5238] * W[1486]
+            - 22.0 * W[4845] * W[1879] - 21.5 * W[4452] * W[2272] - 21.0 * W[4059] * W[2665] - 20.5 * W[3666] * W[3058]
+            - 20.0 * W[3273] * W[3451] - 19.5 * W[2880] * W[3844] - 19.0 * W[2487] * W[4237] - 18.5 * W[2094] * W[4630]
+            - 18.0 * W[1701] * W[5023] - 17.5 * W[1308] * W[5416] - 17.0 * W[915] * W[5809] - 16.5 * W[522] * W[6202]) / (16.0 * W[129]);
+    W[6599] = (-24.0 * W[6409] * W[311] - 23.5 * W[6016] * W[704] - 23.0 * W[5623] * W[1097] - 22.5 * W[5230] * W[1490]
+            - 22.0 * W[4837] * W[1883] - 21.5 * W[4444] * W[2276] - 21.0 * W[4051] * W[2669] - 20.5 * W[3658] * W[3062]
+            - 20.0 * W[3265] * W[3455] - 19.5 * W[2872] * W[3848] - 19.0 * W[2479] * W[4241] - 18.5 * W[2086] * W[4634]
+            - 18.0 * W[1693] * W[5027] - 17.5 * W[1300] * W[5420] - 17.0 * W[907] * W[5813] - 16.5 * W[514] * W[6206]) / (16.0 * W[121]);
+    W[6626] = (-24.0 * W[6425] * W[338] - 23.5 * W[6032] * W[731] - 23.0 * W[5639] * W[1124] - 22.5 * W[5246] * W[1517]
+            - 22.0 * W[4853] * W[1910] - 21.5 * W[4460] * W[2303] - 21.0 * W[4067] * W[2696] - 20.5 * W[3674] * W[3089]
+            - 20.0 * W[3281] * W[3482] - 19.5 * W[2888] * W[3875] - 19.0 * W[2495] * W[4268] - 18.5 * W[2102] * W[4661]
+            - 18.0 * W[1709] * W[5054] - 17.5 * W[1316] * W[5447] - 17.0 * W[923] * W[5840] - 16.5 * W[530] * W[6233]) / (16.0 * W[137]);
+    W[6455] = W[48] * W[6454] + W[441] * W[6061] + W[834] * W[5668] + W[1227] * W[5275] + W[1620] * W[4882]
+            + W[2013] * W[4489] + W[2406] * W[4096] + W[2799] * W[3703] + W[3192] * W[3310] + W[3585] * W[2917]
+            + W[3978] * W[2524] + W[4371] * W[2131] + W[4764] * W[1738] + W[5157] * W[1345] + W[5550] * W[952]
+            + W[5943] * W[559] + W[6336] * W[166];
+    W[6459] = W[37] * W[6458] + W[430] * W[6065] + W[823] * W[5672] + W[1216] * W[5279] + W[1609] * W[4886]
+            + W[2002] * W[4493] + W[2395] * W[4100] + W[2788] * W[3707] + W[3181] * W[3314] + W[3574] * W[2921]
+            + W[3967] * W[2528] + W[4360] * W[2135] + W[4753] * W[1742] + W[5146] * W[1349] + W[5539] * W[956]
+            + W[5932] * W[563] + W[6325] * W[170];
+    W[6464] = W[26] * W[6463] + W[419] * W[6070] + W[812] * W[5677] + W[1205] * W[5284] + W[1598] * W[4891]
+            + W[1991] * W[4498] + W[2384] * W[4105] + W[2777] * W[3712] + W[3170] * W[3319] + W[3563] * W[2926]
+            + W[3956] * W[2533] + W[4349] * W[2140] + W[4742] * W[1747] + W[5135] * W[1354] + W[5528] * W[961]
+            + W[5921] * W[568] + W[6314] * W[175];
+    W[6469] = W[15] * W[6468] + W[408] * W[6075] + W[801] * W[5682] + W[1194] * W[5289] + W[1587] * W[4896]
+            + W[1980] * W[4503] + W[2373] * W[4110] + W[2766] * W[3717] + W[3159] * W[3324] + W[3552] * W[2931]
+            + W[3945] * W[2538] + W[4338] * W[2145] + W[4731] * W[1752] + W[5124] * W[1359] + W[5517] * W[966]
+            + W[5910] * W[573] + W[6303] * W[180];
+    W[6474] = W[2] * W[6473] + W[395] * W[6080] + W[788] * W[5687] + W[1181] * W[5294] + W[1574] * W[4901]
+            + W[1967] * W[4508] + W[2360] * W[4115] + W[2753] * W[3722] + W[3146] * W[3329] + W[3539] * W[2936]
+            + W[3932] * W[2543] + W[4325] * W[2150] + W[4718] * W[1757] + W[5111] * W[1364] + W[5504] * W[971]
+            + W[5897] * W[578] + W[6290] * W[185];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 16, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_299(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6547] = W[71] * W[6518] + W[464] * W[6125] + W[857] * W[5732] + W[1250] * W[5339] + W[1643] * W[4946]
+            + W[2036] * W[4553] + W[2429] * W[4160] + W[2822] * W[3767] + W[3215] * W[3374] + W[3608] * W[2981]
+            + W[4001] * W[2588] + W[4394] * W[2195] + W[4787] * W[1802] + W[5180] * W[1409] + W[5573] * W[1016]
+            + W[5966] * W[623] + W[6359] * W[230];
+    W[6550] = W[63] * W[6523] + W[456] * W[6130] + W[849] * W[5737] + W[1242] * W[5344] + W[1635] * W[4951]
+            + W[2028] * W[4558] + W[2421] * W[4165] + W[2814] * W[3772] + W[3207] * W[3379] + W[3600] * W[2986]
+            + W[3993] * W[2593] + W[4386] * W[2200] + W[4779] * W[1807] + W[5172] * W[1414] + W[5565] * W[1021]
+            + W[5958] * W[628] + W[6351] * W[235];
+    W[6557] = W[106] * W[6556] + W[499] * W[6163] + W[892] * W[5770] + W[1285] * W[5377] + W[1678] * W[4984]
+            + W[2071] * W[4591] + W[2464] * W[4198] + W[2857] * W[3805] + W[3250] * W[3412] + W[3643] * W[3019]
+            + W[4036] * W[2626] + W[4429] * W[2233] + W[4822] * W[1840] + W[5215] * W[1447] + W[5608] * W[1054]
+            + W[6001] * W[661] + W[6394] * W[268];
+    W[6561] = W[98] * W[6560] + W[491] * W[6167] + W[884] * W[5774] + W[1277] * W[5381] + W[1670] * W[4988]
+            + W[2063] * W[4595] + W[2456] * W[4202] + W[2849] * W[3809] + W[3242] * W[3416] + W[3635] * W[3023]
+            + W[4028] * W[2630] + W[4421] * W[2237] + W[4814] * W[1844] + W[5207] * W[1451] + W[5600] * W[1058]
+            + W[5993] * W[665] + W[6386] * W[272];
+    W[6566] = W[90] * W[6565] + W[483] * W[6172] + W[876] * W[5779] + W[1269] * W[5386] + W[1662] * W[4993]
+            + W[2055] * W[4600] + W[2448] * W[4207] + W[2841] * W[3814] + W[3234] * W[3421] + W[3627] * W[3028]
+            + W[4020] * W[2635] + W[4413] * W[2242] + W[4806] * W[1849] + W[5199] * W[1456] + W[5592] * W[1063]
+            + W[5985] * W[670] + W[6378] * W[277];
+    W[6572] = W[108] * W[6556] + W[501] * W[6163] + W[894] * W[5770] + W[1287] * W[5377] + W[1680] * W[4984]
+            + W[2073] * W[4591] + W[2466] * W[4198] + W[2859] * W[3805] + W[3252] * W[3412] + W[3645] * W[3019]
+            + W[4038] * W[2626] + W[4431] * W[2233] + W[4824] * W[1840] + W[5217] * W[1447] + W[5610] * W[1054]
+            + W[6003] * W[661] + W[6396] * W[268];
+    W[6574] = W[100] * W[6560] + W[493] * W[6167] + W[886] * W[5774] + W[1279] * W[5381] + W[1672] * W[4988]
+            + W[2065] * W[4595] + W[2458] * W[4202] + W[2851] * W[3809] + W[3244] * W[3416] + W[3637] * W[3023]
+            + W[4030] * W[2630] + W[4423] * W[2237] + W[4816] * W[1844] + W[5209] * W[1451] + W[5602] * W[1058]
+            + W[5995] * W[665] + W[6388] * W[272];
+    W[6577] = W[92] * W[6565] + W[485] * W[6172] + W[878] * W[5779] + W[1271] * W[5386] + W[1664] * W[4993]
+            + W[2057] * W[4600] + W[2450] * W[4207] + W[2843] * W[3814] + W[3236] * W[3421] + W[3629] * W[3028]
+            + W[4022] * W[2635] + W[4415] * W[2242] + W[4808] * W[1849] + W[5201] * W[1456] + W[5594] * W[1063]
+            + W[5987] * W[670] + W[6380] * W[277];
+    W[6583] = W[111] * W[6556] + W[504] * W[6163] + W[897] * W[5770] + W[1290] * W[5377] + W[1683] * W[4984]
+            + W[2076] * W[4591] + W[2469] * W[4198] + W[2862] * W[3805] + W[3255] * W[3412] + W[3648] * W[3019]
+            + W[4041] * W[2626] + W[4434] * W[2233] + W[4827] * W[1840] + W[5220] * W[1447] + W[5613] * W[1054]
+            + W[6006] * W[661] + W[6399] * W[268];
+    W[6585] = W[103] * W[6560] + W[496] * W[6167] + W[889] * W[5774] + W[1282] * W[5381] + W[1675] * W[4988]
+            + W[2068] * W[4595] + W[2461] * W[4202] + W[2854] * W[3809] + W[3247] * W[3416] + W[3640] * W[3023]
+            + W[4033] * W[2630] + W[4426] * W[2237] + W[4819] * W[1844] + W[5212] * W[1451] + W[5605] * W[1058]
+            + W[5998] * W[665] + W[6391] * W[272];
+    W[6588] = W[95] * W[6565] + W[488] * W[6172] + W[881] * W[5779] + W[1274] * W[5386] + W[1667] * W[4993]
+            + W[2060] * W[4600] + W[2453] * W[4207] + W[2846] * W[3814] + W[3239] * W[3421] + W[3632] * W[3028]
+            + W[4025] * W[2635] + W[4418] * W[2242] + W[4811] * W[1849] + W[5204] * W[1456] + W[5597] * W[1063]
+            + W[5990] * W[670] + W[6383] * W[277];
+    W[6596] = W[122] * W[6595] + W[515] * W[6202] + W[908] * W[5809] + W[1301] * W[5416] + W[1694] * W[5023]
+            + W[2087] * W[4630] + W[2480] * W[4237] + W[2873] * W[3844] + W[3266] * W[3451] + W[3659] * W[3058]
+            + W[4052] * W[2665] + W[4445] * W[2272] + W[4838] * W[1879] + W[5231] * W[1486] + W[5624] * W[1093]
+            + W[6017] * W[700] + W[6410] * W[307];
+    W[6600] = W[114] * W[6599] + W[507] * W[6206] + W[900] * W[5813] + W[1293] * W[5420] + W[1686] * W[5027]
+            + W[2079] * W[4634] + W[2472] * W[4241] + W[2865] * W[3848] + W[3258] * W[3455] + W[3651] * W[3062]
+            + W[4044] * W[2669] + W[4437] * W[2276] + W[4830] * W[1883] + W[5223] * W[1490] + W[5616] * W[1097]
+            + W[6009] * W[704] + W[6402] * W[311];
+    W[6607] = W[124] * W[6595] + W[517] * W[6202] + W[910] * W[5809] + W[1303] * W[5416] + W[1696] * W[5023]
+            + W[2089] * W[4630] + W[2482] * W[4237] + W[2875] * W[3844] + W[3268] * W[3451] + W[3661] * W[3058]
+            + W[4054] * W[2665] + W[4447] * W[2272] + W[4840] * W[1879] + W[5233] * W[1486] + W[5626] * W[1093]
+            + W[6019] * W[700] + W[6412] * W[307];
+    W[6609] = W[116] * W[6599] + W[509] * W[6206] + W[902] * W[5813] + W[1295] * W[5420] + W[1688] * W[5027]
+            + W[2081] * W[4634] + W[2474] * W[4241] + W[2867] * W[3848] + W[3260] * W[3455] + W[3653] * W[3062]
+            + W[4046] * W[2669] + W[4439] * W[2276] + W[4832] * W[1883] + W[5225] * W[1490] + W[5618] * W[1097]
+            + W[6011] * W[704] + W[6404] * W[311];
+    W[6616] = W[127] * W[6595] + W[520] * W[6202] + W[913] * W[5809] + W[1306] * W[5416] + W[1699] * W[5023]
+            + W[2092] * W[4630] + W[2485] * W[4237] + W[2878] * W[3844] + W[3271] * W[3451] + W[3664] * W[3058]
+            + W[4057] * W[2665] + W[4450] * W[2272] + W[4843] * W[1879] + W[5236] * W[1486] + W[5629] * W[1093]
+            + W[6022] * W[700] + W[6415] * W[307];
+    W[6618] = W[119] * W[6599] + W[512] * W[6206] + W[905] * W[5813] + W[1298] * W[5420] + W[1691] * W[5027]
+            + W[2084] * W[4634] + W[2477] * W[4241] + W[2870] * W[3848] + W[3263] * W[3455] + W[3656] * W[3062]
+            + W[4049] * W[2669] + W[4442] * W[2276] + W[4835] * W[1883] + W[5228] * W[1490] + W[5621] * W[1097]
+            + W[6014] * W[704] + W[6407] * W[311];
+    W[6627] = W[130] * W[6626] + W[523] * W[6233] + W[916] * W[5840] + W[1309] * W[5447] + W[1702] * W[5054]
+            + W[2095] * W[4661] + W[2488] * W[4268] + W[2881] * W[3875] + W[3274] * W[3482] + W[3667] * W[3089]
+            + W[4060] * W[2696] + W[4453] * W[2303] + W[4846] * W[1910] + W[5239] * W[1517] + W[5632] * W[1124]
+            + W[6025] * W[731] + W[6418] * W[338];
+    W[6634] = W[132] * W[6626] + W[525] * W[6233] + W[918] * W[5840] + W[1311] * W[5447] + W[1704] * W[5054]
+            + W[2097] * W[4661] + W[2490] * W[4268] + W[2883] * W[3875] + W[3276] * W[3482] + W[3669] * W[3089]
+            + W[4062] * W[2696] + W[4455] * W[2303] + W[4848] * W[1910] + W[5241] * W[1517] + W[5634] * W[1124]
+            + W[6027] * W[731] + W[6420] * W[338];
+    W[6641] = W[135] * W[6626] + W[528] * W[6233] + W[921] * W[5840] + W[1314] * W[5447] + W[1707] * W[5054]
+            + W[2100] * W[4661] + W[2493] * W[4268] + W[2886] * W[3875] + W[3279] * W[3482] + W[3672] * W[3089]
+            + W[4065] * W[2696] + W[4458] * W[2303] + W[4851] * W[1910] + W[5244] * W[1517] + W[5637] * W[1124]
+            + W[6030] * W[731] + W[6423] * W[338];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 16, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_307(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[617] = X[599] / 17.0;
+    X[618] = X[600] / 17.0;
+    X[619] = X[601] / 17.0;
+    X[620] = X[602] / 17.0;
+    X[621] = X[603] / 17.0;
+    X[622] = X[604] / 17.0;
+    X[623] = X[605] / 17.0;
+    X[624] = X[606] / 17.0;
+    X[625] = X[607] / 17.0;
+    X[626] = X[608] / 17.0;
+    X[627] = X[609] / 17.0;
+    X[628] = X[610] / 17.0;
+    X[629] = X[611] / 17.0;
+    X[630] = -W[6477] / W[138] / 17.0;
+    X[631] = -W[6492] / W[138] / 17.0;
+    X[632] = -W[6507] / W[138] / 17.0;
+    X[633] = -W[6528] / W[140] / 17.0;
+    X[634] = -W[6541] / W[140] / 17.0;
+    X[635] = -W[6554] / W[140] / 17.0;
+    X[636] = -W[6571] / W[141] / 17.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_309(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6683] = X[612] - X[615];
+    W[6687] = X[613] - X[616];
+    W[6692] = X[614] - X[617];
+    W[6696] = X[612] - X[618];
+    W[6699] = X[613] - X[619];
+    W[6703] = X[614] - X[620];
+    W[6707] = X[612] - X[621];
+    W[6710] = X[613] - X[622];
+    W[6714] = X[614] - X[623];
+    W[6718] = X[612] - X[624];
+    W[6721] = X[613] - X[625];
+    W[6725] = X[614] - X[626];
+    W[6729] = X[612] - X[627];
+    W[6732] = X[613] - X[628];
+    W[6736] = X[614] - X[629];
+    W[6739] = X[615] - X[618];
+    W[6741] = X[616] - X[619];
+    W[6744] = X[617] - X[620];
+    W[6747] = X[615] - X[621];
+    W[6749] = X[616] - X[622];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_311(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6805] = X[622] - X[628];
+    W[6808] = X[623] - X[629];
+    W[6811] = X[624] - X[627];
+    W[6813] = X[625] - X[628];
+    W[6816] = X[626] - X[629];
+    W[6684] = (W[2] * W[6683] + W[395] * W[6290] + W[788] * W[5897] + W[1181] * W[5504] + W[1574] * W[5111]
+            + W[1967] * W[4718] + W[2360] * W[4325] + W[2753] * W[3932] + W[3146] * W[3539]) * 2.0;
+    W[6688] = (W[6] * W[6687] + W[399] * W[6294] + W[792] * W[5901] + W[1185] * W[5508] + W[1578] * W[5115]
+            + W[1971] * W[4722] + W[2364] * W[4329] + W[2757] * W[3936] + W[3150] * W[3543]) * 2.0;
+    W[6693] = (W[11] * W[6692] + W[404] * W[6299] + W[797] * W[5906] + W[1190] * W[5513] + W[1583] * W[5120]
+            + W[1976] * W[4727] + W[2369] * W[4334] + W[2762] * W[3941] + W[3155] * W[3548]) * 2.0;
+    W[6697] = (W[15] * W[6696] + W[408] * W[6303] + W[801] * W[5910] + W[1194] * W[5517] + W[1587] * W[5124]
+            + W[1980] * W[4731] + W[2373] * W[4338] + W[2766] * W[3945] + W[3159] * W[3552]) * 2.0;
+    W[6700] = (W[18] * W[6699] + W[411] * W[6306] + W[804] * W[5913] + W[1197] * W[5520] + W[1590] * W[5127]
+            + W[1983] * W[4734] + W[2376] * W[4341] + W[2769] * W[3948] + W[3162] * W[3555]) * 2.0;
+    W[6704] = (W[22] * W[6703] + W[415] * W[6310] + W[808] * W[5917] + W[1201] * W[5524] + W[1594] * W[5131]
+            + W[1987] * W[4738] + W[2380] * W[4345] + W[2773] * W[3952] + W[3166] * W[3559]) * 2.0;
+    W[6708] = (W[26] * W[6707] + W[419] * W[6314] + W[812] * W[5921] + W[1205] * W[5528] + W[1598] * W[5135]
+            + W[1991] * W[4742] + W[2384] * W[4349] + W[2777] * W[3956] + W[3170] * W[3563]) * 2.0;
+    W[6711] = (W[29] * W[6710] + W[422] * W[6317] + W[815] * W[5924] + W[1208] * W[5531] + W[1601] * W[5138]
+            + W[1994] * W[4745] + W[2387] * W[4352] + W[2780] * W[3959] + W[3173] * W[3566]) * 2.0;
+    W[6715] = (W[33] * W[6714] + W[426] * W[6321] + W[819] * W[5928] + W[1212] * W[5535] + W[1605] * W[5142]
+            + W[1998] * W[4749] + W[2391] * W[4356] + W[2784] * W[3963] + W[3177] * W[3570]) * 2.0;
+    W[6719] = (W[37] * W[6718] + W[430] * W[6325] + W[823] * W[5932] + W[1216] * W[5539] + W[1609] * W[5146]
+            + W[2002] * W[4753] + W[2395] * W[4360] + W[2788] * W[3967] + W[3181] * W[3574]) * 2.0;
+    W[6722] = (W[40] * W[6721] + W[433] * W[6328] + W[826] * W[5935] + W[1219] * W[5542] + W[1612] * W[5149]
+            + W[2005] * W[4756] + W[2398] * W[4363] + W[2791] * W[3970] + W[3184] * W[3577]) * 2.0;
+    W[6726] = (W[44] * W[6725] + W[437] * W[6332] + W[830] * W[5939] + W[1223] * W[5546] + W[1616] * W[5153]
+            + W[2009] * W[4760] + W[2402] * W[4367] + W[2795] * W[3974] + W[3188] * W[3581]) * 2.0;
+    W[6730] = (W[48] * W[6729] + W[441] * W[6336] + W[834] * W[5943] + W[1227] * W[5550] + W[1620] * W[5157]
+            + W[2013] * W[4764] + W[2406] * W[4371] + W[2799] * W[3978] + W[3192] * W[3585]) * 2.0;
+    W[6733] = (W[51] * W[6732] + W[444] * W[6339] + W[837] * W[5946] + W[1230] * W[5553] + W[1623] * W[5160]
+            + W[2016] * W[4767] + W[2409] * W[4374] + W[2802] * W[3981] + W[3195] * W[3588]) * 2.0;
+    W[6737] = (W[55] * W[6736] + W[448] * W[6343] + W[841] * W[5950] + W[1234] * W[5557] + W[1627] * W[5164]
+            + W[2020] * W[4771] + W[2413] * W[4378] + W[2806] * W[3985] + W[3199] * W[3592]) * 2.0;
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_313(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6793] = (W[111] * W[6792] + W[504] * W[6399] + W[897] * W[6006] + W[1290] * W[5613] + W[1683] * W[5220]
+            + W[2076] * W[4827] + W[2469] * W[4434] + W[2862] * W[4041] + W[3255] * W[3648]) * 2.0;
+    W[6796] = (W[114] * W[6795] + W[507] * W[6402] + W[900] * W[6009] + W[1293] * W[5616] + W[1686] * W[5223]
+            + W[2079] * W[4830] + W[2472] * W[4437] + W[2865] * W[4044] + W[3258] * W[3651]) * 2.0;
+    W[6798] = (W[116] * W[6797] + W[509] * W[6404] + W[902] * W[6011] + W[1295] * W[5618] + W[1688] * W[5225]
+            + W[2081] * W[4832] + W[2474] * W[4439] + W[2867] * W[4046] + W[3260] * W[3653]) * 2.0;
+    W[6801] = (W[119] * W[6800] + W[512] * W[6407] + W[905] * W[6014] + W[1298] * W[5621] + W[1691] * W[5228]
+            + W[2084] * W[4835] + W[2477] * W[4442] + W[2870] * W[4049] + W[3263] * W[3656]) * 2.0;
+    W[6804] = (W[122] * W[6803] + W[515] * W[6410] + W[908] * W[6017] + W[1301] * W[5624] + W[1694] * W[5231]
+            + W[2087] * W[4838] + W[2480] * W[4445] + W[2873] * W[4052] + W[3266] * W[3659]) * 2.0;
+    W[6806] = (W[124] * W[6805] + W[517] * W[6412] + W[910] * W[6019] + W[1303] * W[5626] + W[1696] * W[5233]
+            + W[2089] * W[4840] + W[2482] * W[4447] + W[2875] * W[4054] + W[3268] * W[3661]) * 2.0;
+    W[6809] = (W[127] * W[6808] + W[520] * W[6415] + W[913] * W[6022] + W[1306] * W[5629] + W[1699] * W[5236]
+            + W[2092] * W[4843] + W[2485] * W[4450] + W[2878] * W[4057] + W[3271] * W[3664]) * 2.0;
+    W[6812] = (W[130] * W[6811] + W[523] * W[6418] + W[916] * W[6025] + W[1309] * W[5632] + W[1702] * W[5239]
+            + W[2095] * W[4846] + W[2488] * W[4453] + W[2881] * W[4060] + W[3274] * W[3667]) * 2.0;
+    W[6814] = (W[132] * W[6813] + W[525] * W[6420] + W[918] * W[6027] + W[1311] * W[5634] + W[1704] * W[5241]
+            + W[2097] * W[4848] + W[2490] * W[4455] + W[2883] * W[4062] + W[3276] * W[3669]) * 2.0;
+    W[6817] = (W[135] * W[6816] + W[528] * W[6423] + W[921] * W[6030] + W[1314] * W[5637] + W[1707] * W[5244]
+            + W[2100] * W[4851] + W[2493] * W[4458] + W[2886] * W[4065] + W[3279] * W[3672]) * 2.0;
+    W[6689] = W[6684] + W[6688];
+    W[6701] = W[6697] + W[6700];
+    W[6712] = W[6708] + W[6711];
+    W[6723] = W[6719] + W[6722];
+    W[6734] = W[6730] + W[6733];
+    W[6743] = W[6740] + W[6742];
+    W[6751] = W[6748] + W[6750];
+    W[6759] = W[6756] + W[6758];
+    W[6767] = W[6764] + W[6766];
+    W[6775] = W[6772] + W[6774];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_316(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6871] = W[51] * W[6847] + W[444] * W[6454] + W[837] * W[6061] + W[1230] * W[5668] + W[1623] * W[5275]
+            + W[2016] * W[4882] + W[2409] * W[4489] + W[2802] * W[4096] + W[3195] * W[3703] + W[3588] * W[3310]
+            + W[3981] * W[2917] + W[4374] * W[2524] + W[4767] * W[2131] + W[5160] * W[1738] + W[5553] * W[1345]
+            + W[5946] * W[952] + W[6339] * W[559] + W[6732] * W[166];
+    W[6873] = W[40] * W[6851] + W[433] * W[6458] + W[826] * W[6065] + W[1219] * W[5672] + W[1612] * W[5279]
+            + W[2005] * W[4886] + W[2398] * W[4493] + W[2791] * W[4100] + W[3184] * W[3707] + W[3577] * W[3314]
+            + W[3970] * W[2921] + W[4363] * W[2528] + W[4756] * W[2135] + W[5149] * W[1742] + W[5542] * W[1349]
+            + W[5935] * W[956] + W[6328] * W[563] + W[6721] * W[170];
+    W[6876] = W[29] * W[6856] + W[422] * W[6463] + W[815] * W[6070] + W[1208] * W[5677] + W[1601] * W[5284]
+            + W[1994] * W[4891] + W[2387] * W[4498] + W[2780] * W[4105] + W[3173] * W[3712] + W[3566] * W[3319]
+            + W[3959] * W[2926] + W[4352] * W[2533] + W[4745] * W[2140] + W[5138] * W[1747] + W[5531] * W[1354]
+            + W[5924] * W[961] + W[6317] * W[568] + W[6710] * W[175];
+    W[6879] = W[18] * W[6861] + W[411] * W[6468] + W[804] * W[6075] + W[1197] * W[5682] + W[1590] * W[5289]
+            + W[1983] * W[4896] + W[2376] * W[4503] + W[2769] * W[4110] + W[3162] * W[3717] + W[3555] * W[3324]
+            + W[3948] * W[2931] + W[4341] * W[2538] + W[4734] * W[2145] + W[5127] * W[1752] + W[5520] * W[1359]
+            + W[5913] * W[966] + W[6306] * W[573] + W[6699] * W[180];
+    W[6882] = W[6] * W[6866] + W[399] * W[6473] + W[792] * W[6080] + W[1185] * W[5687] + W[1578] * W[5294]
+            + W[1971] * W[4901] + W[2364] * W[4508] + W[2757] * W[4115] + W[3150] * W[3722] + W[3543] * W[3329]
+            + W[3936] * W[2936] + W[4329] * W[2543] + W[4722] * W[2150] + W[5115] * W[1757] + W[5508] * W[1364]
+            + W[5901] * W[971] + W[6294] * W[578] + W[6687] * W[185];
+    W[6886] = W[55] * W[6847] + W[448] * W[6454] + W[841] * W[6061] + W[1234] * W[5668] + W[1627] * W[5275]
+            + W[2020] * W[4882] + W[2413] * W[4489] + W[2806] * W[4096] + W[3199] * W[3703] + W[3592] * W[3310]
+            + W[3985] * W[2917] + W[4378] * W[2524] + W[4771] * W[2131] + W[5164] * W[1738] + W[5557] * W[1345]
+            + W[5950] * W[952] + W[6343] * W[559] + W[6736] * W[166];
+    W[6888] = W[44] * W[6851] + W[437] * W[6458] + W[830] * W[6065] + W[1223] * W[5672] + W[1616] * W[5279]
+            + W[2009] * W[4886] + W[2402] * W[4493] + W[2795] * W[4100] + W[3188] * W[3707] + W[3581] * W[3314]
+            + W[3974] * W[2921] + W[4367] * W[2528] + W[4760] * W[2135] + W[5153] * W[1742] + W[5546] * W[1349]
+            + W[5939] * W[956] + W[6332] * W[563] + W[6725] * W[170];
+    W[6891] = W[33] * W[6856] + W[426] * W[6463] + W[819] * W[6070] + W[1212] * W[5677] + W[1605] * W[5284]
+            + W[1998] * W[4891] + W[2391] * W[4498] + W[2784] * W[4105] + W[3177] * W[3712] + W[3570] * W[3319]
+            + W[3963] * W[2926] + W[4356] * W[2533] + W[4749] * W[2140] + W[5142] * W[1747] + W[5535] * W[1354]
+            + W[5928] * W[961] + W[6321] * W[568] + W[6714] * W[175];
+    W[6894] = W[22] * W[6861] + W[415] * W[6468] + W[808] * W[6075] + W[1201] * W[5682] + W[1594] * W[5289]
+            + W[1987] * W[4896] + W[2380] * W[4503] + W[2773] * W[4110] + W[3166] * W[3717] + W[3559] * W[3324]
+            + W[3952] * W[2931] + W[4345] * W[2538] + W[4738] * W[2145] + W[5131] * W[1752] + W[5524] * W[1359]
+            + W[5917] * W[966] + W[6310] * W[573] + W[6703] * W[180];
+    W[6897] = W[11] * W[6866] + W[404] * W[6473] + W[797] * W[6080] + W[1190] * W[5687] + W[1583] * W[5294]
+            + W[1976] * W[4901] + W[2369] * W[4508] + W[2762] * W[4115] + W[3155] * W[3722] + W[3548] * W[3329]
+            + W[3941] * W[2936] + W[4334] * W[2543] + W[4727] * W[2150] + W[5120] * W[1757] + W[5513] * W[1364]
+            + W[5906] * W[971] + W[6299] * W[578] + W[6692] * W[185];
+    W[6903] = W[82] * W[6902] + W[475] * W[6509] + W[868] * W[6116] + W[1261] * W[5723] + W[1654] * W[5330]
+            + W[2047] * W[4937] + W[2440] * W[4544] + W[2833] * W[4151] + W[3226] * W[3758] + W[3619] * W[3365]
+            + W[4012] * W[2972] + W[4405] * W[2579] + W[4798] * W[2186] + W[5191] * W[1793] + W[5584] * W[1400]
+            + W[5977] * W[1007] + W[6370] * W[614] + W[6763] * W[221];
+    W[6907] = W[74] * W[6906] + W[467] * W[6513] + W[860] * W[6120] + W[1253] * W[5727] + W[1646] * W[5334]
+            + W[2039] * W[4941] + W[2432] * W[4548] + W[2825] * W[4155] + W[3218] * W[3762] + W[3611] * W[3369]
+            + W[4004] * W[2976] + W[4397] * W[2583] + W[4790] * W[2190] + W[5183] * W[1797] + W[5576] * W[1404]
+            + W[5969] * W[1011] + W[6362] * W[618] + W[6755] * W[225];
+    W[6912] = W[66] * W[6911] + W[459] * W[6518] + W[852] * W[6125] + W[1245] * W[5732] + W[1638] * W[5339]
+            + W[2031] * W[4946] + W[2424] * W[4553] + W[2817] * W[4160] + W[3210] * W[3767] + W[3603] * W[3374]
+            + W[3996] * W[2981] + W[4389] * W[2588] + W[4782] * W[2195] + W[5175] * W[1802] + W[5568] * W[1409]
+            + W[5961] * W[1016] + W[6354] * W[623] + W[6747] * W[230];
+    W[6917] = W[58] * W[6916] + W[451] * W[6523] + W[844] * W[6130] + W[1237] * W[5737] + W[1630] * W[5344]
+            + W[2023] * W[4951] + W[2416] * W[4558] + W[2809] * W[4165] + W[3202] * W[3772] + W[3595] * W[3379]
+            + W[3988] * W[2986] + W[4381] * W[2593] + W[4774] * W[2200] + W[5167] * W[1807] + W[5560] * W[1414]
+            + W[5953] * W[1021] + W[6346] * W[628] + W[6739] * W[235];
+    W[6922] = W[84] * W[6902] + W[477] * W[6509] + W[870] * W[6116] + W[1263] * W[5723] + W[1656] * W[5330]
+            + W[2049] * W[4937] + W[2442] * W[4544] + W[2835] * W[4151] + W[3228] * W[3758] + W[3621] * W[3365]
+            + W[4014] * W[2972] + W[4407] * W[2579] + W[4800] * W[2186] + W[5193] * W[1793] + W[5586] * W[1400]
+            + W[5979] * W[1007] + W[6372] * W[614] + W[6765] * W[221];
+    W[6924] = W[76] * W[6906] + W[469] * W[6513] + W[862] * W[6120] + W[1255] * W[5727] + W[1648] * W[5334]
+            + W[2041] * W[4941] + W[2434] * W[4548] + W[2827] * W[4155] + W[3220] * W[3762] + W[3613] * W[3369]
+            + W[4006] * W[2976] + W[4399] * W[2583] + W[4792] * W[2190] + W[5185] * W[1797] + W[5578] * W[1404]
+            + W[5971] * W[1011] + W[6364] * W[618] + W[6757] * W[225];
+    W[6927] = W[68] * W[6911] + W[461] * W[6518] + W[854] * W[6125] + W[1247] * W[5732] + W[1640] * W[5339]
+            + W[2033] * W[4946] + W[2426] * W[4553] + W[2819] * W[4160] + W[3212] * W[3767] + W[3605] * W[3374]
+            + W[3998] * W[2981] + W[4391] * W[2588] + W[4784] * W[2195] + W[5177] * W[1802] + W[5570] * W[1409]
+            + W[5963] * W[1016] + W[6356] * W[623] + W[6749] * W[230];
+    W[6930] = W[60] * W[6916] + W[453] * W[6523] + W[846] * W[6130] + W[1239] * W[5737] + W[1632] * W[5344]
+            + W[2025] * W[4951] + W[2418] * W[4558] + W[2811] * W[4165] + W[3204] * W[3772] + W[3597] * W[3379]
+            + W[3990] * W[2986] + W[4383] * W[2593] + W[4776] * W[2200] + W[5169] * W[1807] + W[5562] * W[1414]
+            + W[5955] * W[1021] + W[6348] * W[628] + W[6741] * W[235];
+    W[6935] = W[87] * W[6902] + W[480] * W[6509] + W[873] * W[6116] + W[1266] * W[5723] + W[1659] * W[5330]
+            + W[2052] * W[4937] + W[2445] * W[4544] + W[2838] * W[4151] + W[3231] * W[3758] + W[3624] * W[3365]
+            + W[4017] * W[2972] + W[4410] * W[2579] + W[4803] * W[2186] + W[5196] * W[1793] + W[5589] * W[1400]
+            + W[5982] * W[1007] + W[6375] * W[614] + W[6768] * W[221];
+    W[6937] = W[79] * W[6906] + W[472] * W[6513] + W[865] * W[6120] + W[1258] * W[5727] + W[1651] * W[5334]
+            + W[2044] * W[4941] + W[2437] * W[4548] + W[2830] * W[4155] + W[3223] * W[3762] + W[3616] * W[3369]
+            + W[4009] * W[2976] + W[4402] * W[2583] + W[4795] * W[2190] + W[5188] * W[1797] + W[5581] * W[1404]
+            + W[5974] * W[1011] + W[6367] * W[618] + W[6760] * W[225];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_318(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6849] = W[164] * W[6848];
+    W[6853] = W[169] * W[6852];
+    W[6858] = W[174] * W[6857];
+    W[6863] = W[179] * W[6862];
+    W[6868] = W[184] * W[6867];
+    W[6872] = W[164] * W[6871];
+    W[6874] = W[169] * W[6873];
+    W[6877] = W[174] * W[6876];
+    W[6880] = W[179] * W[6879];
+    W[6883] = W[184] * W[6882];
+    W[6887] = W[164] * W[6886];
+    W[6889] = W[169] * W[6888];
+    W[6892] = W[174] * W[6891];
+    W[6895] = W[179] * W[6894];
+    W[6898] = W[184] * W[6897];
+    W[6904] = W[220] * W[6903];
+    W[6908] = W[224] * W[6907];
+    W[6913] = W[229] * W[6912];
+    W[6918] = W[234] * W[6917];
+    W[6923] = W[220] * W[6922];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_319(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6925] = W[224] * W[6924];
+    W[6928] = W[229] * W[6927];
+    W[6931] = W[234] * W[6930];
+    W[6936] = W[220] * W[6935];
+    W[6938] = W[224] * W[6937];
+    W[6941] = W[229] * W[6940];
+    W[6944] = W[234] * W[6943];
+    W[6951] = W[267] * W[6950];
+    W[6955] = W[271] * W[6954];
+    W[6960] = W[276] * W[6959];
+    W[6966] = W[267] * W[6965];
+    W[6968] = W[271] * W[6967];
+    W[6971] = W[276] * W[6970];
+    W[6977] = W[267] * W[6976];
+    W[6979] = W[271] * W[6978];
+    W[6982] = W[276] * W[6981];
+    W[6990] = W[306] * W[6989];
+    W[6994] = W[310] * W[6993];
+    W[7001] = W[306] * W[7000];
+    W[7003] = W[310] * W[7002];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_320(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7010] = W[306] * W[7009];
+    W[7012] = W[310] * W[7011];
+    W[7021] = W[337] * W[7020];
+    W[7028] = W[337] * W[7027];
+    W[7035] = W[337] * W[7034];
+    W[6854] = W[6849] + W[6853];
+    W[6875] = W[6872] + W[6874];
+    W[6890] = W[6887] + W[6889];
+    W[6909] = W[6904] + W[6908];
+    W[6926] = W[6923] + W[6925];
+    W[6939] = W[6936] + W[6938];
+    W[6956] = W[6951] + W[6955];
+    W[6969] = W[6966] + W[6968];
+    W[6980] = W[6977] + W[6979];
+    W[6995] = W[6990] + W[6994];
+    W[7004] = W[7001] + W[7003];
+    W[7013] = W[7010] + W[7012];
+    W[7022] = W[7021] - W[6994];
+    W[7029] = W[7028] - W[7003];
+    W[7036] = W[7035] - W[7012];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_321(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7041] = W[6990] + W[7021];
+    W[7046] = W[7001] + W[7028];
+    W[7051] = W[7010] + W[7035];
+    W[6859] = W[6854] + W[6858];
+    W[6878] = W[6875] + W[6877];
+    W[6893] = W[6890] + W[6892];
+    W[6914] = W[6909] + W[6913];
+    W[6929] = W[6926] + W[6928];
+    W[6942] = W[6939] + W[6941];
+    W[6961] = W[6956] + W[6960];
+    W[6972] = W[6969] + W[6971];
+    W[6983] = W[6980] + W[6982];
+    W[6996] = W[6995] - W[6960];
+    W[7005] = W[7004] - W[6971];
+    W[7014] = W[7013] - W[6982];
+    W[7023] = W[7022] - W[6955];
+    W[7030] = W[7029] - W[6968];
+    W[7037] = W[7036] - W[6979];
+    W[7042] = W[6951] + W[7041];
+    W[7047] = W[6966] + W[7046];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_322(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7052] = W[6977] + W[7051];
+    W[6864] = W[6859] + W[6863];
+    W[6881] = W[6878] + W[6880];
+    W[6896] = W[6893] + W[6895];
+    W[6919] = W[6914] + W[6918];
+    W[6932] = W[6929] + W[6931];
+    W[6945] = W[6942] + W[6944];
+    W[6962] = W[6961] - W[6918];
+    W[6973] = W[6972] - W[6931];
+    W[6984] = W[6983] - W[6944];
+    W[6997] = W[6996] - W[6913];
+    W[7006] = W[7005] - W[6928];
+    W[7015] = W[7014] - W[6941];
+    W[7024] = W[7023] - W[6908];
+    W[7031] = W[7030] - W[6925];
+    W[7038] = W[7037] - W[6938];
+    W[7043] = W[6904] + W[7042];
+    W[7048] = W[6923] + W[7047];
+    W[7053] = W[6936] + W[7052];
+    W[6869] = W[6864] + W[6868];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_323(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6884] = W[6881] + W[6883];
+    W[6899] = W[6896] + W[6898];
+    W[6920] = W[6919] - W[6868];
+    W[6933] = W[6932] - W[6883];
+    W[6946] = W[6945] - W[6898];
+    W[6963] = W[6962] - W[6863];
+    W[6974] = W[6973] - W[6880];
+    W[6985] = W[6984] - W[6895];
+    W[6998] = W[6997] - W[6858];
+    W[7007] = W[7006] - W[6877];
+    W[7016] = W[7015] - W[6892];
+    W[7025] = W[7024] - W[6853];
+    W[7032] = W[7031] - W[6874];
+    W[7039] = W[7038] - W[6889];
+    W[7044] = W[6849] + W[7043];
+    W[7049] = W[6872] + W[7048];
+    W[7054] = W[6887] + W[7053];
+    W[6870] = W[161] * W[6869];
+    W[6885] = W[161] * W[6884];
+    W[6900] = W[161] * W[6899];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_324(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6921] = W[161] * W[6920];
+    W[6934] = W[161] * W[6933];
+    W[6947] = W[161] * W[6946];
+    W[6964] = W[161] * W[6963];
+    W[6975] = W[161] * W[6974];
+    W[6986] = W[161] * W[6985];
+    W[6999] = W[161] * W[6998];
+    W[7008] = W[161] * W[7007];
+    W[7017] = W[161] * W[7016];
+    W[7026] = W[161] * W[7025];
+    W[7033] = W[161] * W[7032];
+    W[7040] = W[161] * W[7039];
+    W[7045] = W[163] * W[7044];
+    W[7050] = W[163] * W[7049];
+    W[7055] = W[163] * W[7054];
+    X[648] = X[630] / 18.0;
+    X[649] = X[631] / 18.0;
+    X[650] = X[632] / 18.0;
+    X[651] = X[633] / 18.0;
+    X[652] = X[634] / 18.0;
+    return 0;
+}
+
+/* Lines 340 .. 350 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_326(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[673] = -W[6975] / W[141] / 18.0;
+    X[674] = -W[6986] / W[141] / 18.0;
+    X[675] = -W[6999] / W[142] / 18.0;
+    X[676] = -W[7008] / W[142] / 18.0;
+    X[677] = -W[7017] / W[142] / 18.0;
+    X[678] = -W[7026] / W[143] / 18.0;
+    X[679] = -W[7033] / W[143] / 18.0;
+    X[680] = -W[7040] / W[143] / 18.0;
+    X[681] = -W[7045] / W[144] / 18.0;
+    X[682] = -W[7050] / W[144] / 18.0;
+    X[683] = -W[7055] / W[144] / 18.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_327(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7076] = X[648] - X[651];
+    W[7080] = X[649] - X[652];
+    W[7085] = X[650] - X[653];
+    W[7089] = X[648] - X[654];
+    W[7092] = X[649] - X[655];
+    W[7096] = X[650] - X[656];
+    W[7100] = X[648] - X[657];
+    W[7103] = X[649] - X[658];
+    W[7107] = X[650] - X[659];
+    W[7111] = X[648] - X[660];
+    W[7114] = X[649] - X[661];
+    W[7118] = X[650] - X[662];
+    W[7122] = X[648] - X[663];
+    W[7125] = X[649] - X[664];
+    W[7129] = X[650] - X[665];
+    W[7132] = X[651] - X[654];
+    W[7134] = X[652] - X[655];
+    W[7137] = X[653] - X[656];
+    W[7140] = X[651] - X[657];
+    W[7142] = X[652] - X[658];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_329(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7198] = X[658] - X[664];
+    W[7201] = X[659] - X[665];
+    W[7204] = X[660] - X[663];
+    W[7206] = X[661] - X[664];
+    W[7209] = X[662] - X[665];
+    W[7077] = (W[2] * W[7076] + W[395] * W[6683] + W[788] * W[6290] + W[1181] * W[5897] + W[1574] * W[5504]
+            + W[1967] * W[5111] + W[2360] * W[4718] + W[2753] * W[4325] + W[3146] * W[3932]) * 2.0
+            + W[3539] * W[3539];
+    W[7081] = (W[6] * W[7080] + W[399] * W[6687] + W[792] * W[6294] + W[1185] * W[5901] + W[1578] * W[5508]
+            + W[1971] * W[5115] + W[2364] * W[4722] + W[2757] * W[4329] + W[3150] * W[3936]) * 2.0
+            + W[3543] * W[3543];
+    W[7086] = (W[11] * W[7085] + W[404] * W[6692] + W[797] * W[6299] + W[1190] * W[5906] + W[1583] * W[5513]
+            + W[1976] * W[5120] + W[2369] * W[4727] + W[2762] * W[4334] + W[3155] * W[3941]) * 2.0
+            + W[3548] * W[3548];
+    W[7090] = (W[15] * W[7089] + W[408] * W[6696] + W[801] * W[6303] + W[1194] * W[5910] + W[1587] * W[5517]
+            + W[1980] * W[5124] + W[2373] * W[4731] + W[2766] * W[4338] + W[3159] * W[3945]) * 2.0
+            + W[3552] * W[3552];
+    W[7093] = (W[18] * W[7092] + W[411] * W[6699] + W[804] * W[6306] + W[1197] * W[5913] + W[1590] * W[5520]
+            + W[1983] * W[5127] + W[2376] * W[4734] + W[2769] * W[4341] + W[3162] * W[3948]) * 2.0
+            + W[3555] * W[3555];
+    W[7097] = (W[22] * W[7096] + W[415] * W[6703] + W[808] * W[6310] + W[1201] * W[5917] + W[1594] * W[5524]
+            + W[1987] * W[5131] + W[2380] * W[4738] + W[2773] * W[4345] + W[3166] * W[3952]) * 2.0
+            + W[3559] * W[3559];
+    W[7101] = (W[26] * W[7100] + W[419] * W[6707] + W[812] * W[6314] + W[1205] * W[5921] + W[1598] * W[5528]
+            + W[1991] * W[5135] + W[2384] * W[4742] + W[2777] * W[4349] + W[3170] * W[3956]) * 2.0
+            + W[3563] * W[3563];
+    W[7104] = (W[29] * W[7103] + W[422] * W[6710] + W[815] * W[6317] + W[1208] * W[5924] + W[1601] * W[5531]
+            + W[1994] * W[5138] + W[2387] * W[4745] + W[2780] * W[4352] + W[3173] * W[3959]) * 2.0
+            + W[3566] * W[3566];
+    W[7108] = (W[33] * W[7107] + W[426] * W[6714] + W[819] * W[6321] + W[1212] * W[5928] + W[1605] * W[5535]
+            + W[1998] * W[5142] + W[2391] * W[4749] + W[2784] * W[4356] + W[3177] * W[3963]) * 2.0
+            + W[3570] * W[3570];
+    W[7112] = (W[37] * W[7111] + W[430] * W[6718] + W[823] * W[6325] + W[1216] * W[5932] + W[1609] * W[5539]
+            + W[2002] * W[5146] + W[2395] * W[4753] + W[2788] * W[4360] + W[3181] * W[3967]) * 2.0
+            + W[3574] * W[3574];
+    W[7115] = (W[40] * W[7114] + W[433] * W[6721] + W[826] * W[6328] + W[1219] * W[5935] + W[1612] * W[5542]
+            + W[2005] * W[5149] + W[2398] * W[4756] + W[2791] * W[4363] + W[3184] * W[3970]) * 2.0
+            + W[3577] * W[3577];
+    W[7119] = (W[44] * W[7118] + W[437] * W[6725] + W[830] * W[6332] + W[1223] * W[5939] + W[1616] * W[5546]
+            + W[2009] * W[5153] + W[2402] * W[4760] + W[2795] * W[4367] + W[3188] * W[3974]) * 2.0
+            + W[3581] * W[3581];
+    W[7123] = (W[48] * W[7122] + W[441] * W[6729] + W[834] * W[6336] + W[1227] * W[5943] + W[1620] * W[5550]
+            + W[2013] * W[5157] + W[2406] * W[4764] + W[2799] * W[4371] + W[3192] * W[3978]) * 2.0
+            + W[3585] * W[3585];
+    W[7126] = (W[51] * W[7125] + W[444] * W[6732] + W[837] * W[6339] + W[1230] * W[5946] + W[1623] * W[5553]
+            + W[2016] * W[5160] + W[2409] * W[4767] + W[2802] * W[4374] + W[3195] * W[3981]) * 2.0
+            + W[3588] * W[3588];
+    W[7130] = (W[55] * W[7129] + W[448] * W[6736] + W[841] * W[6343] + W[1234] * W[5950] + W[1627] * W[5557]
+            + W[2020] * W[5164] + W[2413] * W[4771] + W[2806] * W[4378] + W[3199] * W[3985]) * 2.0
+            + W[3592] * W[3592];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_331(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7186] = (W[111] * W[7185] + W[504] * W[6792] + W[897] * W[6399] + W[1290] * W[6006] + W[1683] * W[5613]
+            + W[2076] * W[5220] + W[2469] * W[4827] + W[2862] * W[4434] + W[3255] * W[4041]) * 2.0
+            + W[3648] * W[3648];
+    W[7189] = (W[114] * W[7188] + W[507] * W[6795] + W[900] * W[6402] + W[1293] * W[6009] + W[1686] * W[5616]
+            + W[2079] * W[5223] + W[2472] * W[4830] + W[2865] * W[4437] + W[3258] * W[4044]) * 2.0
+            + W[3651] * W[3651];
+    W[7191] = (W[116] * W[7190] + W[509] * W[6797] + W[902] * W[6404] + W[1295] * W[6011] + W[1688] * W[5618]
+            + W[2081] * W[5225] + W[2474] * W[4832] + W[2867] * W[4439] + W[3260] * W[4046]) * 2.0
+            + W[3653] * W[3653];
+    W[7194] = (W[119] * W[7193] + W[512] * W[6800] + W[905] * W[6407] + W[1298] * W[6014] + W[1691] * W[5621]
+            + W[2084] * W[5228] + W[2477] * W[4835] + W[2870] * W[4442] + W[3263] * W[4049]) * 2.0
+            + W[3656] * W[3656];
+    W[7197] = (W[122] * W[7196] + W[515] * W[6803] + W[908] * W[6410] + W[1301] * W[6017] + W[1694] * W[5624]
+            + W[2087] * W[5231] + W[2480] * W[4838] + W[2873] * W[4445] + W[3266] * W[4052]) * 2.0
+            + W[3659] * W[3659];
+    W[7199] = (W[124] * W[7198] + W[517] * W[6805] + W[910] * W[6412] + W[1303] * W[6019] + W[1696] * W[5626]
+            + W[2089] * W[5233] + W[2482] * W[4840] + W[2875] * W[4447] + W[3268] * W[4054]) * 2.0
+            + W[3661] * W[3661];
+    W[7202] = (W[127] * W[7201] + W[520] * W[6808] + W[913] * W[6415] + W[1306] * W[6022] + W[1699] * W[5629]
+            + W[2092] * W[5236] + W[2485] * W[4843] + W[2878] * W[4450] + W[3271] * W[4057]) * 2.0
+            + W[3664] * W[3664];
+    W[7205] = (W[130] * W[7204] + W[523] * W[6811] + W[916] * W[6418] + W[1309] * W[6025] + W[1702] * W[5632]
+            + W[2095] * W[5239] + W[2488] * W[4846] + W[2881] * W[4453] + W[3274] * W[4060]) * 2.0
+            + W[3667] * W[3667];
+    W[7207] = (W[132] * W[7206] + W[525] * W[6813] + W[918] * W[6420] + W[1311] * W[6027] + W[1704] * W[5634]
+            + W[2097] * W[5241] + W[2490] * W[4848] + W[2883] * W[4455] + W[3276] * W[4062]) * 2.0
+            + W[3669] * W[3669];
+    W[7210] = (W[135] * W[7209] + W[528] * W[6816] + W[921] * W[6423] + W[1314] * W[6030] + W[1707] * W[5637]
+            + W[2100] * W[5244] + W[2493] * W[4851] + W[2886] * W[4458] + W[3279] * W[4065]) * 2.0
+            + W[3672] * W[3672];
+    W[7082] = W[7077] + W[7081];
+    W[7094] = W[7090] + W[7093];
+    W[7105] = W[7101] + W[7104];
+    W[7116] = W[7112] + W[7115];
+    W[7127] = W[7123] + W[7126];
+    W[7136] = W[7133] + W[7135];
+    W[7144] = W[7141] + W[7143];
+    W[7152] = W[7149] + W[7151];
+    W[7160] = W[7157] + W[7159];
+    W[7168] = W[7165] + W[7167];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_334(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7264] = W[51] * W[7240] + W[444] * W[6847] + W[837] * W[6454] + W[1230] * W[6061] + W[1623] * W[5668]
+            + W[2016] * W[5275] + W[2409] * W[4882] + W[2802] * W[4489] + W[3195] * W[4096] + W[3588] * W[3703]
+            + W[3981] * W[3310] + W[4374] * W[2917] + W[4767] * W[2524] + W[5160] * W[2131] + W[5553] * W[1738]
+            + W[5946] * W[1345] + W[6339] * W[952] + W[6732] * W[559] + W[7125] * W[166];
+    W[7266] = W[40] * W[7244] + W[433] * W[6851] + W[826] * W[6458] + W[1219] * W[6065] + W[1612] * W[5672]
+            + W[2005] * W[5279] + W[2398] * W[4886] + W[2791] * W[4493] + W[3184] * W[4100] + W[3577] * W[3707]
+            + W[3970] * W[3314] + W[4363] * W[2921] + W[4756] * W[2528] + W[5149] * W[2135] + W[5542] * W[1742]
+            + W[5935] * W[1349] + W[6328] * W[956] + W[6721] * W[563] + W[7114] * W[170];
+    W[7269] = W[29] * W[7249] + W[422] * W[6856] + W[815] * W[6463] + W[1208] * W[6070] + W[1601] * W[5677]
+            + W[1994] * W[5284] + W[2387] * W[4891] + W[2780] * W[4498] + W[3173] * W[4105] + W[3566] * W[3712]
+            + W[3959] * W[3319] + W[4352] * W[2926] + W[4745] * W[2533] + W[5138] * W[2140] + W[5531] * W[1747]
+            + W[5924] * W[1354] + W[6317] * W[961] + W[6710] * W[568] + W[7103] * W[175];
+    W[7272] = W[18] * W[7254] + W[411] * W[6861] + W[804] * W[6468] + W[1197] * W[6075] + W[1590] * W[5682]
+            + W[1983] * W[5289] + W[2376] * W[4896] + W[2769] * W[4503] + W[3162] * W[4110] + W[3555] * W[3717]
+            + W[3948] * W[3324] + W[4341] * W[2931] + W[4734] * W[2538] + W[5127] * W[2145] + W[5520] * W[1752]
+            + W[5913] * W[1359] + W[6306] * W[966] + W[6699] * W[573] + W[7092] * W[180];
+    W[7275] = W[6] * W[7259] + W[399] * W[6866] + W[792] * W[6473] + W[1185] * W[6080] + W[1578] * W[5687]
+            + W[1971] * W[5294] + W[2364] * W[4901] + W[2757] * W[4508] + W[3150] * W[4115] + W[3543] * W[3722]
+            + W[3936] * W[3329] + W[4329] * W[2936] + W[4722] * W[2543] + W[5115] * W[2150] + W[5508] * W[1757]
+            + W[5901] * W[1364] + W[6294] * W[971] + W[6687] * W[578] + W[7080] * W[185];
+    W[7279] = W[55] * W[7240] + W[448] * W[6847] + W[841] * W[6454] + W[1234] * W[6061] + W[1627] * W[5668]
+            + W[2020] * W[5275] + W[2413] * W[4882] + W[2806] * W[4489] + W[3199] * W[4096] + W[3592] * W[3703]
+            + W[3985] * W[3310] + W[4378] * W[2917] + W[4771] * W[2524] + W[5164] * W[2131] + W[5557] * W[1738]
+            + W[5950] * W[1345] + W[6343] * W[952] + W[6736] * W[559] + W[7129] * W[166];
+    W[7281] = W[44] * W[7244] + W[437] * W[6851] + W[830] * W[6458] + W[1223] * W[6065] + W[1616] * W[5672]
+            + W[2009] * W[5279] + W[2402] * W[4886] + W[2795] * W[4493] + W[3188] * W[4100] + W[3581] * W[3707]
+            + W[3974] * W[3314] + W[4367] * W[2921] + W[4760] * W[2528] + W[5153] * W[2135] + W[5546] * W[1742]
+            + W[5939] * W[1349] + W[6332] * W[956] + W[6725] * W[563] + W[7118] * W[170];
+    W[7284] = W[33] * W[7249] + W[426] * W[6856] + W[819] * W[6463] + W[1212] * W[6070] + W[1605] * W[5677]
+            + W[1998] * W[5284] + W[2391] * W[4891] + W[2784] * W[4498] + W[3177] * W[4105] + W[3570] * W[3712]
+            + W[3963] * W[3319] + W[4356] * W[2926] + W[4749] * W[2533] + W[5142] * W[2140] + W[5535] * W[1747]
+            + W[5928] * W[1354] + W[6321] * W[961] + W[6714] * W[568] + W[7107] * W[175];
+    W[7287] = W[22] * W[7254] + W[415] * W[6861] + W[808] * W[6468] + W[1201] * W[6075] + W[1594] * W[5682]
+            + W[1987] * W[5289] + W[2380] * W[4896] + W[2773] * W[4503] + W[3166] * W[4110] + W[3559] * W[3717]
+            + W[3952] * W[3324] + W[4345] * W[2931] + W[4738] * W[2538] + W[5131] * W[2145] + W[5524] * W[1752]
+            + W[5917] * W[1359] + W[6310] * W[966] + W[6703] * W[573] + W[7096] * W[180];
+    W[7290] = W[11] * W[7259] + W[404] * W[6866] + W[797] * W[6473] + W[1190] * W[6080] + W[1583] * W[5687]
+            + W[1976] * W[5294] + W[2369] * W[4901] + W[2762] * W[4508] + W[3155] * W[4115] + W[3548] * W[3722]
+            + W[3941] * W[3329] + W[4334] * W[2936] + W[4727] * W[2543] + W[5120] * W[2150] + W[5513] * W[1757]
+            + W[5906] * W[1364] + W[6299] * W[971] + W[6692] * W[578] + W[7085] * W[185];
+    W[7296] = W[82] * W[7295] + W[475] * W[6902] + W[868] * W[6509] + W[1261] * W[6116] + W[1654] * W[5723]
+            + W[2047] * W[5330] + W[2440] * W[4937] + W[2833] * W[4544] + W[3226] * W[4151] + W[3619] * W[3758]
+            + W[4012] * W[3365] + W[4405] * W[2972] + W[4798] * W[2579] + W[5191] * W[2186] + W[5584] * W[1793]
+            + W[5977] * W[1400] + W[6370] * W[1007] + W[6763] * W[614] + W[7156] * W[221];
+    W[7300] = W[74] * W[7299] + W[467] * W[6906] + W[860] * W[6513] + W[1253] * W[6120] + W[1646] * W[5727]
+            + W[2039] * W[5334] + W[2432] * W[4941] + W[2825] * W[4548] + W[3218] * W[4155] + W[3611] * W[3762]
+            + W[4004] * W[3369] + W[4397] * W[2976] + W[4790] * W[2583] + W[5183] * W[2190] + W[5576] * W[1797]
+            + W[5969] * W[1404] + W[6362] * W[1011] + W[6755] * W[618] + W[7148] * W[225];
+    W[7305] = W[66] * W[7304] + W[459] * W[6911] + W[852] * W[6518] + W[1245] * W[6125] + W[1638] * W[5732]
+            + W[2031] * W[5339] + W[2424] * W[4946] + W[2817] * W[4553] + W[3210] * W[4160] + W[3603] * W[3767]
+            + W[3996] * W[3374] + W[4389] * W[2981] + W[4782] * W[2588] + W[5175] * W[2195] + W[5568] * W[1802]
+            + W[5961] * W[1409] + W[6354] * W[1016] + W[6747] * W[623] + W[7140] * W[230];
+    W[7310] = W[58] * W[7309] + W[451] * W[6916] + W[844] * W[6523] + W[1237] * W[6130] + W[1630] * W[5737]
+            + W[2023] * W[5344] + W[2416] * W[4951] + W[2809] * W[4558] + W[3202] * W[4165] + W[3595] * W[3772]
+            + W[3988] * W[3379] + W[4381] * W[2986] + W[4774] * W[2593] + W[5167] * W[2200] + W[5560] * W[1807]
+            + W[5953] * W[1414] + W[6346] * W[1021] + W[6739] * W[628] + W[7132] * W[235];
+    W[7315] = W[84] * W[7295] + W[477] * W[6902] + W[870] * W[6509] + W[1263] * W[6116] + W[1656] * W[5723]
+            + W[2049] * W[5330] + W[2442] * W[4937] + W[2835] * W[4544] + W[3228] * W[4151] + W[3621] * W[3758]
+            + W[4014] * W[3365] + W[4407] * W[2972] + W[4800] * W[2579] + W[5193] * W[2186] + W[5586] * W[1793]
+            + W[5979] * W[1400] + W[6372] * W[1007] + W[6765] * W[614] + W[7158] * W[221];
+    W[7317] = W[76] * W[7299] + W[469] * W[6906] + W[862] * W[6513] + W[1255] * W[6120] + W[1648] * W[5727]
+            + W[2041] * W[5334] + W[2434] * W[4941] + W[2827] * W[4548] + W[3220] * W[4155] + W[3613] * W[3762]
+            + W[4006] * W[3369] + W[4399] * W[2976] + W[4792] * W[2583] + W[5185] * W[2190] + W[5578] * W[1797]
+            + W[5971] * W[1404] + W[6364] * W[1011] + W[6757] * W[618] + W[7150] * W[225];
+    W[7320] = W[68] * W[7304] + W[461] * W[6911] + W[854] * W[6518] + W[1247] * W[6125] + W[1640] * W[5732]
+            + W[2033] * W[5339] + W[2426] * W[4946] + W[2819] * W[4553] + W[3212] * W[4160] + W[3605] * W[3767]
+            + W[3998] * W[3374] + W[4391] * W[2981] + W[4784] * W[2588] + W[5177] * W[2195] + W[5570] * W[1802]
+            + W[5963] * W[1409] + W[6356] * W[1016] + W[6749] * W[623] + W[7142] * W[230];
+    W[7323] = W[60] * W[7309] + W[453] * W[6916] + W[846] * W[6523] + W[1239] * W[6130] + W[1632] * W[5737]
+            + W[2025] * W[5344] + W[2418] * W[4951] + W[2811] * W[4558] + W[3204] * W[4165] + W[3597] * W[3772]
+            + W[3990] * W[3379] + W[4383] * W[2986] + W[4776] * W[2593] + W[5169] * W[2200] + W[5562] * W[1807]
+            + W[5955] * W[1414] + W[6348] * W[1021] + W[6741] * W[628] + W[7134] * W[235];
+    W[7328] = W[87] * W[7295] + W[480] * W[6902] + W[873] * W[6509] + W[1266] * W[6116] + W[1659] * W[5723]
+            + W[2052] * W[5330] + W[2445] * W[4937] + W[2838] * W[4544] + W[3231] * W[4151] + W[3624] * W[3758]
+            + W[4017] * W[3365] + W[4410] * W[2972] + W[4803] * W[2579] + W[5196] * W[2186] + W[5589] * W[1793]
+            + W[5982] * W[1400] + W[6375] * W[1007] + W[6768] * W[614] + W[7161] * W[221];
+    W[7330] = W[79] * W[7299] + W[472] * W[6906] + W[865] * W[6513] + W[1258] * W[6120] + W[1651] * W[5727]
+            + W[2044] * W[5334] + W[2437] * W[4941] + W[2830] * W[4548] + W[3223] * W[4155] + W[3616] * W[3762]
+            + W[4009] * W[3369] + W[4402] * W[2976] + W[4795] * W[2583] + W[5188] * W[2190] + W[5581] * W[1797]
+            + W[5974] * W[1404] + W[6367] * W[1011] + W[6760] * W[618] + W[7153] * W[225];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_336(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7242] = W[164] * W[7241];
+    W[7246] = W[169] * W[7245];
+    W[7251] = W[174] * W[7250];
+    W[7256] = W[179] * W[7255];
+    W[7261] = W[184] * W[7260];
+    W[7265] = W[164] * W[7264];
+    W[7267] = W[169] * W[7266];
+    W[7270] = W[174] * W[7269];
+    W[7273] = W[179] * W[7272];
+    W[7276] = W[184] * W[7275];
+    W[7280] = W[164] * W[7279];
+    W[7282] = W[169] * W[7281];
+    W[7285] = W[174] * W[7284];
+    W[7288] = W[179] * W[7287];
+    W[7291] = W[184] * W[7290];
+    W[7297] = W[220] * W[7296];
+    W[7301] = W[224] * W[7300];
+    W[7306] = W[229] * W[7305];
+    W[7311] = W[234] * W[7310];
+    W[7316] = W[220] * W[7315];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_337(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7318] = W[224] * W[7317];
+    W[7321] = W[229] * W[7320];
+    W[7324] = W[234] * W[7323];
+    W[7329] = W[220] * W[7328];
+    W[7331] = W[224] * W[7330];
+    W[7334] = W[229] * W[7333];
+    W[7337] = W[234] * W[7336];
+    W[7344] = W[267] * W[7343];
+    W[7348] = W[271] * W[7347];
+    W[7353] = W[276] * W[7352];
+    W[7359] = W[267] * W[7358];
+    W[7361] = W[271] * W[7360];
+    W[7364] = W[276] * W[7363];
+    W[7370] = W[267] * W[7369];
+    W[7372] = W[271] * W[7371];
+    W[7375] = W[276] * W[7374];
+    W[7383] = W[306] * W[7382];
+    W[7387] = W[310] * W[7386];
+    W[7394] = W[306] * W[7393];
+    W[7396] = W[310] * W[7395];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_338(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7403] = W[306] * W[7402];
+    W[7405] = W[310] * W[7404];
+    W[7414] = W[337] * W[7413];
+    W[7421] = W[337] * W[7420];
+    W[7428] = W[337] * W[7427];
+    W[7247] = W[7242] + W[7246];
+    W[7268] = W[7265] + W[7267];
+    W[7283] = W[7280] + W[7282];
+    W[7302] = W[7297] + W[7301];
+    W[7319] = W[7316] + W[7318];
+    W[7332] = W[7329] + W[7331];
+    W[7349] = W[7344] + W[7348];
+    W[7362] = W[7359] + W[7361];
+    W[7373] = W[7370] + W[7372];
+    W[7388] = W[7383] + W[7387];
+    W[7397] = W[7394] + W[7396];
+    W[7406] = W[7403] + W[7405];
+    W[7415] = W[7414] - W[7387];
+    W[7422] = W[7421] - W[7396];
+    W[7429] = W[7428] - W[7405];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_339(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7434] = W[7383] + W[7414];
+    W[7439] = W[7394] + W[7421];
+    W[7444] = W[7403] + W[7428];
+    W[7252] = W[7247] + W[7251];
+    W[7271] = W[7268] + W[7270];
+    W[7286] = W[7283] + W[7285];
+    W[7307] = W[7302] + W[7306];
+    W[7322] = W[7319] + W[7321];
+    W[7335] = W[7332] + W[7334];
+    W[7354] = W[7349] + W[7353];
+    W[7365] = W[7362] + W[7364];
+    W[7376] = W[7373] + W[7375];
+    W[7389] = W[7388] - W[7353];
+    W[7398] = W[7397] - W[7364];
+    W[7407] = W[7406] - W[7375];
+    W[7416] = W[7415] - W[7348];
+    W[7423] = W[7422] - W[7361];
+    W[7430] = W[7429] - W[7372];
+    W[7435] = W[7344] + W[7434];
+    W[7440] = W[7359] + W[7439];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_340(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7445] = W[7370] + W[7444];
+    W[7257] = W[7252] + W[7256];
+    W[7274] = W[7271] + W[7273];
+    W[7289] = W[7286] + W[7288];
+    W[7312] = W[7307] + W[7311];
+    W[7325] = W[7322] + W[7324];
+    W[7338] = W[7335] + W[7337];
+    W[7355] = W[7354] - W[7311];
+    W[7366] = W[7365] - W[7324];
+    W[7377] = W[7376] - W[7337];
+    W[7390] = W[7389] - W[7306];
+    W[7399] = W[7398] - W[7321];
+    W[7408] = W[7407] - W[7334];
+    W[7417] = W[7416] - W[7301];
+    W[7424] = W[7423] - W[7318];
+    W[7431] = W[7430] - W[7331];
+    W[7436] = W[7297] + W[7435];
+    W[7441] = W[7316] + W[7440];
+    W[7446] = W[7329] + W[7445];
+    W[7262] = W[7257] + W[7261];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_341(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7277] = W[7274] + W[7276];
+    W[7292] = W[7289] + W[7291];
+    W[7313] = W[7312] - W[7261];
+    W[7326] = W[7325] - W[7276];
+    W[7339] = W[7338] - W[7291];
+    W[7356] = W[7355] - W[7256];
+    W[7367] = W[7366] - W[7273];
+    W[7378] = W[7377] - W[7288];
+    W[7391] = W[7390] - W[7251];
+    W[7400] = W[7399] - W[7270];
+    W[7409] = W[7408] - W[7285];
+    W[7418] = W[7417] - W[7246];
+    W[7425] = W[7424] - W[7267];
+    W[7432] = W[7431] - W[7282];
+    W[7437] = W[7242] + W[7436];
+    W[7442] = W[7265] + W[7441];
+    W[7447] = W[7280] + W[7446];
+    W[7263] = W[161] * W[7262];
+    W[7278] = W[161] * W[7277];
+    W[7293] = W[161] * W[7292];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_342(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7314] = W[161] * W[7313];
+    W[7327] = W[161] * W[7326];
+    W[7340] = W[161] * W[7339];
+    W[7357] = W[161] * W[7356];
+    W[7368] = W[161] * W[7367];
+    W[7379] = W[161] * W[7378];
+    W[7392] = W[161] * W[7391];
+    W[7401] = W[161] * W[7400];
+    W[7410] = W[161] * W[7409];
+    W[7419] = W[161] * W[7418];
+    W[7426] = W[161] * W[7425];
+    W[7433] = W[161] * W[7432];
+    W[7438] = W[163] * W[7437];
+    W[7443] = W[163] * W[7442];
+    W[7448] = W[163] * W[7447];
+    X[684] = X[666] / 19.0;
+    X[685] = X[667] / 19.0;
+    X[686] = X[668] / 19.0;
+    X[687] = X[669] / 19.0;
+    X[688] = X[670] / 19.0;
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_343(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[689] = X[671] / 19.0;
+    X[690] = X[672] / 19.0;
+    X[691] = X[673] / 19.0;
+    X[692] = X[674] / 19.0;
+    X[693] = X[675] / 19.0;
+    X[694] = X[676] / 19.0;
+    X[695] = X[677] / 19.0;
+    X[696] = X[678] / 19.0;
+    X[697] = X[679] / 19.0;
+    X[698] = X[680] / 19.0;
+    X[699] = X[681] / 19.0;
+    X[700] = X[682] / 19.0;
+    X[701] = X[683] / 19.0;
+    X[702] = -W[7263] / W[138] / 19.0;
+    X[703] = -W[7278] / W[138] / 19.0;
+    X[704] = -W[7293] / W[138] / 19.0;
+    X[705] = -W[7314] / W[140] / 19.0;
+    X[706] = -W[7327] / W[140] / 19.0;
+    X[707] = -W[7340] / W[140] / 19.0;
+    X[708] = -W[7357] / W[141] / 19.0;
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 19, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_346(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7538] = X[689] - X[695];
+    W[7541] = X[687] - X[696];
+    W[7543] = X[688] - X[697];
+    W[7546] = X[689] - X[698];
+    W[7549] = X[687] - X[699];
+    W[7551] = X[688] - X[700];
+    W[7554] = X[689] - X[701];
+    W[7557] = X[690] - X[693];
+    W[7559] = X[691] - X[694];
+    W[7562] = X[692] - X[695];
+    W[7565] = X[690] - X[696];
+    W[7567] = X[691] - X[697];
+    W[7570] = X[692] - X[698];
+    W[7573] = X[690] - X[699];
+    W[7575] = X[691] - X[700];
+    W[7578] = X[692] - X[701];
+    W[7581] = X[693] - X[696];
+    W[7583] = X[694] - X[697];
+    W[7586] = X[695] - X[698];
+    W[7589] = X[693] - X[699];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 19, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_348(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7526] = (W[58] * W[7525] + W[451] * W[7132] + W[844] * W[6739] + W[1237] * W[6346] + W[1630] * W[5953]
+            + W[2023] * W[5560] + W[2416] * W[5167] + W[2809] * W[4774] + W[3202] * W[4381] + W[3595] * W[3988]) * 2.0;
+    W[7528] = (W[60] * W[7527] + W[453] * W[7134] + W[846] * W[6741] + W[1239] * W[6348] + W[1632] * W[5955]
+            + W[2025] * W[5562] + W[2418] * W[5169] + W[2811] * W[4776] + W[3204] * W[4383] + W[3597] * W[3990]) * 2.0;
+    W[7531] = (W[63] * W[7530] + W[456] * W[7137] + W[849] * W[6744] + W[1242] * W[6351] + W[1635] * W[5958]
+            + W[2028] * W[5565] + W[2421] * W[5172] + W[2814] * W[4779] + W[3207] * W[4386] + W[3600] * W[3993]) * 2.0;
+    W[7534] = (W[66] * W[7533] + W[459] * W[7140] + W[852] * W[6747] + W[1245] * W[6354] + W[1638] * W[5961]
+            + W[2031] * W[5568] + W[2424] * W[5175] + W[2817] * W[4782] + W[3210] * W[4389] + W[3603] * W[3996]) * 2.0;
+    W[7536] = (W[68] * W[7535] + W[461] * W[7142] + W[854] * W[6749] + W[1247] * W[6356] + W[1640] * W[5963]
+            + W[2033] * W[5570] + W[2426] * W[5177] + W[2819] * W[4784] + W[3212] * W[4391] + W[3605] * W[3998]) * 2.0;
+    W[7539] = (W[71] * W[7538] + W[464] * W[7145] + W[857] * W[6752] + W[1250] * W[6359] + W[1643] * W[5966]
+            + W[2036] * W[5573] + W[2429] * W[5180] + W[2822] * W[4787] + W[3215] * W[4394] + W[3608] * W[4001]) * 2.0;
+    W[7542] = (W[74] * W[7541] + W[467] * W[7148] + W[860] * W[6755] + W[1253] * W[6362] + W[1646] * W[5969]
+            + W[2039] * W[5576] + W[2432] * W[5183] + W[2825] * W[4790] + W[3218] * W[4397] + W[3611] * W[4004]) * 2.0;
+    W[7544] = (W[76] * W[7543] + W[469] * W[7150] + W[862] * W[6757] + W[1255] * W[6364] + W[1648] * W[5971]
+            + W[2041] * W[5578] + W[2434] * W[5185] + W[2827] * W[4792] + W[3220] * W[4399] + W[3613] * W[4006]) * 2.0;
+    W[7547] = (W[79] * W[7546] + W[472] * W[7153] + W[865] * W[6760] + W[1258] * W[6367] + W[1651] * W[5974]
+            + W[2044] * W[5581] + W[2437] * W[5188] + W[2830] * W[4795] + W[3223] * W[4402] + W[3616] * W[4009]) * 2.0;
+    W[7550] = (W[82] * W[7549] + W[475] * W[7156] + W[868] * W[6763] + W[1261] * W[6370] + W[1654] * W[5977]
+            + W[2047] * W[5584] + W[2440] * W[5191] + W[2833] * W[4798] + W[3226] * W[4405] + W[3619] * W[4012]) * 2.0;
+    W[7552] = (W[84] * W[7551] + W[477] * W[7158] + W[870] * W[6765] + W[1263] * W[6372] + W[1656] * W[5979]
+            + W[2049] * W[5586] + W[2442] * W[5193] + W[2835] * W[4800] + W[3228] * W[4407] + W[3621] * W[4014]) * 2.0;
+    W[7555] = (W[87] * W[7554] + W[480] * W[7161] + W[873] * W[6768] + W[1266] * W[6375] + W[1659] * W[5982]
+            + W[2052] * W[5589] + W[2445] * W[5196] + W[2838] * W[4803] + W[3231] * W[4410] + W[3624] * W[4017]) * 2.0;
+    W[7558] = (W[90] * W[7557] + W[483] * W[7164] + W[876] * W[6771] + W[1269] * W[6378] + W[1662] * W[5985]
+            + W[2055] * W[5592] + W[2448] * W[5199] + W[2841] * W[4806] + W[3234] * W[4413] + W[3627] * W[4020]) * 2.0;
+    W[7560] = (W[92] * W[7559] + W[485] * W[7166] + W[878] * W[6773] + W[1271] * W[6380] + W[1664] * W[5987]
+            + W[2057] * W[5594] + W[2450] * W[5201] + W[2843] * W[4808] + W[3236] * W[4415] + W[3629] * W[4022]) * 2.0;
+    W[7563] = (W[95] * W[7562] + W[488] * W[7169] + W[881] * W[6776] + W[1274] * W[6383] + W[1667] * W[5990]
+            + W[2060] * W[5597] + W[2453] * W[5204] + W[2846] * W[4811] + W[3239] * W[4418] + W[3632] * W[4025]) * 2.0;
+    W[7566] = (W[98] * W[7565] + W[491] * W[7172] + W[884] * W[6779] + W[1277] * W[6386] + W[1670] * W[5993]
+            + W[2063] * W[5600] + W[2456] * W[5207] + W[2849] * W[4814] + W[3242] * W[4421] + W[3635] * W[4028]) * 2.0;
+    W[7568] = (W[100] * W[7567] + W[493] * W[7174] + W[886] * W[6781] + W[1279] * W[6388] + W[1672] * W[5995]
+            + W[2065] * W[5602] + W[2458] * W[5209] + W[2851] * W[4816] + W[3244] * W[4423] + W[3637] * W[4030]) * 2.0;
+    W[7571] = (W[103] * W[7570] + W[496] * W[7177] + W[889] * W[6784] + W[1282] * W[6391] + W[1675] * W[5998]
+            + W[2068] * W[5605] + W[2461] * W[5212] + W[2854] * W[4819] + W[3247] * W[4426] + W[3640] * W[4033]) * 2.0;
+    W[7574] = (W[106] * W[7573] + W[499] * W[7180] + W[892] * W[6787] + W[1285] * W[6394] + W[1678] * W[6001]
+            + W[2071] * W[5608] + W[2464] * W[5215] + W[2857] * W[4822] + W[3250] * W[4429] + W[3643] * W[4036]) * 2.0;
+    W[7576] = (W[108] * W[7575] + W[501] * W[7182] + W[894] * W[6789] + W[1287] * W[6396] + W[1680] * W[6003]
+            + W[2073] * W[5610] + W[2466] * W[5217] + W[2859] * W[4824] + W[3252] * W[4431] + W[3645] * W[4038]) * 2.0;
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 19, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_350(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7569] = W[7566] + W[7568];
+    W[7577] = W[7574] + W[7576];
+    W[7585] = W[7582] + W[7584];
+    W[7593] = W[7590] + W[7592];
+    W[7601] = W[7598] + W[7600];
+    W[7480] = W[7475] + W[7479];
+    W[7491] = W[7487] + W[7490];
+    W[7502] = W[7498] + W[7501];
+    W[7513] = W[7509] + W[7512];
+    W[7524] = W[7520] + W[7523];
+    W[7532] = W[7529] + W[7531];
+    W[7540] = W[7537] + W[7539];
+    W[7548] = W[7545] + W[7547];
+    W[7556] = W[7553] + W[7555];
+    W[7564] = W[7561] + W[7563];
+    W[7572] = W[7569] + W[7571];
+    W[7580] = W[7577] + W[7579];
+    W[7588] = W[7585] + W[7587];
+    W[7596] = W[7593] + W[7595];
+    W[7604] = W[7601] + W[7603];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 19, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_351(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7633] = (-28.5 * W[7524] * W[166] - 28.0 * W[7131] * W[559] - 27.5 * W[6738] * W[952] - 27.0 * W[6345] * W[1345]
+            - 26.5 * W[5952] * W[1738] - 26.0 * W[5559] * W[2131] - 25.5 * W[5166] * W[2524] - 25.0 * W[4773] * W[2917]
+            - 24.5 * W[4380] * W[3310] - 24.0 * W[3987] * W[3703] - 23.5 * W[3594] * W[4096] - 23.0 * W[3201] * W[4489]
+            - 22.5 * W[2808] * W[4882] - 22.0 * W[2415] * W[5275] - 21.5 * W[2022] * W[5668] - 21.0 * W[1629] * W[6061]
+            - 20.5 * W[1236] * W[6454] - 20.0 * W[843] * W[6847] - 19.5 * W[450] * W[7240]) / (19.0 * W[57]);
+    W[7637] = (-28.5 * W[7513] * W[170] - 28.0 * W[7120] * W[563] - 27.5 * W[6727] * W[956] - 27.0 * W[6334] * W[1349]
+            - 26.5 * W[5941] * W[1742] - 26.0 * W[5548] * W[2135] - 25.5 * W[5155] * W[2528] - 25.0 * W[4762] * W[2921]
+            - 24.5 * W[4369] * W[3314] - 24.0 * W[3976] * W[3707] - 23.5 * W[3583] * W[4100] - 23.0 * W[3190] * W[4493]
+            - 22.5 * W[2797] * W[4886] - 22.0 * W[2404] * W[5279] - 21.5 * W[2011] * W[5672] - 21.0 * W[1618] * W[6065]
+            - 20.5 * W[1225] * W[6458] - 20.0 * W[832] * W[6851] - 19.5 * W[439] * W[7244]) / (19.0 * W[46]);
+    W[7642] = (-28.5 * W[7502] * W[175] - 28.0 * W[7109] * W[568] - 27.5 * W[6716] * W[961] - 27.0 * W[6323] * W[1354]
+            - 26.5 * W[5930] * W[1747] - 26.0 * W[5537] * W[2140] - 25.5 * W[5144] * W[2533] - 25.0 * W[4751] * W[2926]
+            - 24.5 * W[4358] * W[3319] - 24.0 * W[3965] * W[3712] - 23.5 * W[3572] * W[4105] - 23.0 * W[3179] * W[4498]
+            - 22.5 * W[2786] * W[4891] - 22.0 * W[2393] * W[5284] - 21.5 * W[2000] * W[5677] - 21.0 * W[1607] * W[6070]
+            - 20.5 * W[1214] * W[6463] - 20.0 * W[821] * W[6856] - 19.5 * W[428] * W[7249]) / (19.0 * W[35]);
+    W[7647] = (-28.5 * W[7491] * W[180] - 28.0 * W[7098] * W[573] - 27.5 * W[6705] * W[966] - 27.0 * W[6312] * W[1359]
+            - 26.5 * W[5919] * W[1752] - 26.0 * W[5526] * W[2145] - 25.5 * W[5133] * W[2538] - 25.0 * W[4740] * W[2931]
+            - 24.5 * W[4347] * W[3324] - 24.0 * W[3954] * W[3717] - 23.5 * W[3561] * W[4110] - 23.0 * W[3168] * W[4503]
+            - 22.5 * W[2775] * W[4896] - 22.0 * W[2382] * W[5289] - 21.5 * W[1989] * W[5682] - 21.0 * W[1596] * W[6075]
+            - 20.5 * W[1203] * W[6468] - 20.0 * W[810] * W[6861] - 19.5 * W[417] * W[7254]) / (19.0 * W[24]);
+    W[7652] = (-28.5 * W[7480] * W[185] - 28.0 * W[7087] * W[578] - 27.5 * W[6694] * W[971] - 27.0 * W[6301] * W[1364]
+            - 26.5 * W[5908] * W[1757] - 26.0 * W[5515] * W[2150] - 25.5 * W[5122] * W[2543] - 25.0 * W[4729] * W[2936]
+            - 24.5 * W[4336] * W[3329] - 24.0 * W[3943] * W[3722] - 23.5 * W[3550] * W[4115] - 23.0 * W[3157] * W[4508]
+            - 22.5 * W[2764] * W[4901] - 22.0 * W[2371] * W[5294] - 21.5 * W[1978] * W[5687] - 21.0 * W[1585] * W[6080]
+            - 20.5 * W[1192] * W[6473] - 20.0 * W[799] * W[6866] - 19.5 * W[406] * W[7259]) / (19.0 * W[13]);
+    W[7688] = (-28.5 * W[7556] * W[221] - 28.0 * W[7163] * W[614] - 27.5 * W[6770] * W[1007] - 27.0 * W[6377] * W[1400]
+            - 26.5 * W[5984] * W[1793] - 26.0 * W[5591] * W[2186] - 25.5 * W[5198] * W[2579] - 25.0 * W[4805] * W[2972]
+            - 24.5 * W[4412] * W[3365] - 24.0 * W[4019] * W[3758] - 23.5 * W[3626] * W[4151] - 23.0 * W[3233] * W[4544]
+            - 22.5 * W[2840] * W[4937] - 22.0 * W[2447] * W[5330] - 21.5 * W[2054] * W[5723] - 21.0 * W[1661] * W[6116]
+            - 20.5 * W[1268] * W[6509] - 20.0 * W[875] * W[6902] - 19.5 * W[482] * W[7295]) / (19.0 * W[89]);
+    W[7692] = (-28.5 * W[7548] * W[225] - 28.0 * W[7155] * W[618] - 27.5 * W[6762] * W[1011] - 27.0 * W[6369] * W[1404]
+            - 26.5 * W[5976] * W[1797] - 26.0 * W[5583] * W[2190] - 25.5 * W[5190] * W[2583] - 25.0 * W[4797] * W[2976]
+            - 24.5 * W[4404] * W[3369] - 24.0 * W[4011] * W[3762] - 23.5 * W[3618] * W[4155] - 23.0 * W[3225] * W[4548]
+            - 22.5 * W[2832] * W[4941] - 22.0 * W[2439] * W[5334] - 21.5 * W[2046] * W[5727] - 21.0 * W[1653] * W[6120]
+            - 20.5 * W[1260] * W[6513] - 20.0 * W[867] * W[6906] - 19.5 * W[474] * W[7299]) / (19.0 * W[81]);
+    W[7697] = (-28.5 * W[7540] * W[230] - 28.0 * W[7147] * W[623] - 27.5 * W[6754] * W[1016] - 27.0 * W[6361] * W[1409]
+            - 26.5 * W[5968] * W[1802] - 26.0 * W[5575] * W[2195] - 25.5 * W[5182] * W[2588] - 25.0 * W[4789] * W[2981]
+            - 24.5 * W[4396] * W[3374] - 24.0 * W[4003] * W[3767] - 23.5 * W[3610] * W[4160] - 23.0 * W[3217] * W[4553]
+            - 22.5 * W[2824] * W[4946] - 22.0 * W[2431] * W[5339] - 21.5 * W[2038] * W[5732] - 21.0 * W[1645] * W[6125]
+            - 20.5 * W[1252] * W[6518] - 20.0 * W[859] * W[6911] - 19.5 * W[466] * W[7304]) / (19.0 * W[73]);
+    W[7702] = (-28.5 * W[7532] * W[235] - 28.0 * W[7139] * W[628] - 27.5 * W[6746] * W[1021] - 27.0 * W[6353] * W[1414]
+            - 26.5 * W[5960] * W[1807] - 26.0 * W[5567] * W[2200] - 25.5 * W[5174] * W[2593] - 25.0 * W[4781] * W[2986]
+            - 24.5 * W[4388] * W[3379] - 24.0 * W[3995] * W[3772] - 23.5 * W[3602] * W[4165] - 23.0 * W[3209] * W[4558]
+            - 22.5 * W[2816] * W[4951] - 22.0 * W[2423] * W[5344] - 21.5 * W[2030] * W[5737] - 21.0 * W[1637] * W[6130]
+            - 20.5 * W[1244] * W[6523] - 20.0 * W[851] * W[6916] - 19.5 * W[458] * W[7309]) / (19.0 * W[65]);
+    W[7735] = (-28.5 * W[7580] * W[268] - 28.0 * W[7187] * W[661] - 27.5 * W[6794] * W[1054] - 27.0 * W[6401] * W[1447]
+            - 26.5 * W[6008] * W[1840] - 26.0 * W[5615] * W[2233] - 25.5 * W[5222] * W[2626] - 25.0 * W[4829] * W[3019]
+            - 24.5 * W[4436] * W[3412] - 24.0 * W[4043] * W[3805] - 23.5 * W[3650] * W[4198] - 23.0 * W[3257] * W[4591]
+            - 22.5 * W[2864] * W[4984] - 22.0 * W[2471] * W[5377] - 21.5 * W[2078] * W[5770] - 21.0 * W[1685] * W[6163]
+            - 20.5 * W[1292] * W[6556] - 20.0 * W[899] * W[6949] - 19.5 * W[506] * W[7342]) / (19.0 * W[113]);
+    W[7739] = (-28.5 * W[7572] * W[272] - 28.0 * W[7179] * W[665] - 27.5 * W[6786] * W[1058] - 27.0 * W[6393] * W[1451]
+            - 26.5 * W[6000] * W[1844] - 26.0 * W[5607] * W[2237] - 25.5 * W[5214] * W[2630] - 25.0 * W[4821] * W[3023]
+            - 24.5 * W[4428] * W[3416] - 24.0 * W[4035] * W[3809] - 23.5 * W[3642] * W[4202] - 23.0 * W[3249] * W[4595]
+            - 22.5 * W[2856] * W[4988] - 22.0 * W[2463] * W[5381] - 21.5 * W[2070] * W[5774] - 21.0 * W[1677] * W[6167]
+            - 20.5 * W[1284] * W[6560] - 20.0 * W[891] * W[6953] - 19.5 * W[498] * W[7346]) / (19.0 * W[105]);
+    W[7744] = (-28.5 * W[7564] * W[277] - 28.0 * W[7171] * W[670] - 27.5 * W[6778] * W[1063] - 27.0 * W[6385] * W[1456]
+            - 26.5 * W[5992] * W[1849] - 26.0 * W[5599] * W[2242] - 25.5 * W[5206] * W[2635] - 25.0 * W[4813] * W[3028]
+            - 24.5 * W[4420] * W[3421] - 24.0 * W[4027] * W[3814] - 23.5 * W[3634] * W[4207] - 23.0 * W[3241] * W[4600]
+            - 22.5 * W[2848] * W[4993] - 22.0 * W[2455] * W[5386] - 21.5 * W[2062] * W[5779] - 21.0 * W[1669] * W[6172]
+            - 20.5 * W[1276] * W[6565] - 20.0 * W[883] * W[6958] - 19.5 * W[490] * W[7351]) / (19.0 * W[97]);
+    W[7774] = (-28.5 * W[7596] * W[307] - 28.0 * W[7203] * W[700] - 27.5 * W[6810] * W[1093] - 27.0 * W[6417] * W[1486]
+            - 26.5 * W[6024] * W[1879] - 26.0 * W[5631] * W[2272] - 25.5 * W[5238] * W[2665] - 25.0 * W[4845] * W[3058]
+            - 24.5 * W[4452] * W[3451] - 24.0 * W[4059] * W[3844] - 23.5 * W[3666] * W[4237] - 23.0 * W[3273] * W[4630]
+            - 22.5 * W[2880] * W[5023] - 22.0 * W[2487] * W[5416] - 21.5 * W[2094] * W[5809] - 21.0 * W[1701] * W[6202]
+            - 20.5 * W[1308] * W[6595] - 20.0 * W[915] * W[6988] - 19.5 * W[522] * W[7381]) / (19.0 * W[129]);
+    W[7778] = (-28.5 * W[7588] * W[311] - 28.0 * W[7195] * W[704] - 27.5 * W[6802] * W[1097] - 27.0 * W[6409] * W[1490]
+            - 26.5 * W[6016] * W[1883] - 26.0 * W[5623] * W[2276] - 25.5 * W[5230] * W[2669] - 25.0 * W[4837] * W[3062]
+            - 24.5 * W[4444] * W[3455] - 24.0 * W[4051] * W[3848] - 23.5 * W[3658] * W[4241] - 23.0 * W[3265] * W[4634]
+            - 22.5 * W[2872] * W[5027] - 22.0 * W[2479] * W[5420] - 21.5 * W[2086] * W[5813] - 21.0 * W[1693] * W[6206]
+            - 20.5 * W[1300] * W[6599] - 20.0 * W[907] * W[6992] - 19.5 * W[514] * W[7385]) / (19.0 * W[121]);
+    W[7805] = (-28.5 * W[7604] * W[338] - 28.0 * W[7211] * W[731] - 27.5 * W[6818] * W[1124] - 27.0 * W[6425] * W[1517]
+            - 26.5 * W[6032] * W[1910] - 26.0 * W[5639] * W[2303] - 25.5 * W[5246] * W[2696] - 25.0 * W[4853] * W[3089]
+            - 24.5 * W[4460] * W[3482] - 24.0 * W[4067] * W[3875] - 23.5 * W[3674] * W[4268] - 23.0 * W[3281] * W[4661]
+            - 22.5 * W[2888] * W[5054] - 22.0 * W[2495] * W[5447] - 21.5 * W[2102] * W[5840] - 21.0 * W[1709] * W[6233]
+            - 20.5 * W[1316] * W[6626] - 20.0 * W[923] * W[7019] - 19.5 * W[530] * W[7412]) / (19.0 * W[137]);
+    W[7634] = W[48] * W[7633] + W[441] * W[7240] + W[834] * W[6847] + W[1227] * W[6454] + W[1620] * W[6061]
+            + W[2013] * W[5668] + W[2406] * W[5275] + W[2799] * W[4882] + W[3192] * W[4489] + W[3585] * W[4096]
+            + W[3978] * W[3703] + W[4371] * W[3310] + W[4764] * W[2917] + W[5157] * W[2524] + W[5550] * W[2131]
+            + W[5943] * W[1738] + W[6336] * W[1345] + W[6729] * W[952] + W[7122] * W[559] + W[7515] * W[166];
+    W[7638] = W[37] * W[7637] + W[430] * W[7244] + W[823] * W[6851] + W[1216] * W[6458] + W[1609] * W[6065]
+            + W[2002] * W[5672] + W[2395] * W[5279] + W[2788] * W[4886] + W[3181] * W[4493] + W[3574] * W[4100]
+            + W[3967] * W[3707] + W[4360] * W[3314] + W[4753] * W[2921] + W[5146] * W[2528] + W[5539] * W[2135]
+            + W[5932] * W[1742] + W[6325] * W[1349] + W[6718] * W[956] + W[7111] * W[563] + W[7504] * W[170];
+    W[7643] = W[26] * W[7642] + W[419] * W[7249] + W[812] * W[6856] + W[1205] * W[6463] + W[1598] * W[6070]
+            + W[1991] * W[5677] + W[2384] * W[5284] + W[2777] * W[4891] + W[3170] * W[4498] + W[3563] * W[4105]
+            + W[3956] * W[3712] + W[4349] * W[3319] + W[4742] * W[2926] + W[5135] * W[2533] + W[5528] * W[2140]
+            + W[5921] * W[1747] + W[6314] * W[1354] + W[6707] * W[961] + W[7100] * W[568] + W[7493] * W[175];
+    W[7648] = W[15] * W[7647] + W[408] * W[7254] + W[801] * W[6861] + W[1194] * W[6468] + W[1587] * W[6075]
+            + W[1980] * W[5682] + W[2373] * W[5289] + W[2766] * W[4896] + W[3159] * W[4503] + W[3552] * W[4110]
+            + W[3945] * W[3717] + W[4338] * W[3324] + W[4731] * W[2931] + W[5124] * W[2538] + W[5517] * W[2145]
+            + W[5910] * W[1752] + W[6303] * W[1359] + W[6696] * W[966] + W[7089] * W[573] + W[7482] * W[180];
+    W[7653] = W[2] * W[7652] + W[395] * W[7259] + W[788] * W[6866] + W[1181] * W[6473] + W[1574] * W[6080]
+            + W[1967] * W[5687] + W[2360] * W[5294] + W[2753] * W[4901] + W[3146] * W[4508] + W[3539] * W[4115]
+            + W[3932] * W[3722] + W[4325] * W[3329] + W[4718] * W[2936] + W[5111] * W[2543] + W[5504] * W[2150]
+            + W[5897] * W[1757] + W[6290] * W[1364] + W[6683] * W[971] + W[7076] * W[578] + W[7469] * W[185];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 19, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_353(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7726] = W[71] * W[7697] + W[464] * W[7304] + W[857] * W[6911] + W[1250] * W[6518] + W[1643] * W[6125]
+            + W[2036] * W[5732] + W[2429] * W[5339] + W[2822] * W[4946] + W[3215] * W[4553] + W[3608] * W[4160]
+            + W[4001] * W[3767] + W[4394] * W[3374] + W[4787] * W[2981] + W[5180] * W[2588] + W[5573] * W[2195]
+            + W[5966] * W[1802] + W[6359] * W[1409] + W[6752] * W[1016] + W[7145] * W[623] + W[7538] * W[230];
+    W[7729] = W[63] * W[7702] + W[456] * W[7309] + W[849] * W[6916] + W[1242] * W[6523] + W[1635] * W[6130]
+            + W[2028] * W[5737] + W[2421] * W[5344] + W[2814] * W[4951] + W[3207] * W[4558] + W[3600] * W[4165]
+            + W[3993] * W[3772] + W[4386] * W[3379] + W[4779] * W[2986] + W[5172] * W[2593] + W[5565] * W[2200]
+            + W[5958] * W[1807] + W[6351] * W[1414] + W[6744] * W[1021] + W[7137] * W[628] + W[7530] * W[235];
+    W[7736] = W[106] * W[7735] + W[499] * W[7342] + W[892] * W[6949] + W[1285] * W[6556] + W[1678] * W[6163]
+            + W[2071] * W[5770] + W[2464] * W[5377] + W[2857] * W[4984] + W[3250] * W[4591] + W[3643] * W[4198]
+            + W[4036] * W[3805] + W[4429] * W[3412] + W[4822] * W[3019] + W[5215] * W[2626] + W[5608] * W[2233]
+            + W[6001] * W[1840] + W[6394] * W[1447] + W[6787] * W[1054] + W[7180] * W[661] + W[7573] * W[268];
+    W[7740] = W[98] * W[7739] + W[491] * W[7346] + W[884] * W[6953] + W[1277] * W[6560] + W[1670] * W[6167]
+            + W[2063] * W[5774] + W[2456] * W[5381] + W[2849] * W[4988] + W[3242] * W[4595] + W[3635] * W[4202]
+            + W[4028] * W[3809] + W[4421] * W[3416] + W[4814] * W[3023] + W[5207] * W[2630] + W[5600] * W[2237]
+            + W[5993] * W[1844] + W[6386] * W[1451] + W[6779] * W[1058] + W[7172] * W[665] + W[7565] * W[272];
+    W[7745] = W[90] * W[7744] + W[483] * W[7351] + W[876] * W[6958] + W[1269] * W[6565] + W[1662] * W[6172]
+            + W[2055] * W[5779] + W[2448] * W[5386] + W[2841] * W[4993] + W[3234] * W[4600] + W[3627] * W[4207]
+            + W[4020] * W[3814] + W[4413] * W[3421] + W[4806] * W[3028] + W[5199] * W[2635] + W[5592] * W[2242]
+            + W[5985] * W[1849] + W[6378] * W[1456] + W[6771] * W[1063] + W[7164] * W[670] + W[7557] * W[277];
+    W[7751] = W[108] * W[7735] + W[501] * W[7342] + W[894] * W[6949] + W[1287] * W[6556] + W[1680] * W[6163]
+            + W[2073] * W[5770] + W[2466] * W[5377] + W[2859] * W[4984] + W[3252] * W[4591] + W[3645] * W[4198]
+            + W[4038] * W[3805] + W[4431] * W[3412] + W[4824] * W[3019] + W[5217] * W[2626] + W[5610] * W[2233]
+            + W[6003] * W[1840] + W[6396] * W[1447] + W[6789] * W[1054] + W[7182] * W[661] + W[7575] * W[268];
+    W[7753] = W[100] * W[7739] + W[493] * W[7346] + W[886] * W[6953] + W[1279] * W[6560] + W[1672] * W[6167]
+            + W[2065] * W[5774] + W[2458] * W[5381] + W[2851] * W[4988] + W[3244] * W[4595] + W[3637] * W[4202]
+            + W[4030] * W[3809] + W[4423] * W[3416] + W[4816] * W[3023] + W[5209] * W[2630] + W[5602] * W[2237]
+            + W[5995] * W[1844] + W[6388] * W[1451] + W[6781] * W[1058] + W[7174] * W[665] + W[7567] * W[272];
+    W[7756] = W[92] * W[7744] + W[485] * W[7351] + W[878] * W[6958] + W[1271] * W[6565] + W[1664] * W[6172]
+            + W[2057] * W[5779] + W[2450] * W[5386] + W[2843] * W[4993] + W[3236] * W[4600] + W[3629] * W[4207]
+            + W[4022] * W[3814] + W[4415] * W[3421] + W[4808] * W[3028] + W[5201] * W[2635] + W[5594] * W[2242]
+            + W[5987] * W[1849] + W[6380] * W[1456] + W[6773] * W[1063] + W[7166] * W[670] + W[7559] * W[277];
+    W[7762] = W[111] * W[7735] + W[504] * W[7342] + W[897] * W[6949] + W[1290] * W[6556] + W[1683] * W[6163]
+            + W[2076] * W[5770] + W[2469] * W[5377] + W[2862] * W[4984] + W[3255] * W[4591] + W[3648] * W[4198]
+            + W[4041] * W[3805] + W[4434] * W[3412] + W[4827] * W[3019] + W[5220] * W[2626] + W[5613] * W[2233]
+            + W[6006] * W[1840] + W[6399] * W[1447] + W[6792] * W[1054] + W[7185] * W[661] + W[7578] * W[268];
+    W[7764] = W[103] * W[7739] + W[496] * W[7346] + W[889] * W[6953] + W[1282] * W[6560] + W[1675] * W[6167]
+            + W[2068] * W[5774] + W[2461] * W[5381] + W[2854] * W[4988] + W[3247] * W[4595] + W[3640] * W[4202]
+            + W[4033] * W[3809] + W[4426] * W[3416] + W[4819] * W[3023] + W[5212] * W[2630] + W[5605] * W[2237]
+            + W[5998] * W[1844] + W[6391] * W[1451] + W[6784] * W[1058] + W[7177] * W[665] + W[7570] * W[272];
+    W[7767] = W[95] * W[7744] + W[488] * W[7351] + W[881] * W[6958] + W[1274] * W[6565] + W[1667] * W[6172]
+            + W[2060] * W[5779] + W[2453] * W[5386] + W[2846] * W[4993] + W[3239] * W[4600] + W[3632] * W[4207]
+            + W[4025] * W[3814] + W[4418] * W[3421] + W[4811] * W[3028] + W[5204] * W[2635] + W[5597] * W[2242]
+            + W[5990] * W[1849] + W[6383] * W[1456] + W[6776] * W[1063] + W[7169] * W[670] + W[7562] * W[277];
+    W[7775] = W[122] * W[7774] + W[515] * W[7381] + W[908] * W[6988] + W[1301] * W[6595] + W[1694] * W[6202]
+            + W[2087] * W[5809] + W[2480] * W[5416] + W[2873] * W[5023] + W[3266] * W[4630] + W[3659] * W[4237]
+            + W[4052] * W[3844] + W[4445] * W[3451] + W[4838] * W[3058] + W[5231] * W[2665] + W[5624] * W[2272]
+            + W[6017] * W[1879] + W[6410] * W[1486] + W[6803] * W[1093] + W[7196] * W[700] + W[7589] * W[307];
+    W[7779] = W[114] * W[7778] + W[507] * W[7385] + W[900] * W[6992] + W[1293] * W[6599] + W[1686] * W[6206]
+            + W[2079] * W[5813] + W[2472] * W[5420] + W[2865] * W[5027] + W[3258] * W[4634] + W[3651] * W[4241]
+            + W[4044] * W[3848] + W[4437] * W[3455] + W[4830] * W[3062] + W[5223] * W[2669] + W[5616] * W[2276]
+            + W[6009] * W[1883] + W[6402] * W[1490] + W[6795] * W[1097] + W[7188] * W[704] + W[7581] * W[311];
+    W[7786] = W[124] * W[7774] + W[517] * W[7381] + W[910] * W[6988] + W[1303] * W[6595] + W[1696] * W[6202]
+            + W[2089] * W[5809] + W[2482] * W[5416] + W[2875] * W[5023] + W[3268] * W[4630] + W[3661] * W[4237]
+            + W[4054] * W[3844] + W[4447] * W[3451] + W[4840] * W[3058] + W[5233] * W[2665] + W[5626] * W[2272]
+            + W[6019] * W[1879] + W[6412] * W[1486] + W[6805] * W[1093] + W[7198] * W[700] + W[7591] * W[307];
+    W[7788] = W[116] * W[7778] + W[509] * W[7385] + W[902] * W[6992] + W[1295] * W[6599] + W[1688] * W[6206]
+            + W[2081] * W[5813] + W[2474] * W[5420] + W[2867] * W[5027] + W[3260] * W[4634] + W[3653] * W[4241]
+            + W[4046] * W[3848] + W[4439] * W[3455] + W[4832] * W[3062] + W[5225] * W[2669] + W[5618] * W[2276]
+            + W[6011] * W[1883] + W[6404] * W[1490] + W[6797] * W[1097] + W[7190] * W[704] + W[7583] * W[311];
+    W[7795] = W[127] * W[7774] + W[520] * W[7381] + W[913] * W[6988] + W[1306] * W[6595] + W[1699] * W[6202]
+            + W[2092] * W[5809] + W[2485] * W[5416] + W[2878] * W[5023] + W[3271] * W[4630] + W[3664] * W[4237]
+            + W[4057] * W[3844] + W[4450] * W[3451] + W[4843] * W[3058] + W[5236] * W[2665] + W[5629] * W[2272]
+            + W[6022] * W[1879] + W[6415] * W[1486] + W[6808] * W[1093] + W[7201] * W[700] + W[7594] * W[307];
+    W[7797] = W[119] * W[7778] + W[512] * W[7385] + W[905] * W[6992] + W[1298] * W[6599] + W[1691] * W[6206]
+            + W[2084] * W[5813] + W[2477] * W[5420] + W[2870] * W[5027] + W[3263] * W[4634] + W[3656] * W[4241]
+            + W[4049] * W[3848] + W[4442] * W[3455] + W[4835] * W[3062] + W[5228] * W[2669] + W[5621] * W[2276]
+            + W[6014] * W[1883] + W[6407] * W[1490] + W[6800] * W[1097] + W[7193] * W[704] + W[7586] * W[311];
+    W[7806] = W[130] * W[7805] + W[523] * W[7412] + W[916] * W[7019] + W[1309] * W[6626] + W[1702] * W[6233]
+            + W[2095] * W[5840] + W[2488] * W[5447] + W[2881] * W[5054] + W[3274] * W[4661] + W[3667] * W[4268]
+            + W[4060] * W[3875] + W[4453] * W[3482] + W[4846] * W[3089] + W[5239] * W[2696] + W[5632] * W[2303]
+            + W[6025] * W[1910] + W[6418] * W[1517] + W[6811] * W[1124] + W[7204] * W[731] + W[7597] * W[338];
+    W[7813] = W[132] * W[7805] + W[525] * W[7412] + W[918] * W[7019] + W[1311] * W[6626] + W[1704] * W[6233]
+            + W[2097] * W[5840] + W[2490] * W[5447] + W[2883] * W[5054] + W[3276] * W[4661] + W[3669] * W[4268]
+            + W[4062] * W[3875] + W[4455] * W[3482] + W[4848] * W[3089] + W[5241] * W[2696] + W[5634] * W[2303]
+            + W[6027] * W[1910] + W[6420] * W[1517] + W[6813] * W[1124] + W[7206] * W[731] + W[7599] * W[338];
+    W[7820] = W[135] * W[7805] + W[528] * W[7412] + W[921] * W[7019] + W[1314] * W[6626] + W[1707] * W[6233]
+            + W[2100] * W[5840] + W[2493] * W[5447] + W[2886] * W[5054] + W[3279] * W[4661] + W[3672] * W[4268]
+            + W[4065] * W[3875] + W[4458] * W[3482] + W[4851] * W[3089] + W[5244] * W[2696] + W[5637] * W[2303]
+            + W[6030] * W[1910] + W[6423] * W[1517] + W[6816] * W[1124] + W[7209] * W[731] + W[7602] * W[338];
+    return 0;
+}
+
+/* Lines 340 .. 350 of taylor_run's order 19, in the fourth unit. */
+EOMC_PART int
+outer_solar_system_taylor_run_362(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[745] = -W[7761] / W[141] / 20.0;
+    X[746] = -W[7772] / W[141] / 20.0;
+    X[747] = -W[7785] / W[142] / 20.0;
+    X[748] = -W[7794] / W[142] / 20.0;
+    X[749] = -W[7803] / W[142] / 20.0;
+    X[750] = -W[7812] / W[143] / 20.0;
+    X[751] = -W[7819] / W[143] / 20.0;
+    X[752] = -W[7826] / W[143] / 20.0;
+    X[753] = -W[7831] / W[144] / 20.0;
+    X[754] = -W[7836] / W[144] / 20.0;
+    X[755] = -W[7841] / W[144] / 20.0;
+    return 0;
+}
+
+#endif /* EOMC_EXTENDED */
+
+#endif /* EOMC_UNIT 4 */

@@ -1636,6 +1636,211 @@ pleiades_place_velocity(eomc_real t, const eomc_real *q, const eomc_real *p,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define pleiades_taylor_run_1 pleiades_taylor_run_1_ext
+#define pleiades_taylor_run_2 pleiades_taylor_run_2_ext
+#define pleiades_taylor_run_3 pleiades_taylor_run_3_ext
+#define pleiades_taylor_run_4 pleiades_taylor_run_4_ext
+#define pleiades_taylor_run_5 pleiades_taylor_run_5_ext
+#define pleiades_taylor_run_6 pleiades_taylor_run_6_ext
+#define pleiades_taylor_run_7 pleiades_taylor_run_7_ext
+#define pleiades_taylor_run_8 pleiades_taylor_run_8_ext
+#define pleiades_taylor_run_9 pleiades_taylor_run_9_ext
+#define pleiades_taylor_run_10 pleiades_taylor_run_10_ext
+#define pleiades_taylor_run_11 pleiades_taylor_run_11_ext
+#define pleiades_taylor_run_12 pleiades_taylor_run_12_ext
+#define pleiades_taylor_run_13 pleiades_taylor_run_13_ext
+#define pleiades_taylor_run_14 pleiades_taylor_run_14_ext
+#define pleiades_taylor_run_15 pleiades_taylor_run_15_ext
+#define pleiades_taylor_run_16 pleiades_taylor_run_16_ext
+#define pleiades_taylor_run_17 pleiades_taylor_run_17_ext
+#define pleiades_taylor_run_18 pleiades_taylor_run_18_ext
+#define pleiades_taylor_run_19 pleiades_taylor_run_19_ext
+#define pleiades_taylor_run_20 pleiades_taylor_run_20_ext
+#define pleiades_taylor_run_21 pleiades_taylor_run_21_ext
+#define pleiades_taylor_run_22 pleiades_taylor_run_22_ext
+#define pleiades_taylor_run_23 pleiades_taylor_run_23_ext
+#define pleiades_taylor_run_24 pleiades_taylor_run_24_ext
+#define pleiades_taylor_run_25 pleiades_taylor_run_25_ext
+#define pleiades_taylor_run_26 pleiades_taylor_run_26_ext
+#define pleiades_taylor_run_27 pleiades_taylor_run_27_ext
+#define pleiades_taylor_run_28 pleiades_taylor_run_28_ext
+#define pleiades_taylor_run_29 pleiades_taylor_run_29_ext
+#define pleiades_taylor_run_30 pleiades_taylor_run_30_ext
+#define pleiades_taylor_run_31 pleiades_taylor_run_31_ext
+#define pleiades_taylor_run_32 pleiades_taylor_run_32_ext
+#define pleiades_taylor_run_33 pleiades_taylor_run_33_ext
+#define pleiades_taylor_run_34 pleiades_taylor_run_34_ext
+#define pleiades_taylor_run_35 pleiades_taylor_run_35_ext
+#define pleiades_taylor_run_37 pleiades_taylor_run_37_ext
+#define pleiades_taylor_run_39 pleiades_taylor_run_39_ext
+#define pleiades_taylor_run_41 pleiades_taylor_run_41_ext
+#define pleiades_taylor_run_43 pleiades_taylor_run_43_ext
+#define pleiades_taylor_run_45 pleiades_taylor_run_45_ext
+#define pleiades_taylor_run_47 pleiades_taylor_run_47_ext
+#define pleiades_taylor_run_49 pleiades_taylor_run_49_ext
+#define pleiades_taylor_run_51 pleiades_taylor_run_51_ext
+#define pleiades_taylor_run_53 pleiades_taylor_run_53_ext
+#define pleiades_taylor_run_55 pleiades_taylor_run_55_ext
+#define pleiades_taylor_run_56 pleiades_taylor_run_56_ext
+#define pleiades_taylor_run_59 pleiades_taylor_run_59_ext
+#define pleiades_taylor_run_61 pleiades_taylor_run_61_ext
+#define pleiades_taylor_run_63 pleiades_taylor_run_63_ext
+#define pleiades_taylor_run_65 pleiades_taylor_run_65_ext
+#define pleiades_taylor_run_67 pleiades_taylor_run_67_ext
+#define pleiades_taylor_run_69 pleiades_taylor_run_69_ext
+#define pleiades_taylor_run_71 pleiades_taylor_run_71_ext
+#define pleiades_taylor_run_73 pleiades_taylor_run_73_ext
+#define pleiades_taylor_run_75 pleiades_taylor_run_75_ext
+#define pleiades_taylor_run_76 pleiades_taylor_run_76_ext
+#define pleiades_taylor_run_78 pleiades_taylor_run_78_ext
+#define pleiades_taylor_run_80 pleiades_taylor_run_80_ext
+#define pleiades_taylor_run_82 pleiades_taylor_run_82_ext
+#define pleiades_taylor_run_84 pleiades_taylor_run_84_ext
+#define pleiades_taylor_run_86 pleiades_taylor_run_86_ext
+#define pleiades_taylor_run_88 pleiades_taylor_run_88_ext
+#define pleiades_taylor_run_90 pleiades_taylor_run_90_ext
+#define pleiades_taylor_run_92 pleiades_taylor_run_92_ext
+#define pleiades_taylor_run_95 pleiades_taylor_run_95_ext
+#define pleiades_taylor_run_97 pleiades_taylor_run_97_ext
+#define pleiades_taylor_run_99 pleiades_taylor_run_99_ext
+#define pleiades_taylor_run_101 pleiades_taylor_run_101_ext
+#define pleiades_taylor_run_103 pleiades_taylor_run_103_ext
+#define pleiades_taylor_run_105 pleiades_taylor_run_105_ext
+#define pleiades_taylor_run_107 pleiades_taylor_run_107_ext
+#define pleiades_taylor_run_109 pleiades_taylor_run_109_ext
+#define pleiades_taylor_run_111 pleiades_taylor_run_111_ext
+#define pleiades_taylor_run_112 pleiades_taylor_run_112_ext
+#define pleiades_taylor_run_114 pleiades_taylor_run_114_ext
+#define pleiades_taylor_run_116 pleiades_taylor_run_116_ext
+#define pleiades_taylor_run_118 pleiades_taylor_run_118_ext
+#define pleiades_taylor_run_120 pleiades_taylor_run_120_ext
+#define pleiades_taylor_run_122 pleiades_taylor_run_122_ext
+#define pleiades_taylor_run_124 pleiades_taylor_run_124_ext
+#define pleiades_taylor_run_126 pleiades_taylor_run_126_ext
+#define pleiades_taylor_run_128 pleiades_taylor_run_128_ext
+#define pleiades_taylor_run_131 pleiades_taylor_run_131_ext
+#define pleiades_taylor_run_133 pleiades_taylor_run_133_ext
+#define pleiades_taylor_run_135 pleiades_taylor_run_135_ext
+#define pleiades_taylor_run_137 pleiades_taylor_run_137_ext
+#define pleiades_taylor_run_139 pleiades_taylor_run_139_ext
+#define pleiades_taylor_run_141 pleiades_taylor_run_141_ext
+#define pleiades_taylor_run_143 pleiades_taylor_run_143_ext
+#define pleiades_taylor_run_145 pleiades_taylor_run_145_ext
+#define pleiades_taylor_run_147 pleiades_taylor_run_147_ext
+#define pleiades_taylor_run_149 pleiades_taylor_run_149_ext
+#define pleiades_taylor_run_151 pleiades_taylor_run_151_ext
+#define pleiades_taylor_run_153 pleiades_taylor_run_153_ext
+#define pleiades_taylor_run_155 pleiades_taylor_run_155_ext
+#define pleiades_taylor_run_157 pleiades_taylor_run_157_ext
+#define pleiades_taylor_run_159 pleiades_taylor_run_159_ext
+#define pleiades_taylor_run_161 pleiades_taylor_run_161_ext
+#define pleiades_taylor_run_163 pleiades_taylor_run_163_ext
+#define pleiades_taylor_run_165 pleiades_taylor_run_165_ext
+#define pleiades_taylor_run_167 pleiades_taylor_run_167_ext
+#define pleiades_taylor_run_169 pleiades_taylor_run_169_ext
+#define pleiades_taylor_run_171 pleiades_taylor_run_171_ext
+#define pleiades_taylor_run_173 pleiades_taylor_run_173_ext
+#define pleiades_taylor_run_176 pleiades_taylor_run_176_ext
+#define pleiades_taylor_run_178 pleiades_taylor_run_178_ext
+#define pleiades_taylor_run_180 pleiades_taylor_run_180_ext
+#define pleiades_taylor_run_182 pleiades_taylor_run_182_ext
+#define pleiades_taylor_run_184 pleiades_taylor_run_184_ext
+#define pleiades_taylor_run_186 pleiades_taylor_run_186_ext
+#define pleiades_taylor_run_188 pleiades_taylor_run_188_ext
+#define pleiades_taylor_run_190 pleiades_taylor_run_190_ext
+#define pleiades_taylor_run_192 pleiades_taylor_run_192_ext
+#define pleiades_taylor_run_193 pleiades_taylor_run_193_ext
+#define pleiades_taylor_run_195 pleiades_taylor_run_195_ext
+#define pleiades_taylor_run_197 pleiades_taylor_run_197_ext
+#define pleiades_taylor_run_199 pleiades_taylor_run_199_ext
+#define pleiades_taylor_run_201 pleiades_taylor_run_201_ext
+#define pleiades_taylor_run_203 pleiades_taylor_run_203_ext
+#define pleiades_taylor_run_205 pleiades_taylor_run_205_ext
+#define pleiades_taylor_run_207 pleiades_taylor_run_207_ext
+#define pleiades_taylor_run_209 pleiades_taylor_run_209_ext
+#define pleiades_taylor_run_212 pleiades_taylor_run_212_ext
+#define pleiades_taylor_run_214 pleiades_taylor_run_214_ext
+#define pleiades_taylor_run_216 pleiades_taylor_run_216_ext
+#define pleiades_taylor_run_218 pleiades_taylor_run_218_ext
+#define pleiades_taylor_run_220 pleiades_taylor_run_220_ext
+#define pleiades_taylor_run_222 pleiades_taylor_run_222_ext
+#define pleiades_taylor_run_224 pleiades_taylor_run_224_ext
+#define pleiades_taylor_run_226 pleiades_taylor_run_226_ext
+#define pleiades_taylor_run_228 pleiades_taylor_run_228_ext
+#define pleiades_taylor_run_229 pleiades_taylor_run_229_ext
+#define pleiades_taylor_run_231 pleiades_taylor_run_231_ext
+#define pleiades_taylor_run_233 pleiades_taylor_run_233_ext
+#define pleiades_taylor_run_235 pleiades_taylor_run_235_ext
+#define pleiades_taylor_run_237 pleiades_taylor_run_237_ext
+#define pleiades_taylor_run_238 pleiades_taylor_run_238_ext
+#define pleiades_taylor_run_240 pleiades_taylor_run_240_ext
+#define pleiades_taylor_run_242 pleiades_taylor_run_242_ext
+#define pleiades_taylor_run_244 pleiades_taylor_run_244_ext
+#define pleiades_taylor_run_246 pleiades_taylor_run_246_ext
+#define pleiades_taylor_run_247 pleiades_taylor_run_247_ext
+#define pleiades_taylor_run_249 pleiades_taylor_run_249_ext
+#define pleiades_taylor_run_251 pleiades_taylor_run_251_ext
+#define pleiades_taylor_run_253 pleiades_taylor_run_253_ext
+#define pleiades_taylor_run_255 pleiades_taylor_run_255_ext
+#define pleiades_taylor_run_256 pleiades_taylor_run_256_ext
+#define pleiades_taylor_run_258 pleiades_taylor_run_258_ext
+#define pleiades_taylor_run_260 pleiades_taylor_run_260_ext
+#define pleiades_taylor_run_262 pleiades_taylor_run_262_ext
+#define pleiades_taylor_run_264 pleiades_taylor_run_264_ext
+#define pleiades_taylor_run_265 pleiades_taylor_run_265_ext
+#define pleiades_taylor_run_267 pleiades_taylor_run_267_ext
+#define pleiades_taylor_run_269 pleiades_taylor_run_269_ext
+#define pleiades_taylor_run_271 pleiades_taylor_run_271_ext
+#define pleiades_taylor_run_273 pleiades_taylor_run_273_ext
+#define pleiades_taylor_run_274 pleiades_taylor_run_274_ext
+#define pleiades_taylor_run_276 pleiades_taylor_run_276_ext
+#define pleiades_taylor_run_278 pleiades_taylor_run_278_ext
+#define pleiades_taylor_run_280 pleiades_taylor_run_280_ext
+#define pleiades_taylor_run_282 pleiades_taylor_run_282_ext
+#define pleiades_taylor_run_283 pleiades_taylor_run_283_ext
+#define pleiades_taylor_run_285 pleiades_taylor_run_285_ext
+#define pleiades_taylor_run_287 pleiades_taylor_run_287_ext
+#define pleiades_taylor_run_288 pleiades_taylor_run_288_ext
+#define pleiades_taylor_run_291 pleiades_taylor_run_291_ext
+#define pleiades_taylor_run_292 pleiades_taylor_run_292_ext
+#define pleiades_taylor_run_294 pleiades_taylor_run_294_ext
+#define pleiades_taylor_run_296 pleiades_taylor_run_296_ext
+#define pleiades_taylor_run_298 pleiades_taylor_run_298_ext
+#define pleiades_taylor_run_300 pleiades_taylor_run_300_ext
+#define pleiades_taylor_run_301 pleiades_taylor_run_301_ext
+#define pleiades_taylor_run_302 pleiades_taylor_run_302_ext
+#define pleiades_taylor_run_304 pleiades_taylor_run_304_ext
+#define pleiades_taylor_run_306 pleiades_taylor_run_306_ext
+#define pleiades_taylor_run_308 pleiades_taylor_run_308_ext
+#define pleiades_taylor_run_311 pleiades_taylor_run_311_ext
+#define pleiades_taylor_run_313 pleiades_taylor_run_313_ext
+#define pleiades_taylor_run_315 pleiades_taylor_run_315_ext
+#define pleiades_taylor_run_317 pleiades_taylor_run_317_ext
+#define pleiades_taylor_run_321 pleiades_taylor_run_321_ext
+#define pleiades_taylor_run_323 pleiades_taylor_run_323_ext
+#define pleiades_taylor_run_325 pleiades_taylor_run_325_ext
+#define pleiades_taylor_run_327 pleiades_taylor_run_327_ext
+#define pleiades_taylor_run_328 pleiades_taylor_run_328_ext
+#define pleiades_taylor_run_330 pleiades_taylor_run_330_ext
+#define pleiades_taylor_run_332 pleiades_taylor_run_332_ext
+#define pleiades_taylor_run_334 pleiades_taylor_run_334_ext
+#define pleiades_taylor_run_336 pleiades_taylor_run_336_ext
+#define pleiades_taylor_run_337 pleiades_taylor_run_337_ext
+#define pleiades_taylor_run_338 pleiades_taylor_run_338_ext
+#define pleiades_taylor_run_340 pleiades_taylor_run_340_ext
+#define pleiades_taylor_run_342 pleiades_taylor_run_342_ext
+#define pleiades_taylor_run_344 pleiades_taylor_run_344_ext
+#define pleiades_taylor_run_347 pleiades_taylor_run_347_ext
+#define pleiades_taylor_run_349 pleiades_taylor_run_349_ext
+#define pleiades_taylor_run_351 pleiades_taylor_run_351_ext
+#define pleiades_taylor_run_353 pleiades_taylor_run_353_ext
+#define pleiades_taylor_run_357 pleiades_taylor_run_357_ext
+#define pleiades_taylor_run_359 pleiades_taylor_run_359_ext
+#define pleiades_taylor_run_361 pleiades_taylor_run_361_ext
+#define pleiades_taylor_run_363 pleiades_taylor_run_363_ext
+#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED
@@ -3486,754 +3691,13 @@ pleiades_taylor(int k, int K, eomc_real t0, const eomc_real *p,
  * q''s, M being constant and diagonal, from -(h_j / M_jj) / (k + 1).
  * Written out to order 20, each recurrence's sum with its indices fixed
  * (the same arithmetic in the same order); above that, the loop. */
-/* Its terms are too many for the C compiler's optimizer, whose time grows
- * faster than they do; each is one statement on values in memory either
- * way (lowered.h, LOW_SERIES_OPTIMIZED_TERMS). */
-#if defined(__clang__)
-#define EOMC_UNOPTIMIZED __attribute__((optnone, noinline))
-#elif defined(__GNUC__)
-#define EOMC_UNOPTIMIZED __attribute__((optimize("O0"), noinline))
-#else
-#define EOMC_UNOPTIMIZED
-#endif
-static EOMC_UNOPTIMIZED int
-pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *T, eomc_real *X, eomc_tay_solve solve, void *ctx)
+/* Lines 280 .. 299 of taylor_run's order 1. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_36(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
 {
-    const int S = K + 1;
-    (void)solve, (void)ctx;
-    if (K > 20) {
-        static const int state[28] = {0, 5, 1, 6, 10, 13, 17, 20, 24, 27, 31, 34, 38, 41, 391, 392,
-            393, 394, 395, 396, 397, 398, 399, 400, 401, 402, 403, 404};
-        for (int i = 0; i < 28; i++)
-            T[state[i] * S] = X[i];
-        for (int k = 0; k < K; k++) {
-            pleiades_taylor(k, K, t0, p, u, T);
-            eomc_tay_integ(T, T + 391 * S, k);
-            eomc_tay_integ(T + 5 * S, T + 392 * S, k);
-            eomc_tay_integ(T + 1 * S, T + 393 * S, k);
-            eomc_tay_integ(T + 6 * S, T + 394 * S, k);
-            eomc_tay_integ(T + 10 * S, T + 395 * S, k);
-            eomc_tay_integ(T + 13 * S, T + 396 * S, k);
-            eomc_tay_integ(T + 17 * S, T + 397 * S, k);
-            eomc_tay_integ(T + 20 * S, T + 398 * S, k);
-            eomc_tay_integ(T + 24 * S, T + 399 * S, k);
-            eomc_tay_integ(T + 27 * S, T + 400 * S, k);
-            eomc_tay_integ(T + 31 * S, T + 401 * S, k);
-            eomc_tay_integ(T + 34 * S, T + 402 * S, k);
-            eomc_tay_integ(T + 38 * S, T + 403 * S, k);
-            eomc_tay_integ(T + 41 * S, T + 404 * S, k);
-            eomc_tay_accel(T + 391 * S, T + 180 * S, T + 120 * S, k);
-            eomc_tay_accel(T + 392 * S, T + 198 * S, T + 120 * S, k);
-            eomc_tay_accel(T + 393 * S, T + 225 * S, T + 121 * S, k);
-            eomc_tay_accel(T + 394 * S, T + 242 * S, T + 121 * S, k);
-            eomc_tay_accel(T + 395 * S, T + 266 * S, T + 122 * S, k);
-            eomc_tay_accel(T + 396 * S, T + 282 * S, T + 122 * S, k);
-            eomc_tay_accel(T + 397 * S, T + 303 * S, T + 123 * S, k);
-            eomc_tay_accel(T + 398 * S, T + 318 * S, T + 123 * S, k);
-            eomc_tay_accel(T + 399 * S, T + 336 * S, T + 124 * S, k);
-            eomc_tay_accel(T + 400 * S, T + 350 * S, T + 124 * S, k);
-            eomc_tay_accel(T + 401 * S, T + 364 * S, T + 125 * S, k);
-            eomc_tay_accel(T + 402 * S, T + 376 * S, T + 125 * S, k);
-            eomc_tay_accel(T + 403 * S, T + 383 * S, T + 126 * S, k);
-            eomc_tay_accel(T + 404 * S, T + 390 * S, T + 126 * S, k);
-        }
-        for (int j = 1; j <= K; j++)
-            for (int i = 0; i < 28; i++)
-                X[j * 28 + i] = T[state[i] * S + j];
-        return 0;
-    }
-    eomc_real W[8505]; /* slot s's coefficient j at W[j * 405 + s], but the
-                   * state's: X[j * 28 + i], q's then v's */
-    /* order 0 */
-    W[2] = X[0] - X[2];
-    W[3] = 2.0;
-    W[7] = X[1] - X[3];
-    W[11] = X[0] - X[4];
-    W[14] = X[1] - X[5];
-    W[18] = X[0] - X[6];
-    W[21] = X[1] - X[7];
-    W[25] = X[0] - X[8];
-    W[28] = X[1] - X[9];
-    W[32] = X[0] - X[10];
-    W[35] = X[1] - X[11];
-    W[39] = X[0] - X[12];
-    W[42] = X[1] - X[13];
-    W[45] = X[2] - X[4];
-    W[47] = X[3] - X[5];
-    W[50] = X[2] - X[6];
-    W[52] = X[3] - X[7];
-    W[55] = X[2] - X[8];
-    W[57] = X[3] - X[9];
-    W[60] = X[2] - X[10];
-    W[62] = X[3] - X[11];
-    W[65] = X[2] - X[12];
-    W[67] = X[3] - X[13];
-    W[70] = X[4] - X[6];
-    W[72] = X[5] - X[7];
-    W[75] = X[4] - X[8];
-    W[77] = X[5] - X[9];
-    W[80] = X[4] - X[10];
-    W[82] = X[5] - X[11];
-    W[85] = X[4] - X[12];
-    W[87] = X[5] - X[13];
-    W[90] = X[6] - X[8];
-    W[92] = X[7] - X[9];
-    W[95] = X[6] - X[10];
-    W[97] = X[7] - X[11];
-    W[100] = X[6] - X[12];
-    W[102] = X[7] - X[13];
-    W[105] = X[8] - X[10];
-    W[107] = X[9] - X[11];
-    W[110] = X[8] - X[12];
-    W[112] = X[9] - X[13];
-    W[115] = X[10] - X[12];
-    W[117] = X[11] - X[13];
-    W[120] = p[0];
-    W[121] = p[1];
-    W[122] = p[2];
-    W[123] = p[3];
-    W[124] = p[4];
-    W[125] = p[5];
-    W[126] = p[6];
-    W[127] = p[7];
-    W[128] = p[8];
-    W[129] = p[9];
-    W[130] = p[10];
-    W[131] = p[11];
-    W[132] = p[12];
-    W[133] = p[13];
-    W[134] = p[14];
-    W[135] = p[15];
-    W[136] = p[16];
-    W[137] = p[17];
-    W[138] = p[18];
-    W[139] = p[19];
-    W[140] = p[20];
-    W[141] = p[21];
-    W[142] = p[22];
-    W[143] = p[23];
-    W[144] = p[24];
-    W[145] = p[25];
-    W[146] = p[26];
-    W[147] = p[27];
-    W[148] = -2.0;
-    W[149] = -1.5;
-    W[150] = 0.5;
-    W[4] = W[2] * W[2];
-    W[8] = W[7] * W[7];
-    W[12] = W[11] * W[11];
-    W[15] = W[14] * W[14];
-    W[19] = W[18] * W[18];
-    W[22] = W[21] * W[21];
-    W[26] = W[25] * W[25];
-    W[29] = W[28] * W[28];
-    W[33] = W[32] * W[32];
-    W[36] = W[35] * W[35];
-    W[40] = W[39] * W[39];
-    W[43] = W[42] * W[42];
-    W[46] = W[45] * W[45];
-    W[48] = W[47] * W[47];
-    W[51] = W[50] * W[50];
-    W[53] = W[52] * W[52];
-    W[56] = W[55] * W[55];
-    W[58] = W[57] * W[57];
-    W[61] = W[60] * W[60];
-    W[63] = W[62] * W[62];
-    W[66] = W[65] * W[65];
-    W[68] = W[67] * W[67];
-    W[71] = W[70] * W[70];
-    W[73] = W[72] * W[72];
-    W[76] = W[75] * W[75];
-    W[78] = W[77] * W[77];
-    W[81] = W[80] * W[80];
-    W[83] = W[82] * W[82];
-    W[86] = W[85] * W[85];
-    W[88] = W[87] * W[87];
-    W[91] = W[90] * W[90];
-    W[93] = W[92] * W[92];
-    W[96] = W[95] * W[95];
-    W[98] = W[97] * W[97];
-    W[101] = W[100] * W[100];
-    W[103] = W[102] * W[102];
-    W[106] = W[105] * W[105];
-    W[108] = W[107] * W[107];
-    W[111] = W[110] * W[110];
-    W[113] = W[112] * W[112];
-    W[116] = W[115] * W[115];
-    W[118] = W[117] * W[117];
-    W[151] = W[150] * W[132];
-    W[155] = W[150] * W[131];
-    W[160] = W[150] * W[130];
-    W[165] = W[150] * W[129];
-    W[170] = W[150] * W[128];
-    W[175] = W[150] * W[127];
-    W[199] = W[150] * W[137];
-    W[203] = W[150] * W[136];
-    W[208] = W[150] * W[135];
-    W[213] = W[150] * W[134];
-    W[218] = W[150] * W[133];
-    W[243] = W[150] * W[141];
-    W[247] = W[150] * W[140];
-    W[252] = W[150] * W[139];
-    W[257] = W[150] * W[138];
-    W[283] = W[150] * W[144];
-    W[287] = W[150] * W[143];
-    W[292] = W[150] * W[142];
-    W[319] = W[150] * W[146];
-    W[323] = W[150] * W[145];
-    W[351] = W[150] * W[147];
-    W[9] = W[4] + W[8];
-    W[16] = W[12] + W[15];
-    W[23] = W[19] + W[22];
-    W[30] = W[26] + W[29];
-    W[37] = W[33] + W[36];
-    W[44] = W[40] + W[43];
-    W[49] = W[46] + W[48];
-    W[54] = W[51] + W[53];
-    W[59] = W[56] + W[58];
-    W[64] = W[61] + W[63];
-    W[69] = W[66] + W[68];
-    W[74] = W[71] + W[73];
-    W[79] = W[76] + W[78];
-    W[84] = W[81] + W[83];
-    W[89] = W[86] + W[88];
-    W[94] = W[91] + W[93];
-    W[99] = W[96] + W[98];
-    W[104] = W[101] + W[103];
-    W[109] = W[106] + W[108];
-    W[114] = W[111] + W[113];
-    W[119] = W[116] + W[118];
-    W[152] = pow(W[44], W[149]);
-    W[156] = pow(W[37], W[149]);
-    W[161] = pow(W[30], W[149]);
-    W[166] = pow(W[23], W[149]);
-    W[171] = pow(W[16], W[149]);
-    W[176] = pow(W[9], W[149]);
-    W[200] = pow(W[69], W[149]);
-    W[204] = pow(W[64], W[149]);
-    W[209] = pow(W[59], W[149]);
-    W[214] = pow(W[54], W[149]);
-    W[219] = pow(W[49], W[149]);
-    W[244] = pow(W[89], W[149]);
-    W[248] = pow(W[84], W[149]);
-    W[253] = pow(W[79], W[149]);
-    W[258] = pow(W[74], W[149]);
-    W[284] = pow(W[104], W[149]);
-    W[288] = pow(W[99], W[149]);
-    W[293] = pow(W[94], W[149]);
-    W[320] = pow(W[114], W[149]);
-    W[324] = pow(W[109], W[149]);
-    W[352] = pow(W[119], W[149]);
-    W[153] = W[39] * W[152];
-    W[157] = W[32] * W[156];
-    W[162] = W[25] * W[161];
-    W[167] = W[18] * W[166];
-    W[172] = W[11] * W[171];
-    W[177] = W[2] * W[176];
-    W[181] = W[42] * W[152];
-    W[183] = W[35] * W[156];
-    W[186] = W[28] * W[161];
-    W[189] = W[21] * W[166];
-    W[192] = W[14] * W[171];
-    W[195] = W[7] * W[176];
-    W[201] = W[65] * W[200];
-    W[205] = W[60] * W[204];
-    W[210] = W[55] * W[209];
-    W[215] = W[50] * W[214];
-    W[220] = W[45] * W[219];
-    W[226] = W[67] * W[200];
-    W[228] = W[62] * W[204];
-    W[231] = W[57] * W[209];
-    W[234] = W[52] * W[214];
-    W[237] = W[47] * W[219];
-    W[245] = W[85] * W[244];
-    W[249] = W[80] * W[248];
-    W[254] = W[75] * W[253];
-    W[259] = W[70] * W[258];
-    W[267] = W[87] * W[244];
-    W[269] = W[82] * W[248];
-    W[272] = W[77] * W[253];
-    W[275] = W[72] * W[258];
-    W[285] = W[100] * W[284];
-    W[289] = W[95] * W[288];
-    W[294] = W[90] * W[293];
-    W[304] = W[102] * W[284];
-    W[306] = W[97] * W[288];
-    W[309] = W[92] * W[293];
-    W[321] = W[110] * W[320];
-    W[325] = W[105] * W[324];
-    W[337] = W[112] * W[320];
-    W[339] = W[107] * W[324];
-    W[353] = W[115] * W[352];
-    W[365] = W[117] * W[352];
-    W[154] = W[151] * W[153];
-    W[158] = W[155] * W[157];
-    W[163] = W[160] * W[162];
-    W[168] = W[165] * W[167];
-    W[173] = W[170] * W[172];
-    W[178] = W[175] * W[177];
-    W[182] = W[151] * W[181];
-    W[184] = W[155] * W[183];
-    W[187] = W[160] * W[186];
-    W[190] = W[165] * W[189];
-    W[193] = W[170] * W[192];
-    W[196] = W[175] * W[195];
-    W[202] = W[199] * W[201];
-    W[206] = W[203] * W[205];
-    W[211] = W[208] * W[210];
-    W[216] = W[213] * W[215];
-    W[221] = W[218] * W[220];
-    W[224] = W[127] * W[177];
-    W[227] = W[199] * W[226];
-    W[229] = W[203] * W[228];
-    W[232] = W[208] * W[231];
-    W[235] = W[213] * W[234];
-    W[238] = W[218] * W[237];
-    W[241] = W[127] * W[195];
-    W[246] = W[243] * W[245];
-    W[250] = W[247] * W[249];
-    W[255] = W[252] * W[254];
-    W[260] = W[257] * W[259];
-    W[263] = W[133] * W[220];
-    W[265] = W[128] * W[172];
-    W[268] = W[243] * W[267];
-    W[270] = W[247] * W[269];
-    W[273] = W[252] * W[272];
-    W[276] = W[257] * W[275];
-    W[279] = W[133] * W[237];
-    W[281] = W[128] * W[192];
-    W[286] = W[283] * W[285];
-    W[290] = W[287] * W[289];
-    W[295] = W[292] * W[294];
-    W[298] = W[138] * W[259];
-    W[300] = W[134] * W[215];
-    W[302] = W[129] * W[167];
-    W[305] = W[283] * W[304];
-    W[307] = W[287] * W[306];
-    W[310] = W[292] * W[309];
-    W[313] = W[138] * W[275];
-    W[315] = W[134] * W[234];
-    W[317] = W[129] * W[189];
-    W[322] = W[319] * W[321];
-    W[326] = W[323] * W[325];
-    W[329] = W[142] * W[294];
-    W[331] = W[139] * W[254];
-    W[333] = W[135] * W[210];
-    W[335] = W[130] * W[162];
-    W[338] = W[319] * W[337];
-    W[340] = W[323] * W[339];
-    W[343] = W[142] * W[309];
-    W[345] = W[139] * W[272];
-    W[347] = W[135] * W[231];
-    W[349] = W[130] * W[186];
-    W[354] = W[147] * W[353];
-    W[355] = W[145] * W[325];
-    W[357] = W[143] * W[289];
-    W[359] = W[140] * W[249];
-    W[361] = W[136] * W[205];
-    W[363] = W[131] * W[157];
-    W[366] = W[147] * W[365];
-    W[367] = W[145] * W[339];
-    W[369] = W[143] * W[306];
-    W[371] = W[140] * W[269];
-    W[373] = W[136] * W[228];
-    W[375] = W[131] * W[183];
-    W[377] = W[351] * W[353];
-    W[384] = W[351] * W[365];
-    W[159] = W[154] + W[158];
-    W[185] = W[182] + W[184];
-    W[207] = W[202] + W[206];
-    W[230] = W[227] + W[229];
-    W[251] = W[246] + W[250];
-    W[271] = W[268] + W[270];
-    W[291] = W[286] + W[290];
-    W[308] = W[305] + W[307];
-    W[327] = W[322] + W[326];
-    W[341] = W[338] + W[340];
-    W[356] = W[354] - W[355];
-    W[368] = W[366] - W[367];
-    W[378] = W[322] + W[377];
-    W[385] = W[338] + W[384];
-    W[164] = W[159] + W[163];
-    W[188] = W[185] + W[187];
-    W[212] = W[207] + W[211];
-    W[233] = W[230] + W[232];
-    W[256] = W[251] + W[255];
-    W[274] = W[271] + W[273];
-    W[296] = W[291] + W[295];
-    W[311] = W[308] + W[310];
-    W[328] = W[3] * W[327];
-    W[342] = W[3] * W[341];
-    W[358] = W[356] - W[357];
-    W[370] = W[368] - W[369];
-    W[379] = W[286] + W[378];
-    W[386] = W[305] + W[385];
-    W[169] = W[164] + W[168];
-    W[191] = W[188] + W[190];
-    W[217] = W[212] + W[216];
-    W[236] = W[233] + W[235];
-    W[261] = W[256] + W[260];
-    W[277] = W[274] + W[276];
-    W[297] = W[3] * W[296];
-    W[312] = W[3] * W[311];
-    W[330] = W[328] - W[329];
-    W[344] = W[342] - W[343];
-    W[360] = W[358] - W[359];
-    W[372] = W[370] - W[371];
-    W[380] = W[246] + W[379];
-    W[387] = W[268] + W[386];
-    W[174] = W[169] + W[173];
-    W[194] = W[191] + W[193];
-    W[222] = W[217] + W[221];
-    W[239] = W[236] + W[238];
-    W[262] = W[3] * W[261];
-    W[278] = W[3] * W[277];
-    W[299] = W[297] - W[298];
-    W[314] = W[312] - W[313];
-    W[332] = W[330] - W[331];
-    W[346] = W[344] - W[345];
-    W[362] = W[360] - W[361];
-    W[374] = W[372] - W[373];
-    W[381] = W[202] + W[380];
-    W[388] = W[227] + W[387];
-    W[179] = W[174] + W[178];
-    W[197] = W[194] + W[196];
-    W[223] = W[3] * W[222];
-    W[240] = W[3] * W[239];
-    W[264] = W[262] - W[263];
-    W[280] = W[278] - W[279];
-    W[301] = W[299] - W[300];
-    W[316] = W[314] - W[315];
-    W[334] = W[332] - W[333];
-    W[348] = W[346] - W[347];
-    W[364] = W[362] - W[363];
-    W[376] = W[374] - W[375];
-    W[382] = W[154] + W[381];
-    W[389] = W[182] + W[388];
-    W[180] = W[3] * W[179];
-    W[198] = W[3] * W[197];
-    W[225] = W[223] - W[224];
-    W[242] = W[240] - W[241];
-    W[266] = W[264] - W[265];
-    W[282] = W[280] - W[281];
-    W[303] = W[301] - W[302];
-    W[318] = W[316] - W[317];
-    W[336] = W[334] - W[335];
-    W[350] = W[348] - W[349];
-    W[383] = W[148] * W[382];
-    W[390] = W[148] * W[389];
-    X[28] = X[14];
-    X[29] = X[15];
-    X[30] = X[16];
-    X[31] = X[17];
-    X[32] = X[18];
-    X[33] = X[19];
-    X[34] = X[20];
-    X[35] = X[21];
-    X[36] = X[22];
-    X[37] = X[23];
-    X[38] = X[24];
-    X[39] = X[25];
-    X[40] = X[26];
-    X[41] = X[27];
-    X[42] = -W[180] / W[120];
-    X[43] = -W[198] / W[120];
-    X[44] = -W[225] / W[121];
-    X[45] = -W[242] / W[121];
-    X[46] = -W[266] / W[122];
-    X[47] = -W[282] / W[122];
-    X[48] = -W[303] / W[123];
-    X[49] = -W[318] / W[123];
-    X[50] = -W[336] / W[124];
-    X[51] = -W[350] / W[124];
-    X[52] = -W[364] / W[125];
-    X[53] = -W[376] / W[125];
-    X[54] = -W[383] / W[126];
-    X[55] = -W[390] / W[126];
-    if (K == 1)
-        goto out;
-    /* order 1 */
-    W[407] = X[28] - X[30];
-    W[412] = X[29] - X[31];
-    W[416] = X[28] - X[32];
-    W[419] = X[29] - X[33];
-    W[423] = X[28] - X[34];
-    W[426] = X[29] - X[35];
-    W[430] = X[28] - X[36];
-    W[433] = X[29] - X[37];
-    W[437] = X[28] - X[38];
-    W[440] = X[29] - X[39];
-    W[444] = X[28] - X[40];
-    W[447] = X[29] - X[41];
-    W[450] = X[30] - X[32];
-    W[452] = X[31] - X[33];
-    W[455] = X[30] - X[34];
-    W[457] = X[31] - X[35];
-    W[460] = X[30] - X[36];
-    W[462] = X[31] - X[37];
-    W[465] = X[30] - X[38];
-    W[467] = X[31] - X[39];
-    W[470] = X[30] - X[40];
-    W[472] = X[31] - X[41];
-    W[475] = X[32] - X[34];
-    W[477] = X[33] - X[35];
-    W[480] = X[32] - X[36];
-    W[482] = X[33] - X[37];
-    W[485] = X[32] - X[38];
-    W[487] = X[33] - X[39];
-    W[490] = X[32] - X[40];
-    W[492] = X[33] - X[41];
-    W[495] = X[34] - X[36];
-    W[497] = X[35] - X[37];
-    W[500] = X[34] - X[38];
-    W[502] = X[35] - X[39];
-    W[505] = X[34] - X[40];
-    W[507] = X[35] - X[41];
-    W[510] = X[36] - X[38];
-    W[512] = X[37] - X[39];
-    W[515] = X[36] - X[40];
-    W[517] = X[37] - X[41];
-    W[520] = X[38] - X[40];
-    W[522] = X[39] - X[41];
-    W[409] = W[2] * W[407] * 2.0;
-    W[413] = W[7] * W[412] * 2.0;
-    W[417] = W[11] * W[416] * 2.0;
-    W[420] = W[14] * W[419] * 2.0;
-    W[424] = W[18] * W[423] * 2.0;
-    W[427] = W[21] * W[426] * 2.0;
-    W[431] = W[25] * W[430] * 2.0;
-    W[434] = W[28] * W[433] * 2.0;
-    W[438] = W[32] * W[437] * 2.0;
-    W[441] = W[35] * W[440] * 2.0;
-    W[445] = W[39] * W[444] * 2.0;
-    W[448] = W[42] * W[447] * 2.0;
-    W[451] = W[45] * W[450] * 2.0;
-    W[453] = W[47] * W[452] * 2.0;
-    W[456] = W[50] * W[455] * 2.0;
-    W[458] = W[52] * W[457] * 2.0;
-    W[461] = W[55] * W[460] * 2.0;
-    W[463] = W[57] * W[462] * 2.0;
-    W[466] = W[60] * W[465] * 2.0;
-    W[468] = W[62] * W[467] * 2.0;
-    W[471] = W[65] * W[470] * 2.0;
-    W[473] = W[67] * W[472] * 2.0;
-    W[476] = W[70] * W[475] * 2.0;
-    W[478] = W[72] * W[477] * 2.0;
-    W[481] = W[75] * W[480] * 2.0;
-    W[483] = W[77] * W[482] * 2.0;
-    W[486] = W[80] * W[485] * 2.0;
-    W[488] = W[82] * W[487] * 2.0;
-    W[491] = W[85] * W[490] * 2.0;
-    W[493] = W[87] * W[492] * 2.0;
-    W[496] = W[90] * W[495] * 2.0;
-    W[498] = W[92] * W[497] * 2.0;
-    W[501] = W[95] * W[500] * 2.0;
-    W[503] = W[97] * W[502] * 2.0;
-    W[506] = W[100] * W[505] * 2.0;
-    W[508] = W[102] * W[507] * 2.0;
-    W[511] = W[105] * W[510] * 2.0;
-    W[513] = W[107] * W[512] * 2.0;
-    W[516] = W[110] * W[515] * 2.0;
-    W[518] = W[112] * W[517] * 2.0;
-    W[521] = W[115] * W[520] * 2.0;
-    W[523] = W[117] * W[522] * 2.0;
-    W[414] = W[409] + W[413];
-    W[421] = W[417] + W[420];
-    W[428] = W[424] + W[427];
-    W[435] = W[431] + W[434];
-    W[442] = W[438] + W[441];
-    W[449] = W[445] + W[448];
-    W[454] = W[451] + W[453];
-    W[459] = W[456] + W[458];
-    W[464] = W[461] + W[463];
-    W[469] = W[466] + W[468];
-    W[474] = W[471] + W[473];
-    W[479] = W[476] + W[478];
-    W[484] = W[481] + W[483];
-    W[489] = W[486] + W[488];
-    W[494] = W[491] + W[493];
-    W[499] = W[496] + W[498];
-    W[504] = W[501] + W[503];
-    W[509] = W[506] + W[508];
-    W[514] = W[511] + W[513];
-    W[519] = W[516] + W[518];
-    W[524] = W[521] + W[523];
-    W[557] = -1.5 * W[449] * W[152] / W[44];
-    W[561] = -1.5 * W[442] * W[156] / W[37];
-    W[566] = -1.5 * W[435] * W[161] / W[30];
-    W[571] = -1.5 * W[428] * W[166] / W[23];
-    W[576] = -1.5 * W[421] * W[171] / W[16];
-    W[581] = -1.5 * W[414] * W[176] / W[9];
-    W[605] = -1.5 * W[474] * W[200] / W[69];
-    W[609] = -1.5 * W[469] * W[204] / W[64];
-    W[614] = -1.5 * W[464] * W[209] / W[59];
-    W[619] = -1.5 * W[459] * W[214] / W[54];
-    W[624] = -1.5 * W[454] * W[219] / W[49];
-    W[649] = -1.5 * W[494] * W[244] / W[89];
-    W[653] = -1.5 * W[489] * W[248] / W[84];
-    W[658] = -1.5 * W[484] * W[253] / W[79];
-    W[663] = -1.5 * W[479] * W[258] / W[74];
-    W[689] = -1.5 * W[509] * W[284] / W[104];
-    W[693] = -1.5 * W[504] * W[288] / W[99];
-    W[698] = -1.5 * W[499] * W[293] / W[94];
-    W[725] = -1.5 * W[519] * W[320] / W[114];
-    W[729] = -1.5 * W[514] * W[324] / W[109];
-    W[757] = -1.5 * W[524] * W[352] / W[119];
-    W[558] = W[39] * W[557] + W[444] * W[152];
-    W[562] = W[32] * W[561] + W[437] * W[156];
-    W[567] = W[25] * W[566] + W[430] * W[161];
-    W[572] = W[18] * W[571] + W[423] * W[166];
-    W[577] = W[11] * W[576] + W[416] * W[171];
-    W[582] = W[2] * W[581] + W[407] * W[176];
-    W[586] = W[42] * W[557] + W[447] * W[152];
-    W[588] = W[35] * W[561] + W[440] * W[156];
-    W[591] = W[28] * W[566] + W[433] * W[161];
-    W[594] = W[21] * W[571] + W[426] * W[166];
-    W[597] = W[14] * W[576] + W[419] * W[171];
-    W[600] = W[7] * W[581] + W[412] * W[176];
-    W[606] = W[65] * W[605] + W[470] * W[200];
-    W[610] = W[60] * W[609] + W[465] * W[204];
-    W[615] = W[55] * W[614] + W[460] * W[209];
-    W[620] = W[50] * W[619] + W[455] * W[214];
-    W[625] = W[45] * W[624] + W[450] * W[219];
-    W[631] = W[67] * W[605] + W[472] * W[200];
-    W[633] = W[62] * W[609] + W[467] * W[204];
-    W[636] = W[57] * W[614] + W[462] * W[209];
-    W[639] = W[52] * W[619] + W[457] * W[214];
-    W[642] = W[47] * W[624] + W[452] * W[219];
-    W[650] = W[85] * W[649] + W[490] * W[244];
-    W[654] = W[80] * W[653] + W[485] * W[248];
-    W[659] = W[75] * W[658] + W[480] * W[253];
-    W[664] = W[70] * W[663] + W[475] * W[258];
-    W[672] = W[87] * W[649] + W[492] * W[244];
-    W[674] = W[82] * W[653] + W[487] * W[248];
-    W[677] = W[77] * W[658] + W[482] * W[253];
-    W[680] = W[72] * W[663] + W[477] * W[258];
-    W[690] = W[100] * W[689] + W[505] * W[284];
-    W[694] = W[95] * W[693] + W[500] * W[288];
-    W[699] = W[90] * W[698] + W[495] * W[293];
-    W[709] = W[102] * W[689] + W[507] * W[284];
-    W[711] = W[97] * W[693] + W[502] * W[288];
-    W[714] = W[92] * W[698] + W[497] * W[293];
-    W[726] = W[110] * W[725] + W[515] * W[320];
-    W[730] = W[105] * W[729] + W[510] * W[324];
-    W[742] = W[112] * W[725] + W[517] * W[320];
-    W[744] = W[107] * W[729] + W[512] * W[324];
-    W[758] = W[115] * W[757] + W[520] * W[352];
-    W[770] = W[117] * W[757] + W[522] * W[352];
-    W[559] = W[151] * W[558];
-    W[563] = W[155] * W[562];
-    W[568] = W[160] * W[567];
-    W[573] = W[165] * W[572];
-    W[578] = W[170] * W[577];
-    W[583] = W[175] * W[582];
-    W[587] = W[151] * W[586];
-    W[589] = W[155] * W[588];
-    W[592] = W[160] * W[591];
-    W[595] = W[165] * W[594];
-    W[598] = W[170] * W[597];
-    W[601] = W[175] * W[600];
-    W[607] = W[199] * W[606];
-    W[611] = W[203] * W[610];
-    W[616] = W[208] * W[615];
-    W[621] = W[213] * W[620];
-    W[626] = W[218] * W[625];
-    W[629] = W[127] * W[582];
-    W[632] = W[199] * W[631];
-    W[634] = W[203] * W[633];
-    W[637] = W[208] * W[636];
-    W[640] = W[213] * W[639];
-    W[643] = W[218] * W[642];
-    W[646] = W[127] * W[600];
-    W[651] = W[243] * W[650];
-    W[655] = W[247] * W[654];
-    W[660] = W[252] * W[659];
-    W[665] = W[257] * W[664];
-    W[668] = W[133] * W[625];
-    W[670] = W[128] * W[577];
-    W[673] = W[243] * W[672];
-    W[675] = W[247] * W[674];
-    W[678] = W[252] * W[677];
-    W[681] = W[257] * W[680];
-    W[684] = W[133] * W[642];
-    W[686] = W[128] * W[597];
-    W[691] = W[283] * W[690];
-    W[695] = W[287] * W[694];
-    W[700] = W[292] * W[699];
-    W[703] = W[138] * W[664];
-    W[705] = W[134] * W[620];
-    W[707] = W[129] * W[572];
-    W[710] = W[283] * W[709];
-    W[712] = W[287] * W[711];
-    W[715] = W[292] * W[714];
-    W[718] = W[138] * W[680];
-    W[720] = W[134] * W[639];
-    W[722] = W[129] * W[594];
-    W[727] = W[319] * W[726];
-    W[731] = W[323] * W[730];
-    W[734] = W[142] * W[699];
-    W[736] = W[139] * W[659];
-    W[738] = W[135] * W[615];
-    W[740] = W[130] * W[567];
-    W[743] = W[319] * W[742];
-    W[745] = W[323] * W[744];
-    W[748] = W[142] * W[714];
-    W[750] = W[139] * W[677];
-    W[752] = W[135] * W[636];
-    W[754] = W[130] * W[591];
-    W[759] = W[147] * W[758];
-    W[760] = W[145] * W[730];
-    W[762] = W[143] * W[694];
-    W[764] = W[140] * W[654];
-    W[766] = W[136] * W[610];
-    W[768] = W[131] * W[562];
-    W[771] = W[147] * W[770];
-    W[772] = W[145] * W[744];
-    W[774] = W[143] * W[711];
-    W[776] = W[140] * W[674];
-    W[778] = W[136] * W[633];
-    W[780] = W[131] * W[588];
-    W[782] = W[351] * W[758];
-    W[789] = W[351] * W[770];
-    W[564] = W[559] + W[563];
-    W[590] = W[587] + W[589];
-    W[612] = W[607] + W[611];
-    W[635] = W[632] + W[634];
-    W[656] = W[651] + W[655];
-    W[676] = W[673] + W[675];
-    W[696] = W[691] + W[695];
-    W[713] = W[710] + W[712];
-    W[732] = W[727] + W[731];
-    W[746] = W[743] + W[745];
-    W[761] = W[759] - W[760];
-    W[773] = W[771] - W[772];
-    W[783] = W[727] + W[782];
-    W[790] = W[743] + W[789];
-    W[569] = W[564] + W[568];
-    W[593] = W[590] + W[592];
-    W[617] = W[612] + W[616];
-    W[638] = W[635] + W[637];
-    W[661] = W[656] + W[660];
-    W[679] = W[676] + W[678];
-    W[701] = W[696] + W[700];
-    W[716] = W[713] + W[715];
-    W[733] = W[3] * W[732];
-    W[747] = W[3] * W[746];
-    W[763] = W[761] - W[762];
-    W[775] = W[773] - W[774];
-    W[784] = W[691] + W[783];
-    W[791] = W[710] + W[790];
-    W[574] = W[569] + W[573];
-    W[596] = W[593] + W[595];
-    W[622] = W[617] + W[621];
-    W[641] = W[638] + W[640];
-    W[666] = W[661] + W[665];
-    W[682] = W[679] + W[681];
-    W[702] = W[3] * W[701];
-    W[717] = W[3] * W[716];
-    W[735] = W[733] - W[734];
-    W[749] = W[747] - W[748];
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[765] = W[763] - W[764];
     W[777] = W[775] - W[776];
     W[785] = W[651] + W[784];
@@ -4254,26 +3718,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[793] = W[632] + W[792];
     W[584] = W[579] + W[583];
     W[602] = W[599] + W[601];
-    W[628] = W[3] * W[627];
-    W[645] = W[3] * W[644];
-    W[669] = W[667] - W[668];
-    W[685] = W[683] - W[684];
-    W[706] = W[704] - W[705];
-    W[721] = W[719] - W[720];
-    W[739] = W[737] - W[738];
-    W[753] = W[751] - W[752];
-    W[769] = W[767] - W[768];
-    W[781] = W[779] - W[780];
-    W[787] = W[559] + W[786];
-    W[794] = W[587] + W[793];
-    W[585] = W[3] * W[584];
-    W[603] = W[3] * W[602];
-    W[630] = W[628] - W[629];
-    W[647] = W[645] - W[646];
-    W[671] = W[669] - W[670];
-    W[687] = W[685] - W[686];
-    W[708] = W[706] - W[707];
-    W[723] = W[721] - W[722];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 1. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_38(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[741] = W[739] - W[740];
     W[755] = W[753] - W[754];
     W[788] = W[148] * W[787];
@@ -4294,21 +3748,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[69] = X[55] / 2.0;
     X[70] = -W[585] / W[120] / 2.0;
     X[71] = -W[603] / W[120] / 2.0;
-    X[72] = -W[630] / W[121] / 2.0;
-    X[73] = -W[647] / W[121] / 2.0;
-    X[74] = -W[671] / W[122] / 2.0;
-    X[75] = -W[687] / W[122] / 2.0;
-    X[76] = -W[708] / W[123] / 2.0;
-    X[77] = -W[723] / W[123] / 2.0;
-    X[78] = -W[741] / W[124] / 2.0;
-    X[79] = -W[755] / W[124] / 2.0;
-    X[80] = -W[769] / W[125] / 2.0;
-    X[81] = -W[781] / W[125] / 2.0;
-    X[82] = -W[788] / W[126] / 2.0;
-    X[83] = -W[795] / W[126] / 2.0;
-    if (K == 2)
-        goto out;
-    /* order 2 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_40(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[812] = X[56] - X[58];
     W[817] = X[57] - X[59];
     W[821] = X[56] - X[60];
@@ -4329,26 +3778,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[867] = X[59] - X[65];
     W[870] = X[58] - X[66];
     W[872] = X[59] - X[67];
-    W[875] = X[58] - X[68];
-    W[877] = X[59] - X[69];
-    W[880] = X[60] - X[62];
-    W[882] = X[61] - X[63];
-    W[885] = X[60] - X[64];
-    W[887] = X[61] - X[65];
-    W[890] = X[60] - X[66];
-    W[892] = X[61] - X[67];
-    W[895] = X[60] - X[68];
-    W[897] = X[61] - X[69];
-    W[900] = X[62] - X[64];
-    W[902] = X[63] - X[65];
-    W[905] = X[62] - X[66];
-    W[907] = X[63] - X[67];
-    W[910] = X[62] - X[68];
-    W[912] = X[63] - X[69];
-    W[915] = X[64] - X[66];
-    W[917] = X[65] - X[67];
-    W[920] = X[64] - X[68];
-    W[922] = X[65] - X[69];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_42(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[925] = X[66] - X[68];
     W[927] = X[67] - X[69];
     W[814] = W[2] * W[812] * 2.0 + W[407] * W[407];
@@ -4369,26 +3808,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[863] = W[52] * W[862] * 2.0 + W[457] * W[457];
     W[866] = W[55] * W[865] * 2.0 + W[460] * W[460];
     W[868] = W[57] * W[867] * 2.0 + W[462] * W[462];
-    W[871] = W[60] * W[870] * 2.0 + W[465] * W[465];
-    W[873] = W[62] * W[872] * 2.0 + W[467] * W[467];
-    W[876] = W[65] * W[875] * 2.0 + W[470] * W[470];
-    W[878] = W[67] * W[877] * 2.0 + W[472] * W[472];
-    W[881] = W[70] * W[880] * 2.0 + W[475] * W[475];
-    W[883] = W[72] * W[882] * 2.0 + W[477] * W[477];
-    W[886] = W[75] * W[885] * 2.0 + W[480] * W[480];
-    W[888] = W[77] * W[887] * 2.0 + W[482] * W[482];
-    W[891] = W[80] * W[890] * 2.0 + W[485] * W[485];
-    W[893] = W[82] * W[892] * 2.0 + W[487] * W[487];
-    W[896] = W[85] * W[895] * 2.0 + W[490] * W[490];
-    W[898] = W[87] * W[897] * 2.0 + W[492] * W[492];
-    W[901] = W[90] * W[900] * 2.0 + W[495] * W[495];
-    W[903] = W[92] * W[902] * 2.0 + W[497] * W[497];
-    W[906] = W[95] * W[905] * 2.0 + W[500] * W[500];
-    W[908] = W[97] * W[907] * 2.0 + W[502] * W[502];
-    W[911] = W[100] * W[910] * 2.0 + W[505] * W[505];
-    W[913] = W[102] * W[912] * 2.0 + W[507] * W[507];
-    W[916] = W[105] * W[915] * 2.0 + W[510] * W[510];
-    W[918] = W[107] * W[917] * 2.0 + W[512] * W[512];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_44(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[921] = W[110] * W[920] * 2.0 + W[515] * W[515];
     W[923] = W[112] * W[922] * 2.0 + W[517] * W[517];
     W[926] = W[115] * W[925] * 2.0 + W[520] * W[520];
@@ -4409,26 +3838,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[894] = W[891] + W[893];
     W[899] = W[896] + W[898];
     W[904] = W[901] + W[903];
-    W[909] = W[906] + W[908];
-    W[914] = W[911] + W[913];
-    W[919] = W[916] + W[918];
-    W[924] = W[921] + W[923];
-    W[929] = W[926] + W[928];
-    W[962] = (-3.0 * W[854] * W[152] - 2.5 * W[449] * W[557]) / (2.0 * W[44]);
-    W[966] = (-3.0 * W[847] * W[156] - 2.5 * W[442] * W[561]) / (2.0 * W[37]);
-    W[971] = (-3.0 * W[840] * W[161] - 2.5 * W[435] * W[566]) / (2.0 * W[30]);
-    W[976] = (-3.0 * W[833] * W[166] - 2.5 * W[428] * W[571]) / (2.0 * W[23]);
-    W[981] = (-3.0 * W[826] * W[171] - 2.5 * W[421] * W[576]) / (2.0 * W[16]);
-    W[986] = (-3.0 * W[819] * W[176] - 2.5 * W[414] * W[581]) / (2.0 * W[9]);
-    W[1010] = (-3.0 * W[879] * W[200] - 2.5 * W[474] * W[605]) / (2.0 * W[69]);
-    W[1014] = (-3.0 * W[874] * W[204] - 2.5 * W[469] * W[609]) / (2.0 * W[64]);
-    W[1019] = (-3.0 * W[869] * W[209] - 2.5 * W[464] * W[614]) / (2.0 * W[59]);
-    W[1024] = (-3.0 * W[864] * W[214] - 2.5 * W[459] * W[619]) / (2.0 * W[54]);
-    W[1029] = (-3.0 * W[859] * W[219] - 2.5 * W[454] * W[624]) / (2.0 * W[49]);
-    W[1054] = (-3.0 * W[899] * W[244] - 2.5 * W[494] * W[649]) / (2.0 * W[89]);
-    W[1058] = (-3.0 * W[894] * W[248] - 2.5 * W[489] * W[653]) / (2.0 * W[84]);
-    W[1063] = (-3.0 * W[889] * W[253] - 2.5 * W[484] * W[658]) / (2.0 * W[79]);
-    W[1068] = (-3.0 * W[884] * W[258] - 2.5 * W[479] * W[663]) / (2.0 * W[74]);
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_46(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1094] = (-3.0 * W[914] * W[284] - 2.5 * W[509] * W[689]) / (2.0 * W[104]);
     W[1098] = (-3.0 * W[909] * W[288] - 2.5 * W[504] * W[693]) / (2.0 * W[99]);
     W[1103] = (-3.0 * W[904] * W[293] - 2.5 * W[499] * W[698]) / (2.0 * W[94]);
@@ -4449,26 +3868,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1005] = W[7] * W[986] + W[412] * W[581] + W[817] * W[176];
     W[1011] = W[65] * W[1010] + W[470] * W[605] + W[875] * W[200];
     W[1015] = W[60] * W[1014] + W[465] * W[609] + W[870] * W[204];
-    W[1020] = W[55] * W[1019] + W[460] * W[614] + W[865] * W[209];
-    W[1025] = W[50] * W[1024] + W[455] * W[619] + W[860] * W[214];
-    W[1030] = W[45] * W[1029] + W[450] * W[624] + W[855] * W[219];
-    W[1036] = W[67] * W[1010] + W[472] * W[605] + W[877] * W[200];
-    W[1038] = W[62] * W[1014] + W[467] * W[609] + W[872] * W[204];
-    W[1041] = W[57] * W[1019] + W[462] * W[614] + W[867] * W[209];
-    W[1044] = W[52] * W[1024] + W[457] * W[619] + W[862] * W[214];
-    W[1047] = W[47] * W[1029] + W[452] * W[624] + W[857] * W[219];
-    W[1055] = W[85] * W[1054] + W[490] * W[649] + W[895] * W[244];
-    W[1059] = W[80] * W[1058] + W[485] * W[653] + W[890] * W[248];
-    W[1064] = W[75] * W[1063] + W[480] * W[658] + W[885] * W[253];
-    W[1069] = W[70] * W[1068] + W[475] * W[663] + W[880] * W[258];
-    W[1077] = W[87] * W[1054] + W[492] * W[649] + W[897] * W[244];
-    W[1079] = W[82] * W[1058] + W[487] * W[653] + W[892] * W[248];
-    W[1082] = W[77] * W[1063] + W[482] * W[658] + W[887] * W[253];
-    W[1085] = W[72] * W[1068] + W[477] * W[663] + W[882] * W[258];
-    W[1095] = W[100] * W[1094] + W[505] * W[689] + W[910] * W[284];
-    W[1099] = W[95] * W[1098] + W[500] * W[693] + W[905] * W[288];
-    W[1104] = W[90] * W[1103] + W[495] * W[698] + W[900] * W[293];
-    W[1114] = W[102] * W[1094] + W[507] * W[689] + W[912] * W[284];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_48(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1116] = W[97] * W[1098] + W[502] * W[693] + W[907] * W[288];
     W[1119] = W[92] * W[1103] + W[497] * W[698] + W[902] * W[293];
     W[1131] = W[110] * W[1130] + W[515] * W[725] + W[920] * W[320];
@@ -4489,26 +3898,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1000] = W[165] * W[999];
     W[1003] = W[170] * W[1002];
     W[1006] = W[175] * W[1005];
-    W[1012] = W[199] * W[1011];
-    W[1016] = W[203] * W[1015];
-    W[1021] = W[208] * W[1020];
-    W[1026] = W[213] * W[1025];
-    W[1031] = W[218] * W[1030];
-    W[1034] = W[127] * W[987];
-    W[1037] = W[199] * W[1036];
-    W[1039] = W[203] * W[1038];
-    W[1042] = W[208] * W[1041];
-    W[1045] = W[213] * W[1044];
-    W[1048] = W[218] * W[1047];
-    W[1051] = W[127] * W[1005];
-    W[1056] = W[243] * W[1055];
-    W[1060] = W[247] * W[1059];
-    W[1065] = W[252] * W[1064];
-    W[1070] = W[257] * W[1069];
-    W[1073] = W[133] * W[1030];
-    W[1075] = W[128] * W[982];
-    W[1078] = W[243] * W[1077];
-    W[1080] = W[247] * W[1079];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_50(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1083] = W[252] * W[1082];
     W[1086] = W[257] * W[1085];
     W[1089] = W[133] * W[1047];
@@ -4529,26 +3928,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1136] = W[323] * W[1135];
     W[1139] = W[142] * W[1104];
     W[1141] = W[139] * W[1064];
-    W[1143] = W[135] * W[1020];
-    W[1145] = W[130] * W[972];
-    W[1148] = W[319] * W[1147];
-    W[1150] = W[323] * W[1149];
-    W[1153] = W[142] * W[1119];
-    W[1155] = W[139] * W[1082];
-    W[1157] = W[135] * W[1041];
-    W[1159] = W[130] * W[996];
-    W[1164] = W[147] * W[1163];
-    W[1165] = W[145] * W[1135];
-    W[1167] = W[143] * W[1099];
-    W[1169] = W[140] * W[1059];
-    W[1171] = W[136] * W[1015];
-    W[1173] = W[131] * W[967];
-    W[1176] = W[147] * W[1175];
-    W[1177] = W[145] * W[1149];
-    W[1179] = W[143] * W[1116];
-    W[1181] = W[140] * W[1079];
-    W[1183] = W[136] * W[1038];
-    W[1185] = W[131] * W[993];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_52(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1187] = W[351] * W[1163];
     W[1194] = W[351] * W[1175];
     W[969] = W[964] + W[968];
@@ -4569,26 +3958,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[998] = W[995] + W[997];
     W[1022] = W[1017] + W[1021];
     W[1043] = W[1040] + W[1042];
-    W[1066] = W[1061] + W[1065];
-    W[1084] = W[1081] + W[1083];
-    W[1106] = W[1101] + W[1105];
-    W[1121] = W[1118] + W[1120];
-    W[1138] = W[3] * W[1137];
-    W[1152] = W[3] * W[1151];
-    W[1168] = W[1166] - W[1167];
-    W[1180] = W[1178] - W[1179];
-    W[1189] = W[1096] + W[1188];
-    W[1196] = W[1115] + W[1195];
-    W[979] = W[974] + W[978];
-    W[1001] = W[998] + W[1000];
-    W[1027] = W[1022] + W[1026];
-    W[1046] = W[1043] + W[1045];
-    W[1071] = W[1066] + W[1070];
-    W[1087] = W[1084] + W[1086];
-    W[1107] = W[3] * W[1106];
-    W[1122] = W[3] * W[1121];
-    W[1140] = W[1138] - W[1139];
-    W[1154] = W[1152] - W[1153];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_54(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1170] = W[1168] - W[1169];
     W[1182] = W[1180] - W[1181];
     W[1190] = W[1056] + W[1189];
@@ -4609,46 +3988,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1198] = W[1037] + W[1197];
     W[989] = W[984] + W[988];
     W[1007] = W[1004] + W[1006];
-    W[1033] = W[3] * W[1032];
-    W[1050] = W[3] * W[1049];
-    W[1074] = W[1072] - W[1073];
-    W[1090] = W[1088] - W[1089];
-    W[1111] = W[1109] - W[1110];
-    W[1126] = W[1124] - W[1125];
-    W[1144] = W[1142] - W[1143];
-    W[1158] = W[1156] - W[1157];
-    W[1174] = W[1172] - W[1173];
-    W[1186] = W[1184] - W[1185];
-    W[1192] = W[964] + W[1191];
-    W[1199] = W[992] + W[1198];
-    W[990] = W[3] * W[989];
-    W[1008] = W[3] * W[1007];
-    W[1035] = W[1033] - W[1034];
-    W[1052] = W[1050] - W[1051];
-    W[1076] = W[1074] - W[1075];
-    W[1092] = W[1090] - W[1091];
-    W[1113] = W[1111] - W[1112];
-    W[1128] = W[1126] - W[1127];
-    W[1146] = W[1144] - W[1145];
-    W[1160] = W[1158] - W[1159];
-    W[1193] = W[148] * W[1192];
-    W[1200] = W[148] * W[1199];
-    X[84] = X[70] / 3.0;
-    X[85] = X[71] / 3.0;
-    X[86] = X[72] / 3.0;
-    X[87] = X[73] / 3.0;
-    X[88] = X[74] / 3.0;
-    X[89] = X[75] / 3.0;
-    X[90] = X[76] / 3.0;
-    X[91] = X[77] / 3.0;
-    X[92] = X[78] / 3.0;
-    X[93] = X[79] / 3.0;
-    X[94] = X[80] / 3.0;
-    X[95] = X[81] / 3.0;
-    X[96] = X[82] / 3.0;
-    X[97] = X[83] / 3.0;
-    X[98] = -W[990] / W[120] / 3.0;
-    X[99] = -W[1008] / W[120] / 3.0;
+    return 0;
+}
+
+/* Lines 340 .. 351 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_57(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[100] = -W[1035] / W[121] / 3.0;
     X[101] = -W[1052] / W[121] / 3.0;
     X[102] = -W[1076] / W[122] / 3.0;
@@ -4661,9 +4010,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[109] = -W[1186] / W[125] / 3.0;
     X[110] = -W[1193] / W[126] / 3.0;
     X[111] = -W[1200] / W[126] / 3.0;
-    if (K == 3)
-        goto out;
-    /* order 3 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_58(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1217] = X[84] - X[86];
     W[1222] = X[85] - X[87];
     W[1226] = X[84] - X[88];
@@ -4684,26 +4040,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1272] = X[87] - X[93];
     W[1275] = X[86] - X[94];
     W[1277] = X[87] - X[95];
-    W[1280] = X[86] - X[96];
-    W[1282] = X[87] - X[97];
-    W[1285] = X[88] - X[90];
-    W[1287] = X[89] - X[91];
-    W[1290] = X[88] - X[92];
-    W[1292] = X[89] - X[93];
-    W[1295] = X[88] - X[94];
-    W[1297] = X[89] - X[95];
-    W[1300] = X[88] - X[96];
-    W[1302] = X[89] - X[97];
-    W[1305] = X[90] - X[92];
-    W[1307] = X[91] - X[93];
-    W[1310] = X[90] - X[94];
-    W[1312] = X[91] - X[95];
-    W[1315] = X[90] - X[96];
-    W[1317] = X[91] - X[97];
-    W[1320] = X[92] - X[94];
-    W[1322] = X[93] - X[95];
-    W[1325] = X[92] - X[96];
-    W[1327] = X[93] - X[97];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_60(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1330] = X[94] - X[96];
     W[1332] = X[95] - X[97];
     W[1219] = (W[2] * W[1217] + W[407] * W[812]) * 2.0;
@@ -4724,26 +4070,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1268] = (W[52] * W[1267] + W[457] * W[862]) * 2.0;
     W[1271] = (W[55] * W[1270] + W[460] * W[865]) * 2.0;
     W[1273] = (W[57] * W[1272] + W[462] * W[867]) * 2.0;
-    W[1276] = (W[60] * W[1275] + W[465] * W[870]) * 2.0;
-    W[1278] = (W[62] * W[1277] + W[467] * W[872]) * 2.0;
-    W[1281] = (W[65] * W[1280] + W[470] * W[875]) * 2.0;
-    W[1283] = (W[67] * W[1282] + W[472] * W[877]) * 2.0;
-    W[1286] = (W[70] * W[1285] + W[475] * W[880]) * 2.0;
-    W[1288] = (W[72] * W[1287] + W[477] * W[882]) * 2.0;
-    W[1291] = (W[75] * W[1290] + W[480] * W[885]) * 2.0;
-    W[1293] = (W[77] * W[1292] + W[482] * W[887]) * 2.0;
-    W[1296] = (W[80] * W[1295] + W[485] * W[890]) * 2.0;
-    W[1298] = (W[82] * W[1297] + W[487] * W[892]) * 2.0;
-    W[1301] = (W[85] * W[1300] + W[490] * W[895]) * 2.0;
-    W[1303] = (W[87] * W[1302] + W[492] * W[897]) * 2.0;
-    W[1306] = (W[90] * W[1305] + W[495] * W[900]) * 2.0;
-    W[1308] = (W[92] * W[1307] + W[497] * W[902]) * 2.0;
-    W[1311] = (W[95] * W[1310] + W[500] * W[905]) * 2.0;
-    W[1313] = (W[97] * W[1312] + W[502] * W[907]) * 2.0;
-    W[1316] = (W[100] * W[1315] + W[505] * W[910]) * 2.0;
-    W[1318] = (W[102] * W[1317] + W[507] * W[912]) * 2.0;
-    W[1321] = (W[105] * W[1320] + W[510] * W[915]) * 2.0;
-    W[1323] = (W[107] * W[1322] + W[512] * W[917]) * 2.0;
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_62(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1326] = (W[110] * W[1325] + W[515] * W[920]) * 2.0;
     W[1328] = (W[112] * W[1327] + W[517] * W[922]) * 2.0;
     W[1331] = (W[115] * W[1330] + W[520] * W[925]) * 2.0;
@@ -4764,26 +4100,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1299] = W[1296] + W[1298];
     W[1304] = W[1301] + W[1303];
     W[1309] = W[1306] + W[1308];
-    W[1314] = W[1311] + W[1313];
-    W[1319] = W[1316] + W[1318];
-    W[1324] = W[1321] + W[1323];
-    W[1329] = W[1326] + W[1328];
-    W[1334] = W[1331] + W[1333];
-    W[1367] = (-4.5 * W[1259] * W[152] - 4.0 * W[854] * W[557] - 3.5 * W[449] * W[962]) / (3.0 * W[44]);
-    W[1371] = (-4.5 * W[1252] * W[156] - 4.0 * W[847] * W[561] - 3.5 * W[442] * W[966]) / (3.0 * W[37]);
-    W[1376] = (-4.5 * W[1245] * W[161] - 4.0 * W[840] * W[566] - 3.5 * W[435] * W[971]) / (3.0 * W[30]);
-    W[1381] = (-4.5 * W[1238] * W[166] - 4.0 * W[833] * W[571] - 3.5 * W[428] * W[976]) / (3.0 * W[23]);
-    W[1386] = (-4.5 * W[1231] * W[171] - 4.0 * W[826] * W[576] - 3.5 * W[421] * W[981]) / (3.0 * W[16]);
-    W[1391] = (-4.5 * W[1224] * W[176] - 4.0 * W[819] * W[581] - 3.5 * W[414] * W[986]) / (3.0 * W[9]);
-    W[1415] = (-4.5 * W[1284] * W[200] - 4.0 * W[879] * W[605] - 3.5 * W[474] * W[1010]) / (3.0 * W[69]);
-    W[1419] = (-4.5 * W[1279] * W[204] - 4.0 * W[874] * W[609] - 3.5 * W[469] * W[1014]) / (3.0 * W[64]);
-    W[1424] = (-4.5 * W[1274] * W[209] - 4.0 * W[869] * W[614] - 3.5 * W[464] * W[1019]) / (3.0 * W[59]);
-    W[1429] = (-4.5 * W[1269] * W[214] - 4.0 * W[864] * W[619] - 3.5 * W[459] * W[1024]) / (3.0 * W[54]);
-    W[1434] = (-4.5 * W[1264] * W[219] - 4.0 * W[859] * W[624] - 3.5 * W[454] * W[1029]) / (3.0 * W[49]);
-    W[1459] = (-4.5 * W[1304] * W[244] - 4.0 * W[899] * W[649] - 3.5 * W[494] * W[1054]) / (3.0 * W[89]);
-    W[1463] = (-4.5 * W[1299] * W[248] - 4.0 * W[894] * W[653] - 3.5 * W[489] * W[1058]) / (3.0 * W[84]);
-    W[1468] = (-4.5 * W[1294] * W[253] - 4.0 * W[889] * W[658] - 3.5 * W[484] * W[1063]) / (3.0 * W[79]);
-    W[1473] = (-4.5 * W[1289] * W[258] - 4.0 * W[884] * W[663] - 3.5 * W[479] * W[1068]) / (3.0 * W[74]);
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_64(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1499] = (-4.5 * W[1319] * W[284] - 4.0 * W[914] * W[689] - 3.5 * W[509] * W[1094]) / (3.0 * W[104]);
     W[1503] = (-4.5 * W[1314] * W[288] - 4.0 * W[909] * W[693] - 3.5 * W[504] * W[1098]) / (3.0 * W[99]);
     W[1508] = (-4.5 * W[1309] * W[293] - 4.0 * W[904] * W[698] - 3.5 * W[499] * W[1103]) / (3.0 * W[94]);
@@ -4804,26 +4130,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1410] = W[7] * W[1391] + W[412] * W[986] + W[817] * W[581] + W[1222] * W[176];
     W[1416] = W[65] * W[1415] + W[470] * W[1010] + W[875] * W[605] + W[1280] * W[200];
     W[1420] = W[60] * W[1419] + W[465] * W[1014] + W[870] * W[609] + W[1275] * W[204];
-    W[1425] = W[55] * W[1424] + W[460] * W[1019] + W[865] * W[614] + W[1270] * W[209];
-    W[1430] = W[50] * W[1429] + W[455] * W[1024] + W[860] * W[619] + W[1265] * W[214];
-    W[1435] = W[45] * W[1434] + W[450] * W[1029] + W[855] * W[624] + W[1260] * W[219];
-    W[1441] = W[67] * W[1415] + W[472] * W[1010] + W[877] * W[605] + W[1282] * W[200];
-    W[1443] = W[62] * W[1419] + W[467] * W[1014] + W[872] * W[609] + W[1277] * W[204];
-    W[1446] = W[57] * W[1424] + W[462] * W[1019] + W[867] * W[614] + W[1272] * W[209];
-    W[1449] = W[52] * W[1429] + W[457] * W[1024] + W[862] * W[619] + W[1267] * W[214];
-    W[1452] = W[47] * W[1434] + W[452] * W[1029] + W[857] * W[624] + W[1262] * W[219];
-    W[1460] = W[85] * W[1459] + W[490] * W[1054] + W[895] * W[649] + W[1300] * W[244];
-    W[1464] = W[80] * W[1463] + W[485] * W[1058] + W[890] * W[653] + W[1295] * W[248];
-    W[1469] = W[75] * W[1468] + W[480] * W[1063] + W[885] * W[658] + W[1290] * W[253];
-    W[1474] = W[70] * W[1473] + W[475] * W[1068] + W[880] * W[663] + W[1285] * W[258];
-    W[1482] = W[87] * W[1459] + W[492] * W[1054] + W[897] * W[649] + W[1302] * W[244];
-    W[1484] = W[82] * W[1463] + W[487] * W[1058] + W[892] * W[653] + W[1297] * W[248];
-    W[1487] = W[77] * W[1468] + W[482] * W[1063] + W[887] * W[658] + W[1292] * W[253];
-    W[1490] = W[72] * W[1473] + W[477] * W[1068] + W[882] * W[663] + W[1287] * W[258];
-    W[1500] = W[100] * W[1499] + W[505] * W[1094] + W[910] * W[689] + W[1315] * W[284];
-    W[1504] = W[95] * W[1503] + W[500] * W[1098] + W[905] * W[693] + W[1310] * W[288];
-    W[1509] = W[90] * W[1508] + W[495] * W[1103] + W[900] * W[698] + W[1305] * W[293];
-    W[1519] = W[102] * W[1499] + W[507] * W[1094] + W[912] * W[689] + W[1317] * W[284];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_66(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1521] = W[97] * W[1503] + W[502] * W[1098] + W[907] * W[693] + W[1312] * W[288];
     W[1524] = W[92] * W[1508] + W[497] * W[1103] + W[902] * W[698] + W[1307] * W[293];
     W[1536] = W[110] * W[1535] + W[515] * W[1130] + W[920] * W[725] + W[1325] * W[320];
@@ -4844,26 +4160,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1405] = W[165] * W[1404];
     W[1408] = W[170] * W[1407];
     W[1411] = W[175] * W[1410];
-    W[1417] = W[199] * W[1416];
-    W[1421] = W[203] * W[1420];
-    W[1426] = W[208] * W[1425];
-    W[1431] = W[213] * W[1430];
-    W[1436] = W[218] * W[1435];
-    W[1439] = W[127] * W[1392];
-    W[1442] = W[199] * W[1441];
-    W[1444] = W[203] * W[1443];
-    W[1447] = W[208] * W[1446];
-    W[1450] = W[213] * W[1449];
-    W[1453] = W[218] * W[1452];
-    W[1456] = W[127] * W[1410];
-    W[1461] = W[243] * W[1460];
-    W[1465] = W[247] * W[1464];
-    W[1470] = W[252] * W[1469];
-    W[1475] = W[257] * W[1474];
-    W[1478] = W[133] * W[1435];
-    W[1480] = W[128] * W[1387];
-    W[1483] = W[243] * W[1482];
-    W[1485] = W[247] * W[1484];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_68(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1488] = W[252] * W[1487];
     W[1491] = W[257] * W[1490];
     W[1494] = W[133] * W[1452];
@@ -4884,26 +4190,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1541] = W[323] * W[1540];
     W[1544] = W[142] * W[1509];
     W[1546] = W[139] * W[1469];
-    W[1548] = W[135] * W[1425];
-    W[1550] = W[130] * W[1377];
-    W[1553] = W[319] * W[1552];
-    W[1555] = W[323] * W[1554];
-    W[1558] = W[142] * W[1524];
-    W[1560] = W[139] * W[1487];
-    W[1562] = W[135] * W[1446];
-    W[1564] = W[130] * W[1401];
-    W[1569] = W[147] * W[1568];
-    W[1570] = W[145] * W[1540];
-    W[1572] = W[143] * W[1504];
-    W[1574] = W[140] * W[1464];
-    W[1576] = W[136] * W[1420];
-    W[1578] = W[131] * W[1372];
-    W[1581] = W[147] * W[1580];
-    W[1582] = W[145] * W[1554];
-    W[1584] = W[143] * W[1521];
-    W[1586] = W[140] * W[1484];
-    W[1588] = W[136] * W[1443];
-    W[1590] = W[131] * W[1398];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_70(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1592] = W[351] * W[1568];
     W[1599] = W[351] * W[1580];
     W[1374] = W[1369] + W[1373];
@@ -4924,26 +4220,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1403] = W[1400] + W[1402];
     W[1427] = W[1422] + W[1426];
     W[1448] = W[1445] + W[1447];
-    W[1471] = W[1466] + W[1470];
-    W[1489] = W[1486] + W[1488];
-    W[1511] = W[1506] + W[1510];
-    W[1526] = W[1523] + W[1525];
-    W[1543] = W[3] * W[1542];
-    W[1557] = W[3] * W[1556];
-    W[1573] = W[1571] - W[1572];
-    W[1585] = W[1583] - W[1584];
-    W[1594] = W[1501] + W[1593];
-    W[1601] = W[1520] + W[1600];
-    W[1384] = W[1379] + W[1383];
-    W[1406] = W[1403] + W[1405];
-    W[1432] = W[1427] + W[1431];
-    W[1451] = W[1448] + W[1450];
-    W[1476] = W[1471] + W[1475];
-    W[1492] = W[1489] + W[1491];
-    W[1512] = W[3] * W[1511];
-    W[1527] = W[3] * W[1526];
-    W[1545] = W[1543] - W[1544];
-    W[1559] = W[1557] - W[1558];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_72(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1575] = W[1573] - W[1574];
     W[1587] = W[1585] - W[1586];
     W[1595] = W[1461] + W[1594];
@@ -4964,26 +4250,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1603] = W[1442] + W[1602];
     W[1394] = W[1389] + W[1393];
     W[1412] = W[1409] + W[1411];
-    W[1438] = W[3] * W[1437];
-    W[1455] = W[3] * W[1454];
-    W[1479] = W[1477] - W[1478];
-    W[1495] = W[1493] - W[1494];
-    W[1516] = W[1514] - W[1515];
-    W[1531] = W[1529] - W[1530];
-    W[1549] = W[1547] - W[1548];
-    W[1563] = W[1561] - W[1562];
-    W[1579] = W[1577] - W[1578];
-    W[1591] = W[1589] - W[1590];
-    W[1597] = W[1369] + W[1596];
-    W[1604] = W[1397] + W[1603];
-    W[1395] = W[3] * W[1394];
-    W[1413] = W[3] * W[1412];
-    W[1440] = W[1438] - W[1439];
-    W[1457] = W[1455] - W[1456];
-    W[1481] = W[1479] - W[1480];
-    W[1497] = W[1495] - W[1496];
-    W[1518] = W[1516] - W[1517];
-    W[1533] = W[1531] - W[1532];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_74(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1551] = W[1549] - W[1550];
     W[1565] = W[1563] - W[1564];
     W[1598] = W[148] * W[1597];
@@ -5004,41 +4280,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[125] = X[111] / 4.0;
     X[126] = -W[1395] / W[120] / 4.0;
     X[127] = -W[1413] / W[120] / 4.0;
-    X[128] = -W[1440] / W[121] / 4.0;
-    X[129] = -W[1457] / W[121] / 4.0;
-    X[130] = -W[1481] / W[122] / 4.0;
-    X[131] = -W[1497] / W[122] / 4.0;
-    X[132] = -W[1518] / W[123] / 4.0;
-    X[133] = -W[1533] / W[123] / 4.0;
-    X[134] = -W[1551] / W[124] / 4.0;
-    X[135] = -W[1565] / W[124] / 4.0;
-    X[136] = -W[1579] / W[125] / 4.0;
-    X[137] = -W[1591] / W[125] / 4.0;
-    X[138] = -W[1598] / W[126] / 4.0;
-    X[139] = -W[1605] / W[126] / 4.0;
-    if (K == 4)
-        goto out;
-    /* order 4 */
-    W[1622] = X[112] - X[114];
-    W[1627] = X[113] - X[115];
-    W[1631] = X[112] - X[116];
-    W[1634] = X[113] - X[117];
-    W[1638] = X[112] - X[118];
-    W[1641] = X[113] - X[119];
-    W[1645] = X[112] - X[120];
-    W[1648] = X[113] - X[121];
-    W[1652] = X[112] - X[122];
-    W[1655] = X[113] - X[123];
-    W[1659] = X[112] - X[124];
-    W[1662] = X[113] - X[125];
-    W[1665] = X[114] - X[116];
-    W[1667] = X[115] - X[117];
-    W[1670] = X[114] - X[118];
-    W[1672] = X[115] - X[119];
-    W[1675] = X[114] - X[120];
-    W[1677] = X[115] - X[121];
-    W[1680] = X[114] - X[122];
-    W[1682] = X[115] - X[123];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 4. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_77(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1685] = X[114] - X[124];
     W[1687] = X[115] - X[125];
     W[1690] = X[116] - X[118];
@@ -5059,26 +4310,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1727] = X[121] - X[123];
     W[1730] = X[120] - X[124];
     W[1732] = X[121] - X[125];
-    W[1735] = X[122] - X[124];
-    W[1737] = X[123] - X[125];
-    W[1624] = (W[2] * W[1622] + W[407] * W[1217]) * 2.0 + W[812] * W[812];
-    W[1628] = (W[7] * W[1627] + W[412] * W[1222]) * 2.0 + W[817] * W[817];
-    W[1632] = (W[11] * W[1631] + W[416] * W[1226]) * 2.0 + W[821] * W[821];
-    W[1635] = (W[14] * W[1634] + W[419] * W[1229]) * 2.0 + W[824] * W[824];
-    W[1639] = (W[18] * W[1638] + W[423] * W[1233]) * 2.0 + W[828] * W[828];
-    W[1642] = (W[21] * W[1641] + W[426] * W[1236]) * 2.0 + W[831] * W[831];
-    W[1646] = (W[25] * W[1645] + W[430] * W[1240]) * 2.0 + W[835] * W[835];
-    W[1649] = (W[28] * W[1648] + W[433] * W[1243]) * 2.0 + W[838] * W[838];
-    W[1653] = (W[32] * W[1652] + W[437] * W[1247]) * 2.0 + W[842] * W[842];
-    W[1656] = (W[35] * W[1655] + W[440] * W[1250]) * 2.0 + W[845] * W[845];
-    W[1660] = (W[39] * W[1659] + W[444] * W[1254]) * 2.0 + W[849] * W[849];
-    W[1663] = (W[42] * W[1662] + W[447] * W[1257]) * 2.0 + W[852] * W[852];
-    W[1666] = (W[45] * W[1665] + W[450] * W[1260]) * 2.0 + W[855] * W[855];
-    W[1668] = (W[47] * W[1667] + W[452] * W[1262]) * 2.0 + W[857] * W[857];
-    W[1671] = (W[50] * W[1670] + W[455] * W[1265]) * 2.0 + W[860] * W[860];
-    W[1673] = (W[52] * W[1672] + W[457] * W[1267]) * 2.0 + W[862] * W[862];
-    W[1676] = (W[55] * W[1675] + W[460] * W[1270]) * 2.0 + W[865] * W[865];
-    W[1678] = (W[57] * W[1677] + W[462] * W[1272]) * 2.0 + W[867] * W[867];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 4. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_79(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1681] = (W[60] * W[1680] + W[465] * W[1275]) * 2.0 + W[870] * W[870];
     W[1683] = (W[62] * W[1682] + W[467] * W[1277]) * 2.0 + W[872] * W[872];
     W[1686] = (W[65] * W[1685] + W[470] * W[1280]) * 2.0 + W[875] * W[875];
@@ -5099,26 +4340,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1723] = (W[102] * W[1722] + W[507] * W[1317]) * 2.0 + W[912] * W[912];
     W[1726] = (W[105] * W[1725] + W[510] * W[1320]) * 2.0 + W[915] * W[915];
     W[1728] = (W[107] * W[1727] + W[512] * W[1322]) * 2.0 + W[917] * W[917];
-    W[1731] = (W[110] * W[1730] + W[515] * W[1325]) * 2.0 + W[920] * W[920];
-    W[1733] = (W[112] * W[1732] + W[517] * W[1327]) * 2.0 + W[922] * W[922];
-    W[1736] = (W[115] * W[1735] + W[520] * W[1330]) * 2.0 + W[925] * W[925];
-    W[1738] = (W[117] * W[1737] + W[522] * W[1332]) * 2.0 + W[927] * W[927];
-    W[1629] = W[1624] + W[1628];
-    W[1636] = W[1632] + W[1635];
-    W[1643] = W[1639] + W[1642];
-    W[1650] = W[1646] + W[1649];
-    W[1657] = W[1653] + W[1656];
-    W[1664] = W[1660] + W[1663];
-    W[1669] = W[1666] + W[1668];
-    W[1674] = W[1671] + W[1673];
-    W[1679] = W[1676] + W[1678];
-    W[1684] = W[1681] + W[1683];
-    W[1689] = W[1686] + W[1688];
-    W[1694] = W[1691] + W[1693];
-    W[1699] = W[1696] + W[1698];
-    W[1704] = W[1701] + W[1703];
-    W[1709] = W[1706] + W[1708];
-    W[1714] = W[1711] + W[1713];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 4. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_81(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1719] = W[1716] + W[1718];
     W[1724] = W[1721] + W[1723];
     W[1729] = W[1726] + W[1728];
@@ -5139,26 +4370,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1868] = (-6.0 * W[1704] * W[248] - 5.5 * W[1299] * W[653] - 5.0 * W[894] * W[1058] - 4.5 * W[489] * W[1463]) / (4.0 * W[84]);
     W[1873] = (-6.0 * W[1699] * W[253] - 5.5 * W[1294] * W[658] - 5.0 * W[889] * W[1063] - 4.5 * W[484] * W[1468]) / (4.0 * W[79]);
     W[1878] = (-6.0 * W[1694] * W[258] - 5.5 * W[1289] * W[663] - 5.0 * W[884] * W[1068] - 4.5 * W[479] * W[1473]) / (4.0 * W[74]);
-    W[1904] = (-6.0 * W[1724] * W[284] - 5.5 * W[1319] * W[689] - 5.0 * W[914] * W[1094] - 4.5 * W[509] * W[1499]) / (4.0 * W[104]);
-    W[1908] = (-6.0 * W[1719] * W[288] - 5.5 * W[1314] * W[693] - 5.0 * W[909] * W[1098] - 4.5 * W[504] * W[1503]) / (4.0 * W[99]);
-    W[1913] = (-6.0 * W[1714] * W[293] - 5.5 * W[1309] * W[698] - 5.0 * W[904] * W[1103] - 4.5 * W[499] * W[1508]) / (4.0 * W[94]);
-    W[1940] = (-6.0 * W[1734] * W[320] - 5.5 * W[1329] * W[725] - 5.0 * W[924] * W[1130] - 4.5 * W[519] * W[1535]) / (4.0 * W[114]);
-    W[1944] = (-6.0 * W[1729] * W[324] - 5.5 * W[1324] * W[729] - 5.0 * W[919] * W[1134] - 4.5 * W[514] * W[1539]) / (4.0 * W[109]);
-    W[1972] = (-6.0 * W[1739] * W[352] - 5.5 * W[1334] * W[757] - 5.0 * W[929] * W[1162] - 4.5 * W[524] * W[1567]) / (4.0 * W[119]);
-    W[1773] = W[39] * W[1772] + W[444] * W[1367] + W[849] * W[962] + W[1254] * W[557] + W[1659] * W[152];
-    W[1777] = W[32] * W[1776] + W[437] * W[1371] + W[842] * W[966] + W[1247] * W[561] + W[1652] * W[156];
-    W[1782] = W[25] * W[1781] + W[430] * W[1376] + W[835] * W[971] + W[1240] * W[566] + W[1645] * W[161];
-    W[1787] = W[18] * W[1786] + W[423] * W[1381] + W[828] * W[976] + W[1233] * W[571] + W[1638] * W[166];
-    W[1792] = W[11] * W[1791] + W[416] * W[1386] + W[821] * W[981] + W[1226] * W[576] + W[1631] * W[171];
-    W[1797] = W[2] * W[1796] + W[407] * W[1391] + W[812] * W[986] + W[1217] * W[581] + W[1622] * W[176];
-    W[1801] = W[42] * W[1772] + W[447] * W[1367] + W[852] * W[962] + W[1257] * W[557] + W[1662] * W[152];
-    W[1803] = W[35] * W[1776] + W[440] * W[1371] + W[845] * W[966] + W[1250] * W[561] + W[1655] * W[156];
-    W[1806] = W[28] * W[1781] + W[433] * W[1376] + W[838] * W[971] + W[1243] * W[566] + W[1648] * W[161];
-    W[1809] = W[21] * W[1786] + W[426] * W[1381] + W[831] * W[976] + W[1236] * W[571] + W[1641] * W[166];
-    W[1812] = W[14] * W[1791] + W[419] * W[1386] + W[824] * W[981] + W[1229] * W[576] + W[1634] * W[171];
-    W[1815] = W[7] * W[1796] + W[412] * W[1391] + W[817] * W[986] + W[1222] * W[581] + W[1627] * W[176];
-    W[1821] = W[65] * W[1820] + W[470] * W[1415] + W[875] * W[1010] + W[1280] * W[605] + W[1685] * W[200];
-    W[1825] = W[60] * W[1824] + W[465] * W[1419] + W[870] * W[1014] + W[1275] * W[609] + W[1680] * W[204];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 4. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_83(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1830] = W[55] * W[1829] + W[460] * W[1424] + W[865] * W[1019] + W[1270] * W[614] + W[1675] * W[209];
     W[1835] = W[50] * W[1834] + W[455] * W[1429] + W[860] * W[1024] + W[1265] * W[619] + W[1670] * W[214];
     W[1840] = W[45] * W[1839] + W[450] * W[1434] + W[855] * W[1029] + W[1260] * W[624] + W[1665] * W[219];
@@ -5179,26 +4400,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1909] = W[95] * W[1908] + W[500] * W[1503] + W[905] * W[1098] + W[1310] * W[693] + W[1715] * W[288];
     W[1914] = W[90] * W[1913] + W[495] * W[1508] + W[900] * W[1103] + W[1305] * W[698] + W[1710] * W[293];
     W[1924] = W[102] * W[1904] + W[507] * W[1499] + W[912] * W[1094] + W[1317] * W[689] + W[1722] * W[284];
-    W[1926] = W[97] * W[1908] + W[502] * W[1503] + W[907] * W[1098] + W[1312] * W[693] + W[1717] * W[288];
-    W[1929] = W[92] * W[1913] + W[497] * W[1508] + W[902] * W[1103] + W[1307] * W[698] + W[1712] * W[293];
-    W[1941] = W[110] * W[1940] + W[515] * W[1535] + W[920] * W[1130] + W[1325] * W[725] + W[1730] * W[320];
-    W[1945] = W[105] * W[1944] + W[510] * W[1539] + W[915] * W[1134] + W[1320] * W[729] + W[1725] * W[324];
-    W[1957] = W[112] * W[1940] + W[517] * W[1535] + W[922] * W[1130] + W[1327] * W[725] + W[1732] * W[320];
-    W[1959] = W[107] * W[1944] + W[512] * W[1539] + W[917] * W[1134] + W[1322] * W[729] + W[1727] * W[324];
-    W[1973] = W[115] * W[1972] + W[520] * W[1567] + W[925] * W[1162] + W[1330] * W[757] + W[1735] * W[352];
-    W[1985] = W[117] * W[1972] + W[522] * W[1567] + W[927] * W[1162] + W[1332] * W[757] + W[1737] * W[352];
-    W[1774] = W[151] * W[1773];
-    W[1778] = W[155] * W[1777];
-    W[1783] = W[160] * W[1782];
-    W[1788] = W[165] * W[1787];
-    W[1793] = W[170] * W[1792];
-    W[1798] = W[175] * W[1797];
-    W[1802] = W[151] * W[1801];
-    W[1804] = W[155] * W[1803];
-    W[1807] = W[160] * W[1806];
-    W[1810] = W[165] * W[1809];
-    W[1813] = W[170] * W[1812];
-    W[1816] = W[175] * W[1815];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 4. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_85(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1822] = W[199] * W[1821];
     W[1826] = W[203] * W[1825];
     W[1831] = W[208] * W[1830];
@@ -5219,26 +4430,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1885] = W[128] * W[1792];
     W[1888] = W[243] * W[1887];
     W[1890] = W[247] * W[1889];
-    W[1893] = W[252] * W[1892];
-    W[1896] = W[257] * W[1895];
-    W[1899] = W[133] * W[1857];
-    W[1901] = W[128] * W[1812];
-    W[1906] = W[283] * W[1905];
-    W[1910] = W[287] * W[1909];
-    W[1915] = W[292] * W[1914];
-    W[1918] = W[138] * W[1879];
-    W[1920] = W[134] * W[1835];
-    W[1922] = W[129] * W[1787];
-    W[1925] = W[283] * W[1924];
-    W[1927] = W[287] * W[1926];
-    W[1930] = W[292] * W[1929];
-    W[1933] = W[138] * W[1895];
-    W[1935] = W[134] * W[1854];
-    W[1937] = W[129] * W[1809];
-    W[1942] = W[319] * W[1941];
-    W[1946] = W[323] * W[1945];
-    W[1949] = W[142] * W[1914];
-    W[1951] = W[139] * W[1874];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 4. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_87(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1953] = W[135] * W[1830];
     W[1955] = W[130] * W[1782];
     W[1958] = W[319] * W[1957];
@@ -5259,26 +4460,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1991] = W[140] * W[1889];
     W[1993] = W[136] * W[1848];
     W[1995] = W[131] * W[1803];
-    W[1997] = W[351] * W[1973];
-    W[2004] = W[351] * W[1985];
-    W[1779] = W[1774] + W[1778];
-    W[1805] = W[1802] + W[1804];
-    W[1827] = W[1822] + W[1826];
-    W[1850] = W[1847] + W[1849];
-    W[1871] = W[1866] + W[1870];
-    W[1891] = W[1888] + W[1890];
-    W[1911] = W[1906] + W[1910];
-    W[1928] = W[1925] + W[1927];
-    W[1947] = W[1942] + W[1946];
-    W[1961] = W[1958] + W[1960];
-    W[1976] = W[1974] - W[1975];
-    W[1988] = W[1986] - W[1987];
-    W[1998] = W[1942] + W[1997];
-    W[2005] = W[1958] + W[2004];
-    W[1784] = W[1779] + W[1783];
-    W[1808] = W[1805] + W[1807];
-    W[1832] = W[1827] + W[1831];
-    W[1853] = W[1850] + W[1852];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 4. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_89(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1876] = W[1871] + W[1875];
     W[1894] = W[1891] + W[1893];
     W[1916] = W[1911] + W[1915];
@@ -5299,26 +4490,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1932] = W[3] * W[1931];
     W[1950] = W[1948] - W[1949];
     W[1964] = W[1962] - W[1963];
-    W[1980] = W[1978] - W[1979];
-    W[1992] = W[1990] - W[1991];
-    W[2000] = W[1866] + W[1999];
-    W[2007] = W[1888] + W[2006];
-    W[1794] = W[1789] + W[1793];
-    W[1814] = W[1811] + W[1813];
-    W[1842] = W[1837] + W[1841];
-    W[1859] = W[1856] + W[1858];
-    W[1882] = W[3] * W[1881];
-    W[1898] = W[3] * W[1897];
-    W[1919] = W[1917] - W[1918];
-    W[1934] = W[1932] - W[1933];
-    W[1952] = W[1950] - W[1951];
-    W[1966] = W[1964] - W[1965];
-    W[1982] = W[1980] - W[1981];
-    W[1994] = W[1992] - W[1993];
-    W[2001] = W[1822] + W[2000];
-    W[2008] = W[1847] + W[2007];
-    W[1799] = W[1794] + W[1798];
-    W[1817] = W[1814] + W[1816];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 4. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_91(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1843] = W[3] * W[1842];
     W[1860] = W[3] * W[1859];
     W[1884] = W[1882] - W[1883];
@@ -5339,26 +4520,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1902] = W[1900] - W[1901];
     W[1923] = W[1921] - W[1922];
     W[1938] = W[1936] - W[1937];
-    W[1956] = W[1954] - W[1955];
-    W[1970] = W[1968] - W[1969];
-    W[2003] = W[148] * W[2002];
-    W[2010] = W[148] * W[2009];
-    X[140] = X[126] / 5.0;
-    X[141] = X[127] / 5.0;
-    X[142] = X[128] / 5.0;
-    X[143] = X[129] / 5.0;
-    X[144] = X[130] / 5.0;
-    X[145] = X[131] / 5.0;
-    X[146] = X[132] / 5.0;
-    X[147] = X[133] / 5.0;
-    X[148] = X[134] / 5.0;
-    X[149] = X[135] / 5.0;
-    X[150] = X[136] / 5.0;
-    X[151] = X[137] / 5.0;
-    X[152] = X[138] / 5.0;
-    X[153] = X[139] / 5.0;
-    X[154] = -W[1800] / W[120] / 5.0;
-    X[155] = -W[1818] / W[120] / 5.0;
+    return 0;
+}
+
+/* Lines 340 .. 351 of taylor_run's order 4. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_93(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[156] = -W[1845] / W[121] / 5.0;
     X[157] = -W[1862] / W[121] / 5.0;
     X[158] = -W[1886] / W[122] / 5.0;
@@ -5371,9 +4542,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[165] = -W[1996] / W[125] / 5.0;
     X[166] = -W[2003] / W[126] / 5.0;
     X[167] = -W[2010] / W[126] / 5.0;
-    if (K == 5)
-        goto out;
-    /* order 5 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_94(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2027] = X[140] - X[142];
     W[2032] = X[141] - X[143];
     W[2036] = X[140] - X[144];
@@ -5394,26 +4572,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2082] = X[143] - X[149];
     W[2085] = X[142] - X[150];
     W[2087] = X[143] - X[151];
-    W[2090] = X[142] - X[152];
-    W[2092] = X[143] - X[153];
-    W[2095] = X[144] - X[146];
-    W[2097] = X[145] - X[147];
-    W[2100] = X[144] - X[148];
-    W[2102] = X[145] - X[149];
-    W[2105] = X[144] - X[150];
-    W[2107] = X[145] - X[151];
-    W[2110] = X[144] - X[152];
-    W[2112] = X[145] - X[153];
-    W[2115] = X[146] - X[148];
-    W[2117] = X[147] - X[149];
-    W[2120] = X[146] - X[150];
-    W[2122] = X[147] - X[151];
-    W[2125] = X[146] - X[152];
-    W[2127] = X[147] - X[153];
-    W[2130] = X[148] - X[150];
-    W[2132] = X[149] - X[151];
-    W[2135] = X[148] - X[152];
-    W[2137] = X[149] - X[153];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_96(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2140] = X[150] - X[152];
     W[2142] = X[151] - X[153];
     W[2029] = (W[2] * W[2027] + W[407] * W[1622] + W[812] * W[1217]) * 2.0;
@@ -5434,26 +4602,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2078] = (W[52] * W[2077] + W[457] * W[1672] + W[862] * W[1267]) * 2.0;
     W[2081] = (W[55] * W[2080] + W[460] * W[1675] + W[865] * W[1270]) * 2.0;
     W[2083] = (W[57] * W[2082] + W[462] * W[1677] + W[867] * W[1272]) * 2.0;
-    W[2086] = (W[60] * W[2085] + W[465] * W[1680] + W[870] * W[1275]) * 2.0;
-    W[2088] = (W[62] * W[2087] + W[467] * W[1682] + W[872] * W[1277]) * 2.0;
-    W[2091] = (W[65] * W[2090] + W[470] * W[1685] + W[875] * W[1280]) * 2.0;
-    W[2093] = (W[67] * W[2092] + W[472] * W[1687] + W[877] * W[1282]) * 2.0;
-    W[2096] = (W[70] * W[2095] + W[475] * W[1690] + W[880] * W[1285]) * 2.0;
-    W[2098] = (W[72] * W[2097] + W[477] * W[1692] + W[882] * W[1287]) * 2.0;
-    W[2101] = (W[75] * W[2100] + W[480] * W[1695] + W[885] * W[1290]) * 2.0;
-    W[2103] = (W[77] * W[2102] + W[482] * W[1697] + W[887] * W[1292]) * 2.0;
-    W[2106] = (W[80] * W[2105] + W[485] * W[1700] + W[890] * W[1295]) * 2.0;
-    W[2108] = (W[82] * W[2107] + W[487] * W[1702] + W[892] * W[1297]) * 2.0;
-    W[2111] = (W[85] * W[2110] + W[490] * W[1705] + W[895] * W[1300]) * 2.0;
-    W[2113] = (W[87] * W[2112] + W[492] * W[1707] + W[897] * W[1302]) * 2.0;
-    W[2116] = (W[90] * W[2115] + W[495] * W[1710] + W[900] * W[1305]) * 2.0;
-    W[2118] = (W[92] * W[2117] + W[497] * W[1712] + W[902] * W[1307]) * 2.0;
-    W[2121] = (W[95] * W[2120] + W[500] * W[1715] + W[905] * W[1310]) * 2.0;
-    W[2123] = (W[97] * W[2122] + W[502] * W[1717] + W[907] * W[1312]) * 2.0;
-    W[2126] = (W[100] * W[2125] + W[505] * W[1720] + W[910] * W[1315]) * 2.0;
-    W[2128] = (W[102] * W[2127] + W[507] * W[1722] + W[912] * W[1317]) * 2.0;
-    W[2131] = (W[105] * W[2130] + W[510] * W[1725] + W[915] * W[1320]) * 2.0;
-    W[2133] = (W[107] * W[2132] + W[512] * W[1727] + W[917] * W[1322]) * 2.0;
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_98(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2136] = (W[110] * W[2135] + W[515] * W[1730] + W[920] * W[1325]) * 2.0;
     W[2138] = (W[112] * W[2137] + W[517] * W[1732] + W[922] * W[1327]) * 2.0;
     W[2141] = (W[115] * W[2140] + W[520] * W[1735] + W[925] * W[1330]) * 2.0;
@@ -5474,41 +4632,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2109] = W[2106] + W[2108];
     W[2114] = W[2111] + W[2113];
     W[2119] = W[2116] + W[2118];
-    W[2124] = W[2121] + W[2123];
-    W[2129] = W[2126] + W[2128];
-    W[2134] = W[2131] + W[2133];
-    W[2139] = W[2136] + W[2138];
-    W[2144] = W[2141] + W[2143];
-    W[2177] = (-7.5 * W[2069] * W[152] - 7.0 * W[1664] * W[557] - 6.5 * W[1259] * W[962] - 6.0 * W[854] * W[1367]
-            - 5.5 * W[449] * W[1772]) / (5.0 * W[44]);
-    W[2181] = (-7.5 * W[2062] * W[156] - 7.0 * W[1657] * W[561] - 6.5 * W[1252] * W[966] - 6.0 * W[847] * W[1371]
-            - 5.5 * W[442] * W[1776]) / (5.0 * W[37]);
-    W[2186] = (-7.5 * W[2055] * W[161] - 7.0 * W[1650] * W[566] - 6.5 * W[1245] * W[971] - 6.0 * W[840] * W[1376]
-            - 5.5 * W[435] * W[1781]) / (5.0 * W[30]);
-    W[2191] = (-7.5 * W[2048] * W[166] - 7.0 * W[1643] * W[571] - 6.5 * W[1238] * W[976] - 6.0 * W[833] * W[1381]
-            - 5.5 * W[428] * W[1786]) / (5.0 * W[23]);
-    W[2196] = (-7.5 * W[2041] * W[171] - 7.0 * W[1636] * W[576] - 6.5 * W[1231] * W[981] - 6.0 * W[826] * W[1386]
-            - 5.5 * W[421] * W[1791]) / (5.0 * W[16]);
-    W[2201] = (-7.5 * W[2034] * W[176] - 7.0 * W[1629] * W[581] - 6.5 * W[1224] * W[986] - 6.0 * W[819] * W[1391]
-            - 5.5 * W[414] * W[1796]) / (5.0 * W[9]);
-    W[2225] = (-7.5 * W[2094] * W[200] - 7.0 * W[1689] * W[605] - 6.5 * W[1284] * W[1010] - 6.0 * W[879] * W[1415]
-            - 5.5 * W[474] * W[1820]) / (5.0 * W[69]);
-    W[2229] = (-7.5 * W[2089] * W[204] - 7.0 * W[1684] * W[609] - 6.5 * W[1279] * W[1014] - 6.0 * W[874] * W[1419]
-            - 5.5 * W[469] * W[1824]) / (5.0 * W[64]);
-    W[2234] = (-7.5 * W[2084] * W[209] - 7.0 * W[1679] * W[614] - 6.5 * W[1274] * W[1019] - 6.0 * W[869] * W[1424]
-            - 5.5 * W[464] * W[1829]) / (5.0 * W[59]);
-    W[2239] = (-7.5 * W[2079] * W[214] - 7.0 * W[1674] * W[619] - 6.5 * W[1269] * W[1024] - 6.0 * W[864] * W[1429]
-            - 5.5 * W[459] * W[1834]) / (5.0 * W[54]);
-    W[2244] = (-7.5 * W[2074] * W[219] - 7.0 * W[1669] * W[624] - 6.5 * W[1264] * W[1029] - 6.0 * W[859] * W[1434]
-            - 5.5 * W[454] * W[1839]) / (5.0 * W[49]);
-    W[2269] = (-7.5 * W[2114] * W[244] - 7.0 * W[1709] * W[649] - 6.5 * W[1304] * W[1054] - 6.0 * W[899] * W[1459]
-            - 5.5 * W[494] * W[1864]) / (5.0 * W[89]);
-    W[2273] = (-7.5 * W[2109] * W[248] - 7.0 * W[1704] * W[653] - 6.5 * W[1299] * W[1058] - 6.0 * W[894] * W[1463]
-            - 5.5 * W[489] * W[1868]) / (5.0 * W[84]);
-    W[2278] = (-7.5 * W[2104] * W[253] - 7.0 * W[1699] * W[658] - 6.5 * W[1294] * W[1063] - 6.0 * W[889] * W[1468]
-            - 5.5 * W[484] * W[1873]) / (5.0 * W[79]);
-    W[2283] = (-7.5 * W[2099] * W[258] - 7.0 * W[1694] * W[663] - 6.5 * W[1289] * W[1068] - 6.0 * W[884] * W[1473]
-            - 5.5 * W[479] * W[1878]) / (5.0 * W[74]);
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_100(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2309] = (-7.5 * W[2129] * W[284] - 7.0 * W[1724] * W[689] - 6.5 * W[1319] * W[1094] - 6.0 * W[914] * W[1499]
             - 5.5 * W[509] * W[1904]) / (5.0 * W[104]);
     W[2313] = (-7.5 * W[2124] * W[288] - 7.0 * W[1719] * W[693] - 6.5 * W[1314] * W[1098] - 6.0 * W[909] * W[1503]
@@ -5549,46 +4682,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2090] * W[200];
     W[2230] = W[60] * W[2229] + W[465] * W[1824] + W[870] * W[1419] + W[1275] * W[1014] + W[1680] * W[609]
             + W[2085] * W[204];
-    W[2235] = W[55] * W[2234] + W[460] * W[1829] + W[865] * W[1424] + W[1270] * W[1019] + W[1675] * W[614]
-            + W[2080] * W[209];
-    W[2240] = W[50] * W[2239] + W[455] * W[1834] + W[860] * W[1429] + W[1265] * W[1024] + W[1670] * W[619]
-            + W[2075] * W[214];
-    W[2245] = W[45] * W[2244] + W[450] * W[1839] + W[855] * W[1434] + W[1260] * W[1029] + W[1665] * W[624]
-            + W[2070] * W[219];
-    W[2251] = W[67] * W[2225] + W[472] * W[1820] + W[877] * W[1415] + W[1282] * W[1010] + W[1687] * W[605]
-            + W[2092] * W[200];
-    W[2253] = W[62] * W[2229] + W[467] * W[1824] + W[872] * W[1419] + W[1277] * W[1014] + W[1682] * W[609]
-            + W[2087] * W[204];
-    W[2256] = W[57] * W[2234] + W[462] * W[1829] + W[867] * W[1424] + W[1272] * W[1019] + W[1677] * W[614]
-            + W[2082] * W[209];
-    W[2259] = W[52] * W[2239] + W[457] * W[1834] + W[862] * W[1429] + W[1267] * W[1024] + W[1672] * W[619]
-            + W[2077] * W[214];
-    W[2262] = W[47] * W[2244] + W[452] * W[1839] + W[857] * W[1434] + W[1262] * W[1029] + W[1667] * W[624]
-            + W[2072] * W[219];
-    W[2270] = W[85] * W[2269] + W[490] * W[1864] + W[895] * W[1459] + W[1300] * W[1054] + W[1705] * W[649]
-            + W[2110] * W[244];
-    W[2274] = W[80] * W[2273] + W[485] * W[1868] + W[890] * W[1463] + W[1295] * W[1058] + W[1700] * W[653]
-            + W[2105] * W[248];
-    W[2279] = W[75] * W[2278] + W[480] * W[1873] + W[885] * W[1468] + W[1290] * W[1063] + W[1695] * W[658]
-            + W[2100] * W[253];
-    W[2284] = W[70] * W[2283] + W[475] * W[1878] + W[880] * W[1473] + W[1285] * W[1068] + W[1690] * W[663]
-            + W[2095] * W[258];
-    W[2292] = W[87] * W[2269] + W[492] * W[1864] + W[897] * W[1459] + W[1302] * W[1054] + W[1707] * W[649]
-            + W[2112] * W[244];
-    W[2294] = W[82] * W[2273] + W[487] * W[1868] + W[892] * W[1463] + W[1297] * W[1058] + W[1702] * W[653]
-            + W[2107] * W[248];
-    W[2297] = W[77] * W[2278] + W[482] * W[1873] + W[887] * W[1468] + W[1292] * W[1063] + W[1697] * W[658]
-            + W[2102] * W[253];
-    W[2300] = W[72] * W[2283] + W[477] * W[1878] + W[882] * W[1473] + W[1287] * W[1068] + W[1692] * W[663]
-            + W[2097] * W[258];
-    W[2310] = W[100] * W[2309] + W[505] * W[1904] + W[910] * W[1499] + W[1315] * W[1094] + W[1720] * W[689]
-            + W[2125] * W[284];
-    W[2314] = W[95] * W[2313] + W[500] * W[1908] + W[905] * W[1503] + W[1310] * W[1098] + W[1715] * W[693]
-            + W[2120] * W[288];
-    W[2319] = W[90] * W[2318] + W[495] * W[1913] + W[900] * W[1508] + W[1305] * W[1103] + W[1710] * W[698]
-            + W[2115] * W[293];
-    W[2329] = W[102] * W[2309] + W[507] * W[1904] + W[912] * W[1499] + W[1317] * W[1094] + W[1722] * W[689]
-            + W[2127] * W[284];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_102(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2331] = W[97] * W[2313] + W[502] * W[1908] + W[907] * W[1503] + W[1312] * W[1098] + W[1717] * W[693]
             + W[2122] * W[288];
     W[2334] = W[92] * W[2318] + W[497] * W[1913] + W[902] * W[1508] + W[1307] * W[1103] + W[1712] * W[698]
@@ -5617,26 +4720,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2215] = W[165] * W[2214];
     W[2218] = W[170] * W[2217];
     W[2221] = W[175] * W[2220];
-    W[2227] = W[199] * W[2226];
-    W[2231] = W[203] * W[2230];
-    W[2236] = W[208] * W[2235];
-    W[2241] = W[213] * W[2240];
-    W[2246] = W[218] * W[2245];
-    W[2249] = W[127] * W[2202];
-    W[2252] = W[199] * W[2251];
-    W[2254] = W[203] * W[2253];
-    W[2257] = W[208] * W[2256];
-    W[2260] = W[213] * W[2259];
-    W[2263] = W[218] * W[2262];
-    W[2266] = W[127] * W[2220];
-    W[2271] = W[243] * W[2270];
-    W[2275] = W[247] * W[2274];
-    W[2280] = W[252] * W[2279];
-    W[2285] = W[257] * W[2284];
-    W[2288] = W[133] * W[2245];
-    W[2290] = W[128] * W[2197];
-    W[2293] = W[243] * W[2292];
-    W[2295] = W[247] * W[2294];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_104(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2298] = W[252] * W[2297];
     W[2301] = W[257] * W[2300];
     W[2304] = W[133] * W[2262];
@@ -5657,26 +4750,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2351] = W[323] * W[2350];
     W[2354] = W[142] * W[2319];
     W[2356] = W[139] * W[2279];
-    W[2358] = W[135] * W[2235];
-    W[2360] = W[130] * W[2187];
-    W[2363] = W[319] * W[2362];
-    W[2365] = W[323] * W[2364];
-    W[2368] = W[142] * W[2334];
-    W[2370] = W[139] * W[2297];
-    W[2372] = W[135] * W[2256];
-    W[2374] = W[130] * W[2211];
-    W[2379] = W[147] * W[2378];
-    W[2380] = W[145] * W[2350];
-    W[2382] = W[143] * W[2314];
-    W[2384] = W[140] * W[2274];
-    W[2386] = W[136] * W[2230];
-    W[2388] = W[131] * W[2182];
-    W[2391] = W[147] * W[2390];
-    W[2392] = W[145] * W[2364];
-    W[2394] = W[143] * W[2331];
-    W[2396] = W[140] * W[2294];
-    W[2398] = W[136] * W[2253];
-    W[2400] = W[131] * W[2208];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_106(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2402] = W[351] * W[2378];
     W[2409] = W[351] * W[2390];
     W[2184] = W[2179] + W[2183];
@@ -5697,26 +4780,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2213] = W[2210] + W[2212];
     W[2237] = W[2232] + W[2236];
     W[2258] = W[2255] + W[2257];
-    W[2281] = W[2276] + W[2280];
-    W[2299] = W[2296] + W[2298];
-    W[2321] = W[2316] + W[2320];
-    W[2336] = W[2333] + W[2335];
-    W[2353] = W[3] * W[2352];
-    W[2367] = W[3] * W[2366];
-    W[2383] = W[2381] - W[2382];
-    W[2395] = W[2393] - W[2394];
-    W[2404] = W[2311] + W[2403];
-    W[2411] = W[2330] + W[2410];
-    W[2194] = W[2189] + W[2193];
-    W[2216] = W[2213] + W[2215];
-    W[2242] = W[2237] + W[2241];
-    W[2261] = W[2258] + W[2260];
-    W[2286] = W[2281] + W[2285];
-    W[2302] = W[2299] + W[2301];
-    W[2322] = W[3] * W[2321];
-    W[2337] = W[3] * W[2336];
-    W[2355] = W[2353] - W[2354];
-    W[2369] = W[2367] - W[2368];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_108(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2385] = W[2383] - W[2384];
     W[2397] = W[2395] - W[2396];
     W[2405] = W[2271] + W[2404];
@@ -5737,26 +4810,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2413] = W[2252] + W[2412];
     W[2204] = W[2199] + W[2203];
     W[2222] = W[2219] + W[2221];
-    W[2248] = W[3] * W[2247];
-    W[2265] = W[3] * W[2264];
-    W[2289] = W[2287] - W[2288];
-    W[2305] = W[2303] - W[2304];
-    W[2326] = W[2324] - W[2325];
-    W[2341] = W[2339] - W[2340];
-    W[2359] = W[2357] - W[2358];
-    W[2373] = W[2371] - W[2372];
-    W[2389] = W[2387] - W[2388];
-    W[2401] = W[2399] - W[2400];
-    W[2407] = W[2179] + W[2406];
-    W[2414] = W[2207] + W[2413];
-    W[2205] = W[3] * W[2204];
-    W[2223] = W[3] * W[2222];
-    W[2250] = W[2248] - W[2249];
-    W[2267] = W[2265] - W[2266];
-    W[2291] = W[2289] - W[2290];
-    W[2307] = W[2305] - W[2306];
-    W[2328] = W[2326] - W[2327];
-    W[2343] = W[2341] - W[2342];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_110(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2361] = W[2359] - W[2360];
     W[2375] = W[2373] - W[2374];
     W[2408] = W[148] * W[2407];
@@ -5777,41 +4840,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[181] = X[167] / 6.0;
     X[182] = -W[2205] / W[120] / 6.0;
     X[183] = -W[2223] / W[120] / 6.0;
-    X[184] = -W[2250] / W[121] / 6.0;
-    X[185] = -W[2267] / W[121] / 6.0;
-    X[186] = -W[2291] / W[122] / 6.0;
-    X[187] = -W[2307] / W[122] / 6.0;
-    X[188] = -W[2328] / W[123] / 6.0;
-    X[189] = -W[2343] / W[123] / 6.0;
-    X[190] = -W[2361] / W[124] / 6.0;
-    X[191] = -W[2375] / W[124] / 6.0;
-    X[192] = -W[2389] / W[125] / 6.0;
-    X[193] = -W[2401] / W[125] / 6.0;
-    X[194] = -W[2408] / W[126] / 6.0;
-    X[195] = -W[2415] / W[126] / 6.0;
-    if (K == 6)
-        goto out;
-    /* order 6 */
-    W[2432] = X[168] - X[170];
-    W[2437] = X[169] - X[171];
-    W[2441] = X[168] - X[172];
-    W[2444] = X[169] - X[173];
-    W[2448] = X[168] - X[174];
-    W[2451] = X[169] - X[175];
-    W[2455] = X[168] - X[176];
-    W[2458] = X[169] - X[177];
-    W[2462] = X[168] - X[178];
-    W[2465] = X[169] - X[179];
-    W[2469] = X[168] - X[180];
-    W[2472] = X[169] - X[181];
-    W[2475] = X[170] - X[172];
-    W[2477] = X[171] - X[173];
-    W[2480] = X[170] - X[174];
-    W[2482] = X[171] - X[175];
-    W[2485] = X[170] - X[176];
-    W[2487] = X[171] - X[177];
-    W[2490] = X[170] - X[178];
-    W[2492] = X[171] - X[179];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_113(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2495] = X[170] - X[180];
     W[2497] = X[171] - X[181];
     W[2500] = X[172] - X[174];
@@ -5832,26 +4870,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2537] = X[177] - X[179];
     W[2540] = X[176] - X[180];
     W[2542] = X[177] - X[181];
-    W[2545] = X[178] - X[180];
-    W[2547] = X[179] - X[181];
-    W[2434] = (W[2] * W[2432] + W[407] * W[2027] + W[812] * W[1622]) * 2.0 + W[1217] * W[1217];
-    W[2438] = (W[7] * W[2437] + W[412] * W[2032] + W[817] * W[1627]) * 2.0 + W[1222] * W[1222];
-    W[2442] = (W[11] * W[2441] + W[416] * W[2036] + W[821] * W[1631]) * 2.0 + W[1226] * W[1226];
-    W[2445] = (W[14] * W[2444] + W[419] * W[2039] + W[824] * W[1634]) * 2.0 + W[1229] * W[1229];
-    W[2449] = (W[18] * W[2448] + W[423] * W[2043] + W[828] * W[1638]) * 2.0 + W[1233] * W[1233];
-    W[2452] = (W[21] * W[2451] + W[426] * W[2046] + W[831] * W[1641]) * 2.0 + W[1236] * W[1236];
-    W[2456] = (W[25] * W[2455] + W[430] * W[2050] + W[835] * W[1645]) * 2.0 + W[1240] * W[1240];
-    W[2459] = (W[28] * W[2458] + W[433] * W[2053] + W[838] * W[1648]) * 2.0 + W[1243] * W[1243];
-    W[2463] = (W[32] * W[2462] + W[437] * W[2057] + W[842] * W[1652]) * 2.0 + W[1247] * W[1247];
-    W[2466] = (W[35] * W[2465] + W[440] * W[2060] + W[845] * W[1655]) * 2.0 + W[1250] * W[1250];
-    W[2470] = (W[39] * W[2469] + W[444] * W[2064] + W[849] * W[1659]) * 2.0 + W[1254] * W[1254];
-    W[2473] = (W[42] * W[2472] + W[447] * W[2067] + W[852] * W[1662]) * 2.0 + W[1257] * W[1257];
-    W[2476] = (W[45] * W[2475] + W[450] * W[2070] + W[855] * W[1665]) * 2.0 + W[1260] * W[1260];
-    W[2478] = (W[47] * W[2477] + W[452] * W[2072] + W[857] * W[1667]) * 2.0 + W[1262] * W[1262];
-    W[2481] = (W[50] * W[2480] + W[455] * W[2075] + W[860] * W[1670]) * 2.0 + W[1265] * W[1265];
-    W[2483] = (W[52] * W[2482] + W[457] * W[2077] + W[862] * W[1672]) * 2.0 + W[1267] * W[1267];
-    W[2486] = (W[55] * W[2485] + W[460] * W[2080] + W[865] * W[1675]) * 2.0 + W[1270] * W[1270];
-    W[2488] = (W[57] * W[2487] + W[462] * W[2082] + W[867] * W[1677]) * 2.0 + W[1272] * W[1272];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_115(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2491] = (W[60] * W[2490] + W[465] * W[2085] + W[870] * W[1680]) * 2.0 + W[1275] * W[1275];
     W[2493] = (W[62] * W[2492] + W[467] * W[2087] + W[872] * W[1682]) * 2.0 + W[1277] * W[1277];
     W[2496] = (W[65] * W[2495] + W[470] * W[2090] + W[875] * W[1685]) * 2.0 + W[1280] * W[1280];
@@ -5872,26 +4900,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2533] = (W[102] * W[2532] + W[507] * W[2127] + W[912] * W[1722]) * 2.0 + W[1317] * W[1317];
     W[2536] = (W[105] * W[2535] + W[510] * W[2130] + W[915] * W[1725]) * 2.0 + W[1320] * W[1320];
     W[2538] = (W[107] * W[2537] + W[512] * W[2132] + W[917] * W[1727]) * 2.0 + W[1322] * W[1322];
-    W[2541] = (W[110] * W[2540] + W[515] * W[2135] + W[920] * W[1730]) * 2.0 + W[1325] * W[1325];
-    W[2543] = (W[112] * W[2542] + W[517] * W[2137] + W[922] * W[1732]) * 2.0 + W[1327] * W[1327];
-    W[2546] = (W[115] * W[2545] + W[520] * W[2140] + W[925] * W[1735]) * 2.0 + W[1330] * W[1330];
-    W[2548] = (W[117] * W[2547] + W[522] * W[2142] + W[927] * W[1737]) * 2.0 + W[1332] * W[1332];
-    W[2439] = W[2434] + W[2438];
-    W[2446] = W[2442] + W[2445];
-    W[2453] = W[2449] + W[2452];
-    W[2460] = W[2456] + W[2459];
-    W[2467] = W[2463] + W[2466];
-    W[2474] = W[2470] + W[2473];
-    W[2479] = W[2476] + W[2478];
-    W[2484] = W[2481] + W[2483];
-    W[2489] = W[2486] + W[2488];
-    W[2494] = W[2491] + W[2493];
-    W[2499] = W[2496] + W[2498];
-    W[2504] = W[2501] + W[2503];
-    W[2509] = W[2506] + W[2508];
-    W[2514] = W[2511] + W[2513];
-    W[2519] = W[2516] + W[2518];
-    W[2524] = W[2521] + W[2523];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_117(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2529] = W[2526] + W[2528];
     W[2534] = W[2531] + W[2533];
     W[2539] = W[2536] + W[2538];
@@ -5927,46 +4945,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             - 7.0 * W[889] * W[1873] - 6.5 * W[484] * W[2278]) / (6.0 * W[79]);
     W[2688] = (-9.0 * W[2504] * W[258] - 8.5 * W[2099] * W[663] - 8.0 * W[1694] * W[1068] - 7.5 * W[1289] * W[1473]
             - 7.0 * W[884] * W[1878] - 6.5 * W[479] * W[2283]) / (6.0 * W[74]);
-    W[2714] = (-9.0 * W[2534] * W[284] - 8.5 * W[2129] * W[689] - 8.0 * W[1724] * W[1094] - 7.5 * W[1319] * W[1499]
-            - 7.0 * W[914] * W[1904] - 6.5 * W[509] * W[2309]) / (6.0 * W[104]);
-    W[2718] = (-9.0 * W[2529] * W[288] - 8.5 * W[2124] * W[693] - 8.0 * W[1719] * W[1098] - 7.5 * W[1314] * W[1503]
-            - 7.0 * W[909] * W[1908] - 6.5 * W[504] * W[2313]) / (6.0 * W[99]);
-    W[2723] = (-9.0 * W[2524] * W[293] - 8.5 * W[2119] * W[698] - 8.0 * W[1714] * W[1103] - 7.5 * W[1309] * W[1508]
-            - 7.0 * W[904] * W[1913] - 6.5 * W[499] * W[2318]) / (6.0 * W[94]);
-    W[2750] = (-9.0 * W[2544] * W[320] - 8.5 * W[2139] * W[725] - 8.0 * W[1734] * W[1130] - 7.5 * W[1329] * W[1535]
-            - 7.0 * W[924] * W[1940] - 6.5 * W[519] * W[2345]) / (6.0 * W[114]);
-    W[2754] = (-9.0 * W[2539] * W[324] - 8.5 * W[2134] * W[729] - 8.0 * W[1729] * W[1134] - 7.5 * W[1324] * W[1539]
-            - 7.0 * W[919] * W[1944] - 6.5 * W[514] * W[2349]) / (6.0 * W[109]);
-    W[2782] = (-9.0 * W[2549] * W[352] - 8.5 * W[2144] * W[757] - 8.0 * W[1739] * W[1162] - 7.5 * W[1334] * W[1567]
-            - 7.0 * W[929] * W[1972] - 6.5 * W[524] * W[2377]) / (6.0 * W[119]);
-    W[2583] = W[39] * W[2582] + W[444] * W[2177] + W[849] * W[1772] + W[1254] * W[1367] + W[1659] * W[962]
-            + W[2064] * W[557] + W[2469] * W[152];
-    W[2587] = W[32] * W[2586] + W[437] * W[2181] + W[842] * W[1776] + W[1247] * W[1371] + W[1652] * W[966]
-            + W[2057] * W[561] + W[2462] * W[156];
-    W[2592] = W[25] * W[2591] + W[430] * W[2186] + W[835] * W[1781] + W[1240] * W[1376] + W[1645] * W[971]
-            + W[2050] * W[566] + W[2455] * W[161];
-    W[2597] = W[18] * W[2596] + W[423] * W[2191] + W[828] * W[1786] + W[1233] * W[1381] + W[1638] * W[976]
-            + W[2043] * W[571] + W[2448] * W[166];
-    W[2602] = W[11] * W[2601] + W[416] * W[2196] + W[821] * W[1791] + W[1226] * W[1386] + W[1631] * W[981]
-            + W[2036] * W[576] + W[2441] * W[171];
-    W[2607] = W[2] * W[2606] + W[407] * W[2201] + W[812] * W[1796] + W[1217] * W[1391] + W[1622] * W[986]
-            + W[2027] * W[581] + W[2432] * W[176];
-    W[2611] = W[42] * W[2582] + W[447] * W[2177] + W[852] * W[1772] + W[1257] * W[1367] + W[1662] * W[962]
-            + W[2067] * W[557] + W[2472] * W[152];
-    W[2613] = W[35] * W[2586] + W[440] * W[2181] + W[845] * W[1776] + W[1250] * W[1371] + W[1655] * W[966]
-            + W[2060] * W[561] + W[2465] * W[156];
-    W[2616] = W[28] * W[2591] + W[433] * W[2186] + W[838] * W[1781] + W[1243] * W[1376] + W[1648] * W[971]
-            + W[2053] * W[566] + W[2458] * W[161];
-    W[2619] = W[21] * W[2596] + W[426] * W[2191] + W[831] * W[1786] + W[1236] * W[1381] + W[1641] * W[976]
-            + W[2046] * W[571] + W[2451] * W[166];
-    W[2622] = W[14] * W[2601] + W[419] * W[2196] + W[824] * W[1791] + W[1229] * W[1386] + W[1634] * W[981]
-            + W[2039] * W[576] + W[2444] * W[171];
-    W[2625] = W[7] * W[2606] + W[412] * W[2201] + W[817] * W[1796] + W[1222] * W[1391] + W[1627] * W[986]
-            + W[2032] * W[581] + W[2437] * W[176];
-    W[2631] = W[65] * W[2630] + W[470] * W[2225] + W[875] * W[1820] + W[1280] * W[1415] + W[1685] * W[1010]
-            + W[2090] * W[605] + W[2495] * W[200];
-    W[2635] = W[60] * W[2634] + W[465] * W[2229] + W[870] * W[1824] + W[1275] * W[1419] + W[1680] * W[1014]
-            + W[2085] * W[609] + W[2490] * W[204];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_119(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2640] = W[55] * W[2639] + W[460] * W[2234] + W[865] * W[1829] + W[1270] * W[1424] + W[1675] * W[1019]
             + W[2080] * W[614] + W[2485] * W[209];
     W[2645] = W[50] * W[2644] + W[455] * W[2239] + W[860] * W[1834] + W[1265] * W[1429] + W[1670] * W[1024]
@@ -6007,34 +4995,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2115] * W[698] + W[2520] * W[293];
     W[2734] = W[102] * W[2714] + W[507] * W[2309] + W[912] * W[1904] + W[1317] * W[1499] + W[1722] * W[1094]
             + W[2127] * W[689] + W[2532] * W[284];
-    W[2736] = W[97] * W[2718] + W[502] * W[2313] + W[907] * W[1908] + W[1312] * W[1503] + W[1717] * W[1098]
-            + W[2122] * W[693] + W[2527] * W[288];
-    W[2739] = W[92] * W[2723] + W[497] * W[2318] + W[902] * W[1913] + W[1307] * W[1508] + W[1712] * W[1103]
-            + W[2117] * W[698] + W[2522] * W[293];
-    W[2751] = W[110] * W[2750] + W[515] * W[2345] + W[920] * W[1940] + W[1325] * W[1535] + W[1730] * W[1130]
-            + W[2135] * W[725] + W[2540] * W[320];
-    W[2755] = W[105] * W[2754] + W[510] * W[2349] + W[915] * W[1944] + W[1320] * W[1539] + W[1725] * W[1134]
-            + W[2130] * W[729] + W[2535] * W[324];
-    W[2767] = W[112] * W[2750] + W[517] * W[2345] + W[922] * W[1940] + W[1327] * W[1535] + W[1732] * W[1130]
-            + W[2137] * W[725] + W[2542] * W[320];
-    W[2769] = W[107] * W[2754] + W[512] * W[2349] + W[917] * W[1944] + W[1322] * W[1539] + W[1727] * W[1134]
-            + W[2132] * W[729] + W[2537] * W[324];
-    W[2783] = W[115] * W[2782] + W[520] * W[2377] + W[925] * W[1972] + W[1330] * W[1567] + W[1735] * W[1162]
-            + W[2140] * W[757] + W[2545] * W[352];
-    W[2795] = W[117] * W[2782] + W[522] * W[2377] + W[927] * W[1972] + W[1332] * W[1567] + W[1737] * W[1162]
-            + W[2142] * W[757] + W[2547] * W[352];
-    W[2584] = W[151] * W[2583];
-    W[2588] = W[155] * W[2587];
-    W[2593] = W[160] * W[2592];
-    W[2598] = W[165] * W[2597];
-    W[2603] = W[170] * W[2602];
-    W[2608] = W[175] * W[2607];
-    W[2612] = W[151] * W[2611];
-    W[2614] = W[155] * W[2613];
-    W[2617] = W[160] * W[2616];
-    W[2620] = W[165] * W[2619];
-    W[2623] = W[170] * W[2622];
-    W[2626] = W[175] * W[2625];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_121(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2632] = W[199] * W[2631];
     W[2636] = W[203] * W[2635];
     W[2641] = W[208] * W[2640];
@@ -6055,26 +5025,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2695] = W[128] * W[2602];
     W[2698] = W[243] * W[2697];
     W[2700] = W[247] * W[2699];
-    W[2703] = W[252] * W[2702];
-    W[2706] = W[257] * W[2705];
-    W[2709] = W[133] * W[2667];
-    W[2711] = W[128] * W[2622];
-    W[2716] = W[283] * W[2715];
-    W[2720] = W[287] * W[2719];
-    W[2725] = W[292] * W[2724];
-    W[2728] = W[138] * W[2689];
-    W[2730] = W[134] * W[2645];
-    W[2732] = W[129] * W[2597];
-    W[2735] = W[283] * W[2734];
-    W[2737] = W[287] * W[2736];
-    W[2740] = W[292] * W[2739];
-    W[2743] = W[138] * W[2705];
-    W[2745] = W[134] * W[2664];
-    W[2747] = W[129] * W[2619];
-    W[2752] = W[319] * W[2751];
-    W[2756] = W[323] * W[2755];
-    W[2759] = W[142] * W[2724];
-    W[2761] = W[139] * W[2684];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_123(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2763] = W[135] * W[2640];
     W[2765] = W[130] * W[2592];
     W[2768] = W[319] * W[2767];
@@ -6095,26 +5055,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2801] = W[140] * W[2699];
     W[2803] = W[136] * W[2658];
     W[2805] = W[131] * W[2613];
-    W[2807] = W[351] * W[2783];
-    W[2814] = W[351] * W[2795];
-    W[2589] = W[2584] + W[2588];
-    W[2615] = W[2612] + W[2614];
-    W[2637] = W[2632] + W[2636];
-    W[2660] = W[2657] + W[2659];
-    W[2681] = W[2676] + W[2680];
-    W[2701] = W[2698] + W[2700];
-    W[2721] = W[2716] + W[2720];
-    W[2738] = W[2735] + W[2737];
-    W[2757] = W[2752] + W[2756];
-    W[2771] = W[2768] + W[2770];
-    W[2786] = W[2784] - W[2785];
-    W[2798] = W[2796] - W[2797];
-    W[2808] = W[2752] + W[2807];
-    W[2815] = W[2768] + W[2814];
-    W[2594] = W[2589] + W[2593];
-    W[2618] = W[2615] + W[2617];
-    W[2642] = W[2637] + W[2641];
-    W[2663] = W[2660] + W[2662];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_125(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2686] = W[2681] + W[2685];
     W[2704] = W[2701] + W[2703];
     W[2726] = W[2721] + W[2725];
@@ -6135,26 +5085,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2742] = W[3] * W[2741];
     W[2760] = W[2758] - W[2759];
     W[2774] = W[2772] - W[2773];
-    W[2790] = W[2788] - W[2789];
-    W[2802] = W[2800] - W[2801];
-    W[2810] = W[2676] + W[2809];
-    W[2817] = W[2698] + W[2816];
-    W[2604] = W[2599] + W[2603];
-    W[2624] = W[2621] + W[2623];
-    W[2652] = W[2647] + W[2651];
-    W[2669] = W[2666] + W[2668];
-    W[2692] = W[3] * W[2691];
-    W[2708] = W[3] * W[2707];
-    W[2729] = W[2727] - W[2728];
-    W[2744] = W[2742] - W[2743];
-    W[2762] = W[2760] - W[2761];
-    W[2776] = W[2774] - W[2775];
-    W[2792] = W[2790] - W[2791];
-    W[2804] = W[2802] - W[2803];
-    W[2811] = W[2632] + W[2810];
-    W[2818] = W[2657] + W[2817];
-    W[2609] = W[2604] + W[2608];
-    W[2627] = W[2624] + W[2626];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_127(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2653] = W[3] * W[2652];
     W[2670] = W[3] * W[2669];
     W[2694] = W[2692] - W[2693];
@@ -6175,26 +5115,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2712] = W[2710] - W[2711];
     W[2733] = W[2731] - W[2732];
     W[2748] = W[2746] - W[2747];
-    W[2766] = W[2764] - W[2765];
-    W[2780] = W[2778] - W[2779];
-    W[2813] = W[148] * W[2812];
-    W[2820] = W[148] * W[2819];
-    X[196] = X[182] / 7.0;
-    X[197] = X[183] / 7.0;
-    X[198] = X[184] / 7.0;
-    X[199] = X[185] / 7.0;
-    X[200] = X[186] / 7.0;
-    X[201] = X[187] / 7.0;
-    X[202] = X[188] / 7.0;
-    X[203] = X[189] / 7.0;
-    X[204] = X[190] / 7.0;
-    X[205] = X[191] / 7.0;
-    X[206] = X[192] / 7.0;
-    X[207] = X[193] / 7.0;
-    X[208] = X[194] / 7.0;
-    X[209] = X[195] / 7.0;
-    X[210] = -W[2610] / W[120] / 7.0;
-    X[211] = -W[2628] / W[120] / 7.0;
+    return 0;
+}
+
+/* Lines 340 .. 351 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_129(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[212] = -W[2655] / W[121] / 7.0;
     X[213] = -W[2672] / W[121] / 7.0;
     X[214] = -W[2696] / W[122] / 7.0;
@@ -6207,9 +5137,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[221] = -W[2806] / W[125] / 7.0;
     X[222] = -W[2813] / W[126] / 7.0;
     X[223] = -W[2820] / W[126] / 7.0;
-    if (K == 7)
-        goto out;
-    /* order 7 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_130(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2837] = X[196] - X[198];
     W[2842] = X[197] - X[199];
     W[2846] = X[196] - X[200];
@@ -6230,26 +5167,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2892] = X[199] - X[205];
     W[2895] = X[198] - X[206];
     W[2897] = X[199] - X[207];
-    W[2900] = X[198] - X[208];
-    W[2902] = X[199] - X[209];
-    W[2905] = X[200] - X[202];
-    W[2907] = X[201] - X[203];
-    W[2910] = X[200] - X[204];
-    W[2912] = X[201] - X[205];
-    W[2915] = X[200] - X[206];
-    W[2917] = X[201] - X[207];
-    W[2920] = X[200] - X[208];
-    W[2922] = X[201] - X[209];
-    W[2925] = X[202] - X[204];
-    W[2927] = X[203] - X[205];
-    W[2930] = X[202] - X[206];
-    W[2932] = X[203] - X[207];
-    W[2935] = X[202] - X[208];
-    W[2937] = X[203] - X[209];
-    W[2940] = X[204] - X[206];
-    W[2942] = X[205] - X[207];
-    W[2945] = X[204] - X[208];
-    W[2947] = X[205] - X[209];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_132(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2950] = X[206] - X[208];
     W[2952] = X[207] - X[209];
     W[2839] = (W[2] * W[2837] + W[407] * W[2432] + W[812] * W[2027] + W[1217] * W[1622]) * 2.0;
@@ -6270,26 +5197,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2888] = (W[52] * W[2887] + W[457] * W[2482] + W[862] * W[2077] + W[1267] * W[1672]) * 2.0;
     W[2891] = (W[55] * W[2890] + W[460] * W[2485] + W[865] * W[2080] + W[1270] * W[1675]) * 2.0;
     W[2893] = (W[57] * W[2892] + W[462] * W[2487] + W[867] * W[2082] + W[1272] * W[1677]) * 2.0;
-    W[2896] = (W[60] * W[2895] + W[465] * W[2490] + W[870] * W[2085] + W[1275] * W[1680]) * 2.0;
-    W[2898] = (W[62] * W[2897] + W[467] * W[2492] + W[872] * W[2087] + W[1277] * W[1682]) * 2.0;
-    W[2901] = (W[65] * W[2900] + W[470] * W[2495] + W[875] * W[2090] + W[1280] * W[1685]) * 2.0;
-    W[2903] = (W[67] * W[2902] + W[472] * W[2497] + W[877] * W[2092] + W[1282] * W[1687]) * 2.0;
-    W[2906] = (W[70] * W[2905] + W[475] * W[2500] + W[880] * W[2095] + W[1285] * W[1690]) * 2.0;
-    W[2908] = (W[72] * W[2907] + W[477] * W[2502] + W[882] * W[2097] + W[1287] * W[1692]) * 2.0;
-    W[2911] = (W[75] * W[2910] + W[480] * W[2505] + W[885] * W[2100] + W[1290] * W[1695]) * 2.0;
-    W[2913] = (W[77] * W[2912] + W[482] * W[2507] + W[887] * W[2102] + W[1292] * W[1697]) * 2.0;
-    W[2916] = (W[80] * W[2915] + W[485] * W[2510] + W[890] * W[2105] + W[1295] * W[1700]) * 2.0;
-    W[2918] = (W[82] * W[2917] + W[487] * W[2512] + W[892] * W[2107] + W[1297] * W[1702]) * 2.0;
-    W[2921] = (W[85] * W[2920] + W[490] * W[2515] + W[895] * W[2110] + W[1300] * W[1705]) * 2.0;
-    W[2923] = (W[87] * W[2922] + W[492] * W[2517] + W[897] * W[2112] + W[1302] * W[1707]) * 2.0;
-    W[2926] = (W[90] * W[2925] + W[495] * W[2520] + W[900] * W[2115] + W[1305] * W[1710]) * 2.0;
-    W[2928] = (W[92] * W[2927] + W[497] * W[2522] + W[902] * W[2117] + W[1307] * W[1712]) * 2.0;
-    W[2931] = (W[95] * W[2930] + W[500] * W[2525] + W[905] * W[2120] + W[1310] * W[1715]) * 2.0;
-    W[2933] = (W[97] * W[2932] + W[502] * W[2527] + W[907] * W[2122] + W[1312] * W[1717]) * 2.0;
-    W[2936] = (W[100] * W[2935] + W[505] * W[2530] + W[910] * W[2125] + W[1315] * W[1720]) * 2.0;
-    W[2938] = (W[102] * W[2937] + W[507] * W[2532] + W[912] * W[2127] + W[1317] * W[1722]) * 2.0;
-    W[2941] = (W[105] * W[2940] + W[510] * W[2535] + W[915] * W[2130] + W[1320] * W[1725]) * 2.0;
-    W[2943] = (W[107] * W[2942] + W[512] * W[2537] + W[917] * W[2132] + W[1322] * W[1727]) * 2.0;
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_134(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2946] = (W[110] * W[2945] + W[515] * W[2540] + W[920] * W[2135] + W[1325] * W[1730]) * 2.0;
     W[2948] = (W[112] * W[2947] + W[517] * W[2542] + W[922] * W[2137] + W[1327] * W[1732]) * 2.0;
     W[2951] = (W[115] * W[2950] + W[520] * W[2545] + W[925] * W[2140] + W[1330] * W[1735]) * 2.0;
@@ -6310,41 +5227,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2919] = W[2916] + W[2918];
     W[2924] = W[2921] + W[2923];
     W[2929] = W[2926] + W[2928];
-    W[2934] = W[2931] + W[2933];
-    W[2939] = W[2936] + W[2938];
-    W[2944] = W[2941] + W[2943];
-    W[2949] = W[2946] + W[2948];
-    W[2954] = W[2951] + W[2953];
-    W[2987] = (-10.5 * W[2879] * W[152] - 10.0 * W[2474] * W[557] - 9.5 * W[2069] * W[962] - 9.0 * W[1664] * W[1367]
-            - 8.5 * W[1259] * W[1772] - 8.0 * W[854] * W[2177] - 7.5 * W[449] * W[2582]) / (7.0 * W[44]);
-    W[2991] = (-10.5 * W[2872] * W[156] - 10.0 * W[2467] * W[561] - 9.5 * W[2062] * W[966] - 9.0 * W[1657] * W[1371]
-            - 8.5 * W[1252] * W[1776] - 8.0 * W[847] * W[2181] - 7.5 * W[442] * W[2586]) / (7.0 * W[37]);
-    W[2996] = (-10.5 * W[2865] * W[161] - 10.0 * W[2460] * W[566] - 9.5 * W[2055] * W[971] - 9.0 * W[1650] * W[1376]
-            - 8.5 * W[1245] * W[1781] - 8.0 * W[840] * W[2186] - 7.5 * W[435] * W[2591]) / (7.0 * W[30]);
-    W[3001] = (-10.5 * W[2858] * W[166] - 10.0 * W[2453] * W[571] - 9.5 * W[2048] * W[976] - 9.0 * W[1643] * W[1381]
-            - 8.5 * W[1238] * W[1786] - 8.0 * W[833] * W[2191] - 7.5 * W[428] * W[2596]) / (7.0 * W[23]);
-    W[3006] = (-10.5 * W[2851] * W[171] - 10.0 * W[2446] * W[576] - 9.5 * W[2041] * W[981] - 9.0 * W[1636] * W[1386]
-            - 8.5 * W[1231] * W[1791] - 8.0 * W[826] * W[2196] - 7.5 * W[421] * W[2601]) / (7.0 * W[16]);
-    W[3011] = (-10.5 * W[2844] * W[176] - 10.0 * W[2439] * W[581] - 9.5 * W[2034] * W[986] - 9.0 * W[1629] * W[1391]
-            - 8.5 * W[1224] * W[1796] - 8.0 * W[819] * W[2201] - 7.5 * W[414] * W[2606]) / (7.0 * W[9]);
-    W[3035] = (-10.5 * W[2904] * W[200] - 10.0 * W[2499] * W[605] - 9.5 * W[2094] * W[1010] - 9.0 * W[1689] * W[1415]
-            - 8.5 * W[1284] * W[1820] - 8.0 * W[879] * W[2225] - 7.5 * W[474] * W[2630]) / (7.0 * W[69]);
-    W[3039] = (-10.5 * W[2899] * W[204] - 10.0 * W[2494] * W[609] - 9.5 * W[2089] * W[1014] - 9.0 * W[1684] * W[1419]
-            - 8.5 * W[1279] * W[1824] - 8.0 * W[874] * W[2229] - 7.5 * W[469] * W[2634]) / (7.0 * W[64]);
-    W[3044] = (-10.5 * W[2894] * W[209] - 10.0 * W[2489] * W[614] - 9.5 * W[2084] * W[1019] - 9.0 * W[1679] * W[1424]
-            - 8.5 * W[1274] * W[1829] - 8.0 * W[869] * W[2234] - 7.5 * W[464] * W[2639]) / (7.0 * W[59]);
-    W[3049] = (-10.5 * W[2889] * W[214] - 10.0 * W[2484] * W[619] - 9.5 * W[2079] * W[1024] - 9.0 * W[1674] * W[1429]
-            - 8.5 * W[1269] * W[1834] - 8.0 * W[864] * W[2239] - 7.5 * W[459] * W[2644]) / (7.0 * W[54]);
-    W[3054] = (-10.5 * W[2884] * W[219] - 10.0 * W[2479] * W[624] - 9.5 * W[2074] * W[1029] - 9.0 * W[1669] * W[1434]
-            - 8.5 * W[1264] * W[1839] - 8.0 * W[859] * W[2244] - 7.5 * W[454] * W[2649]) / (7.0 * W[49]);
-    W[3079] = (-10.5 * W[2924] * W[244] - 10.0 * W[2519] * W[649] - 9.5 * W[2114] * W[1054] - 9.0 * W[1709] * W[1459]
-            - 8.5 * W[1304] * W[1864] - 8.0 * W[899] * W[2269] - 7.5 * W[494] * W[2674]) / (7.0 * W[89]);
-    W[3083] = (-10.5 * W[2919] * W[248] - 10.0 * W[2514] * W[653] - 9.5 * W[2109] * W[1058] - 9.0 * W[1704] * W[1463]
-            - 8.5 * W[1299] * W[1868] - 8.0 * W[894] * W[2273] - 7.5 * W[489] * W[2678]) / (7.0 * W[84]);
-    W[3088] = (-10.5 * W[2914] * W[253] - 10.0 * W[2509] * W[658] - 9.5 * W[2104] * W[1063] - 9.0 * W[1699] * W[1468]
-            - 8.5 * W[1294] * W[1873] - 8.0 * W[889] * W[2278] - 7.5 * W[484] * W[2683]) / (7.0 * W[79]);
-    W[3093] = (-10.5 * W[2909] * W[258] - 10.0 * W[2504] * W[663] - 9.5 * W[2099] * W[1068] - 9.0 * W[1694] * W[1473]
-            - 8.5 * W[1289] * W[1878] - 8.0 * W[884] * W[2283] - 7.5 * W[479] * W[2688]) / (7.0 * W[74]);
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_136(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3119] = (-10.5 * W[2939] * W[284] - 10.0 * W[2534] * W[689] - 9.5 * W[2129] * W[1094] - 9.0 * W[1724] * W[1499]
             - 8.5 * W[1319] * W[1904] - 8.0 * W[914] * W[2309] - 7.5 * W[509] * W[2714]) / (7.0 * W[104]);
     W[3123] = (-10.5 * W[2934] * W[288] - 10.0 * W[2529] * W[693] - 9.5 * W[2124] * W[1098] - 9.0 * W[1719] * W[1503]
@@ -6385,46 +5277,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2090] * W[1010] + W[2495] * W[605] + W[2900] * W[200];
     W[3040] = W[60] * W[3039] + W[465] * W[2634] + W[870] * W[2229] + W[1275] * W[1824] + W[1680] * W[1419]
             + W[2085] * W[1014] + W[2490] * W[609] + W[2895] * W[204];
-    W[3045] = W[55] * W[3044] + W[460] * W[2639] + W[865] * W[2234] + W[1270] * W[1829] + W[1675] * W[1424]
-            + W[2080] * W[1019] + W[2485] * W[614] + W[2890] * W[209];
-    W[3050] = W[50] * W[3049] + W[455] * W[2644] + W[860] * W[2239] + W[1265] * W[1834] + W[1670] * W[1429]
-            + W[2075] * W[1024] + W[2480] * W[619] + W[2885] * W[214];
-    W[3055] = W[45] * W[3054] + W[450] * W[2649] + W[855] * W[2244] + W[1260] * W[1839] + W[1665] * W[1434]
-            + W[2070] * W[1029] + W[2475] * W[624] + W[2880] * W[219];
-    W[3061] = W[67] * W[3035] + W[472] * W[2630] + W[877] * W[2225] + W[1282] * W[1820] + W[1687] * W[1415]
-            + W[2092] * W[1010] + W[2497] * W[605] + W[2902] * W[200];
-    W[3063] = W[62] * W[3039] + W[467] * W[2634] + W[872] * W[2229] + W[1277] * W[1824] + W[1682] * W[1419]
-            + W[2087] * W[1014] + W[2492] * W[609] + W[2897] * W[204];
-    W[3066] = W[57] * W[3044] + W[462] * W[2639] + W[867] * W[2234] + W[1272] * W[1829] + W[1677] * W[1424]
-            + W[2082] * W[1019] + W[2487] * W[614] + W[2892] * W[209];
-    W[3069] = W[52] * W[3049] + W[457] * W[2644] + W[862] * W[2239] + W[1267] * W[1834] + W[1672] * W[1429]
-            + W[2077] * W[1024] + W[2482] * W[619] + W[2887] * W[214];
-    W[3072] = W[47] * W[3054] + W[452] * W[2649] + W[857] * W[2244] + W[1262] * W[1839] + W[1667] * W[1434]
-            + W[2072] * W[1029] + W[2477] * W[624] + W[2882] * W[219];
-    W[3080] = W[85] * W[3079] + W[490] * W[2674] + W[895] * W[2269] + W[1300] * W[1864] + W[1705] * W[1459]
-            + W[2110] * W[1054] + W[2515] * W[649] + W[2920] * W[244];
-    W[3084] = W[80] * W[3083] + W[485] * W[2678] + W[890] * W[2273] + W[1295] * W[1868] + W[1700] * W[1463]
-            + W[2105] * W[1058] + W[2510] * W[653] + W[2915] * W[248];
-    W[3089] = W[75] * W[3088] + W[480] * W[2683] + W[885] * W[2278] + W[1290] * W[1873] + W[1695] * W[1468]
-            + W[2100] * W[1063] + W[2505] * W[658] + W[2910] * W[253];
-    W[3094] = W[70] * W[3093] + W[475] * W[2688] + W[880] * W[2283] + W[1285] * W[1878] + W[1690] * W[1473]
-            + W[2095] * W[1068] + W[2500] * W[663] + W[2905] * W[258];
-    W[3102] = W[87] * W[3079] + W[492] * W[2674] + W[897] * W[2269] + W[1302] * W[1864] + W[1707] * W[1459]
-            + W[2112] * W[1054] + W[2517] * W[649] + W[2922] * W[244];
-    W[3104] = W[82] * W[3083] + W[487] * W[2678] + W[892] * W[2273] + W[1297] * W[1868] + W[1702] * W[1463]
-            + W[2107] * W[1058] + W[2512] * W[653] + W[2917] * W[248];
-    W[3107] = W[77] * W[3088] + W[482] * W[2683] + W[887] * W[2278] + W[1292] * W[1873] + W[1697] * W[1468]
-            + W[2102] * W[1063] + W[2507] * W[658] + W[2912] * W[253];
-    W[3110] = W[72] * W[3093] + W[477] * W[2688] + W[882] * W[2283] + W[1287] * W[1878] + W[1692] * W[1473]
-            + W[2097] * W[1068] + W[2502] * W[663] + W[2907] * W[258];
-    W[3120] = W[100] * W[3119] + W[505] * W[2714] + W[910] * W[2309] + W[1315] * W[1904] + W[1720] * W[1499]
-            + W[2125] * W[1094] + W[2530] * W[689] + W[2935] * W[284];
-    W[3124] = W[95] * W[3123] + W[500] * W[2718] + W[905] * W[2313] + W[1310] * W[1908] + W[1715] * W[1503]
-            + W[2120] * W[1098] + W[2525] * W[693] + W[2930] * W[288];
-    W[3129] = W[90] * W[3128] + W[495] * W[2723] + W[900] * W[2318] + W[1305] * W[1913] + W[1710] * W[1508]
-            + W[2115] * W[1103] + W[2520] * W[698] + W[2925] * W[293];
-    W[3139] = W[102] * W[3119] + W[507] * W[2714] + W[912] * W[2309] + W[1317] * W[1904] + W[1722] * W[1499]
-            + W[2127] * W[1094] + W[2532] * W[689] + W[2937] * W[284];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_138(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3141] = W[97] * W[3123] + W[502] * W[2718] + W[907] * W[2313] + W[1312] * W[1908] + W[1717] * W[1503]
             + W[2122] * W[1098] + W[2527] * W[693] + W[2932] * W[288];
     W[3144] = W[92] * W[3128] + W[497] * W[2723] + W[902] * W[2318] + W[1307] * W[1913] + W[1712] * W[1508]
@@ -6453,26 +5315,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3025] = W[165] * W[3024];
     W[3028] = W[170] * W[3027];
     W[3031] = W[175] * W[3030];
-    W[3037] = W[199] * W[3036];
-    W[3041] = W[203] * W[3040];
-    W[3046] = W[208] * W[3045];
-    W[3051] = W[213] * W[3050];
-    W[3056] = W[218] * W[3055];
-    W[3059] = W[127] * W[3012];
-    W[3062] = W[199] * W[3061];
-    W[3064] = W[203] * W[3063];
-    W[3067] = W[208] * W[3066];
-    W[3070] = W[213] * W[3069];
-    W[3073] = W[218] * W[3072];
-    W[3076] = W[127] * W[3030];
-    W[3081] = W[243] * W[3080];
-    W[3085] = W[247] * W[3084];
-    W[3090] = W[252] * W[3089];
-    W[3095] = W[257] * W[3094];
-    W[3098] = W[133] * W[3055];
-    W[3100] = W[128] * W[3007];
-    W[3103] = W[243] * W[3102];
-    W[3105] = W[247] * W[3104];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_140(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3108] = W[252] * W[3107];
     W[3111] = W[257] * W[3110];
     W[3114] = W[133] * W[3072];
@@ -6493,26 +5345,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3161] = W[323] * W[3160];
     W[3164] = W[142] * W[3129];
     W[3166] = W[139] * W[3089];
-    W[3168] = W[135] * W[3045];
-    W[3170] = W[130] * W[2997];
-    W[3173] = W[319] * W[3172];
-    W[3175] = W[323] * W[3174];
-    W[3178] = W[142] * W[3144];
-    W[3180] = W[139] * W[3107];
-    W[3182] = W[135] * W[3066];
-    W[3184] = W[130] * W[3021];
-    W[3189] = W[147] * W[3188];
-    W[3190] = W[145] * W[3160];
-    W[3192] = W[143] * W[3124];
-    W[3194] = W[140] * W[3084];
-    W[3196] = W[136] * W[3040];
-    W[3198] = W[131] * W[2992];
-    W[3201] = W[147] * W[3200];
-    W[3202] = W[145] * W[3174];
-    W[3204] = W[143] * W[3141];
-    W[3206] = W[140] * W[3104];
-    W[3208] = W[136] * W[3063];
-    W[3210] = W[131] * W[3018];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_142(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3212] = W[351] * W[3188];
     W[3219] = W[351] * W[3200];
     W[2994] = W[2989] + W[2993];
@@ -6533,26 +5375,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3023] = W[3020] + W[3022];
     W[3047] = W[3042] + W[3046];
     W[3068] = W[3065] + W[3067];
-    W[3091] = W[3086] + W[3090];
-    W[3109] = W[3106] + W[3108];
-    W[3131] = W[3126] + W[3130];
-    W[3146] = W[3143] + W[3145];
-    W[3163] = W[3] * W[3162];
-    W[3177] = W[3] * W[3176];
-    W[3193] = W[3191] - W[3192];
-    W[3205] = W[3203] - W[3204];
-    W[3214] = W[3121] + W[3213];
-    W[3221] = W[3140] + W[3220];
-    W[3004] = W[2999] + W[3003];
-    W[3026] = W[3023] + W[3025];
-    W[3052] = W[3047] + W[3051];
-    W[3071] = W[3068] + W[3070];
-    W[3096] = W[3091] + W[3095];
-    W[3112] = W[3109] + W[3111];
-    W[3132] = W[3] * W[3131];
-    W[3147] = W[3] * W[3146];
-    W[3165] = W[3163] - W[3164];
-    W[3179] = W[3177] - W[3178];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_144(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3195] = W[3193] - W[3194];
     W[3207] = W[3205] - W[3206];
     W[3215] = W[3081] + W[3214];
@@ -6573,26 +5405,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3223] = W[3062] + W[3222];
     W[3014] = W[3009] + W[3013];
     W[3032] = W[3029] + W[3031];
-    W[3058] = W[3] * W[3057];
-    W[3075] = W[3] * W[3074];
-    W[3099] = W[3097] - W[3098];
-    W[3115] = W[3113] - W[3114];
-    W[3136] = W[3134] - W[3135];
-    W[3151] = W[3149] - W[3150];
-    W[3169] = W[3167] - W[3168];
-    W[3183] = W[3181] - W[3182];
-    W[3199] = W[3197] - W[3198];
-    W[3211] = W[3209] - W[3210];
-    W[3217] = W[2989] + W[3216];
-    W[3224] = W[3017] + W[3223];
-    W[3015] = W[3] * W[3014];
-    W[3033] = W[3] * W[3032];
-    W[3060] = W[3058] - W[3059];
-    W[3077] = W[3075] - W[3076];
-    W[3101] = W[3099] - W[3100];
-    W[3117] = W[3115] - W[3116];
-    W[3138] = W[3136] - W[3137];
-    W[3153] = W[3151] - W[3152];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_146(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3171] = W[3169] - W[3170];
     W[3185] = W[3183] - W[3184];
     W[3218] = W[148] * W[3217];
@@ -6613,21 +5435,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[237] = X[223] / 8.0;
     X[238] = -W[3015] / W[120] / 8.0;
     X[239] = -W[3033] / W[120] / 8.0;
-    X[240] = -W[3060] / W[121] / 8.0;
-    X[241] = -W[3077] / W[121] / 8.0;
-    X[242] = -W[3101] / W[122] / 8.0;
-    X[243] = -W[3117] / W[122] / 8.0;
-    X[244] = -W[3138] / W[123] / 8.0;
-    X[245] = -W[3153] / W[123] / 8.0;
-    X[246] = -W[3171] / W[124] / 8.0;
-    X[247] = -W[3185] / W[124] / 8.0;
-    X[248] = -W[3199] / W[125] / 8.0;
-    X[249] = -W[3211] / W[125] / 8.0;
-    X[250] = -W[3218] / W[126] / 8.0;
-    X[251] = -W[3225] / W[126] / 8.0;
-    if (K == 8)
-        goto out;
-    /* order 8 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_148(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3242] = X[224] - X[226];
     W[3247] = X[225] - X[227];
     W[3251] = X[224] - X[228];
@@ -6648,26 +5465,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3297] = X[227] - X[233];
     W[3300] = X[226] - X[234];
     W[3302] = X[227] - X[235];
-    W[3305] = X[226] - X[236];
-    W[3307] = X[227] - X[237];
-    W[3310] = X[228] - X[230];
-    W[3312] = X[229] - X[231];
-    W[3315] = X[228] - X[232];
-    W[3317] = X[229] - X[233];
-    W[3320] = X[228] - X[234];
-    W[3322] = X[229] - X[235];
-    W[3325] = X[228] - X[236];
-    W[3327] = X[229] - X[237];
-    W[3330] = X[230] - X[232];
-    W[3332] = X[231] - X[233];
-    W[3335] = X[230] - X[234];
-    W[3337] = X[231] - X[235];
-    W[3340] = X[230] - X[236];
-    W[3342] = X[231] - X[237];
-    W[3345] = X[232] - X[234];
-    W[3347] = X[233] - X[235];
-    W[3350] = X[232] - X[236];
-    W[3352] = X[233] - X[237];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_150(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3355] = X[234] - X[236];
     W[3357] = X[235] - X[237];
     W[3244] = (W[2] * W[3242] + W[407] * W[2837] + W[812] * W[2432] + W[1217] * W[2027]) * 2.0
@@ -6706,46 +5513,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1675] * W[1675];
     W[3298] = (W[57] * W[3297] + W[462] * W[2892] + W[867] * W[2487] + W[1272] * W[2082]) * 2.0
             + W[1677] * W[1677];
-    W[3301] = (W[60] * W[3300] + W[465] * W[2895] + W[870] * W[2490] + W[1275] * W[2085]) * 2.0
-            + W[1680] * W[1680];
-    W[3303] = (W[62] * W[3302] + W[467] * W[2897] + W[872] * W[2492] + W[1277] * W[2087]) * 2.0
-            + W[1682] * W[1682];
-    W[3306] = (W[65] * W[3305] + W[470] * W[2900] + W[875] * W[2495] + W[1280] * W[2090]) * 2.0
-            + W[1685] * W[1685];
-    W[3308] = (W[67] * W[3307] + W[472] * W[2902] + W[877] * W[2497] + W[1282] * W[2092]) * 2.0
-            + W[1687] * W[1687];
-    W[3311] = (W[70] * W[3310] + W[475] * W[2905] + W[880] * W[2500] + W[1285] * W[2095]) * 2.0
-            + W[1690] * W[1690];
-    W[3313] = (W[72] * W[3312] + W[477] * W[2907] + W[882] * W[2502] + W[1287] * W[2097]) * 2.0
-            + W[1692] * W[1692];
-    W[3316] = (W[75] * W[3315] + W[480] * W[2910] + W[885] * W[2505] + W[1290] * W[2100]) * 2.0
-            + W[1695] * W[1695];
-    W[3318] = (W[77] * W[3317] + W[482] * W[2912] + W[887] * W[2507] + W[1292] * W[2102]) * 2.0
-            + W[1697] * W[1697];
-    W[3321] = (W[80] * W[3320] + W[485] * W[2915] + W[890] * W[2510] + W[1295] * W[2105]) * 2.0
-            + W[1700] * W[1700];
-    W[3323] = (W[82] * W[3322] + W[487] * W[2917] + W[892] * W[2512] + W[1297] * W[2107]) * 2.0
-            + W[1702] * W[1702];
-    W[3326] = (W[85] * W[3325] + W[490] * W[2920] + W[895] * W[2515] + W[1300] * W[2110]) * 2.0
-            + W[1705] * W[1705];
-    W[3328] = (W[87] * W[3327] + W[492] * W[2922] + W[897] * W[2517] + W[1302] * W[2112]) * 2.0
-            + W[1707] * W[1707];
-    W[3331] = (W[90] * W[3330] + W[495] * W[2925] + W[900] * W[2520] + W[1305] * W[2115]) * 2.0
-            + W[1710] * W[1710];
-    W[3333] = (W[92] * W[3332] + W[497] * W[2927] + W[902] * W[2522] + W[1307] * W[2117]) * 2.0
-            + W[1712] * W[1712];
-    W[3336] = (W[95] * W[3335] + W[500] * W[2930] + W[905] * W[2525] + W[1310] * W[2120]) * 2.0
-            + W[1715] * W[1715];
-    W[3338] = (W[97] * W[3337] + W[502] * W[2932] + W[907] * W[2527] + W[1312] * W[2122]) * 2.0
-            + W[1717] * W[1717];
-    W[3341] = (W[100] * W[3340] + W[505] * W[2935] + W[910] * W[2530] + W[1315] * W[2125]) * 2.0
-            + W[1720] * W[1720];
-    W[3343] = (W[102] * W[3342] + W[507] * W[2937] + W[912] * W[2532] + W[1317] * W[2127]) * 2.0
-            + W[1722] * W[1722];
-    W[3346] = (W[105] * W[3345] + W[510] * W[2940] + W[915] * W[2535] + W[1320] * W[2130]) * 2.0
-            + W[1725] * W[1725];
-    W[3348] = (W[107] * W[3347] + W[512] * W[2942] + W[917] * W[2537] + W[1322] * W[2132]) * 2.0
-            + W[1727] * W[1727];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_152(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3351] = (W[110] * W[3350] + W[515] * W[2945] + W[920] * W[2540] + W[1325] * W[2135]) * 2.0
             + W[1730] * W[1730];
     W[3353] = (W[112] * W[3352] + W[517] * W[2947] + W[922] * W[2542] + W[1327] * W[2137]) * 2.0
@@ -6770,41 +5547,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3324] = W[3321] + W[3323];
     W[3329] = W[3326] + W[3328];
     W[3334] = W[3331] + W[3333];
-    W[3339] = W[3336] + W[3338];
-    W[3344] = W[3341] + W[3343];
-    W[3349] = W[3346] + W[3348];
-    W[3354] = W[3351] + W[3353];
-    W[3359] = W[3356] + W[3358];
-    W[3392] = (-12.0 * W[3284] * W[152] - 11.5 * W[2879] * W[557] - 11.0 * W[2474] * W[962] - 10.5 * W[2069] * W[1367]
-            - 10.0 * W[1664] * W[1772] - 9.5 * W[1259] * W[2177] - 9.0 * W[854] * W[2582] - 8.5 * W[449] * W[2987]) / (8.0 * W[44]);
-    W[3396] = (-12.0 * W[3277] * W[156] - 11.5 * W[2872] * W[561] - 11.0 * W[2467] * W[966] - 10.5 * W[2062] * W[1371]
-            - 10.0 * W[1657] * W[1776] - 9.5 * W[1252] * W[2181] - 9.0 * W[847] * W[2586] - 8.5 * W[442] * W[2991]) / (8.0 * W[37]);
-    W[3401] = (-12.0 * W[3270] * W[161] - 11.5 * W[2865] * W[566] - 11.0 * W[2460] * W[971] - 10.5 * W[2055] * W[1376]
-            - 10.0 * W[1650] * W[1781] - 9.5 * W[1245] * W[2186] - 9.0 * W[840] * W[2591] - 8.5 * W[435] * W[2996]) / (8.0 * W[30]);
-    W[3406] = (-12.0 * W[3263] * W[166] - 11.5 * W[2858] * W[571] - 11.0 * W[2453] * W[976] - 10.5 * W[2048] * W[1381]
-            - 10.0 * W[1643] * W[1786] - 9.5 * W[1238] * W[2191] - 9.0 * W[833] * W[2596] - 8.5 * W[428] * W[3001]) / (8.0 * W[23]);
-    W[3411] = (-12.0 * W[3256] * W[171] - 11.5 * W[2851] * W[576] - 11.0 * W[2446] * W[981] - 10.5 * W[2041] * W[1386]
-            - 10.0 * W[1636] * W[1791] - 9.5 * W[1231] * W[2196] - 9.0 * W[826] * W[2601] - 8.5 * W[421] * W[3006]) / (8.0 * W[16]);
-    W[3416] = (-12.0 * W[3249] * W[176] - 11.5 * W[2844] * W[581] - 11.0 * W[2439] * W[986] - 10.5 * W[2034] * W[1391]
-            - 10.0 * W[1629] * W[1796] - 9.5 * W[1224] * W[2201] - 9.0 * W[819] * W[2606] - 8.5 * W[414] * W[3011]) / (8.0 * W[9]);
-    W[3440] = (-12.0 * W[3309] * W[200] - 11.5 * W[2904] * W[605] - 11.0 * W[2499] * W[1010] - 10.5 * W[2094] * W[1415]
-            - 10.0 * W[1689] * W[1820] - 9.5 * W[1284] * W[2225] - 9.0 * W[879] * W[2630] - 8.5 * W[474] * W[3035]) / (8.0 * W[69]);
-    W[3444] = (-12.0 * W[3304] * W[204] - 11.5 * W[2899] * W[609] - 11.0 * W[2494] * W[1014] - 10.5 * W[2089] * W[1419]
-            - 10.0 * W[1684] * W[1824] - 9.5 * W[1279] * W[2229] - 9.0 * W[874] * W[2634] - 8.5 * W[469] * W[3039]) / (8.0 * W[64]);
-    W[3449] = (-12.0 * W[3299] * W[209] - 11.5 * W[2894] * W[614] - 11.0 * W[2489] * W[1019] - 10.5 * W[2084] * W[1424]
-            - 10.0 * W[1679] * W[1829] - 9.5 * W[1274] * W[2234] - 9.0 * W[869] * W[2639] - 8.5 * W[464] * W[3044]) / (8.0 * W[59]);
-    W[3454] = (-12.0 * W[3294] * W[214] - 11.5 * W[2889] * W[619] - 11.0 * W[2484] * W[1024] - 10.5 * W[2079] * W[1429]
-            - 10.0 * W[1674] * W[1834] - 9.5 * W[1269] * W[2239] - 9.0 * W[864] * W[2644] - 8.5 * W[459] * W[3049]) / (8.0 * W[54]);
-    W[3459] = (-12.0 * W[3289] * W[219] - 11.5 * W[2884] * W[624] - 11.0 * W[2479] * W[1029] - 10.5 * W[2074] * W[1434]
-            - 10.0 * W[1669] * W[1839] - 9.5 * W[1264] * W[2244] - 9.0 * W[859] * W[2649] - 8.5 * W[454] * W[3054]) / (8.0 * W[49]);
-    W[3484] = (-12.0 * W[3329] * W[244] - 11.5 * W[2924] * W[649] - 11.0 * W[2519] * W[1054] - 10.5 * W[2114] * W[1459]
-            - 10.0 * W[1709] * W[1864] - 9.5 * W[1304] * W[2269] - 9.0 * W[899] * W[2674] - 8.5 * W[494] * W[3079]) / (8.0 * W[89]);
-    W[3488] = (-12.0 * W[3324] * W[248] - 11.5 * W[2919] * W[653] - 11.0 * W[2514] * W[1058] - 10.5 * W[2109] * W[1463]
-            - 10.0 * W[1704] * W[1868] - 9.5 * W[1299] * W[2273] - 9.0 * W[894] * W[2678] - 8.5 * W[489] * W[3083]) / (8.0 * W[84]);
-    W[3493] = (-12.0 * W[3319] * W[253] - 11.5 * W[2914] * W[658] - 11.0 * W[2509] * W[1063] - 10.5 * W[2104] * W[1468]
-            - 10.0 * W[1699] * W[1873] - 9.5 * W[1294] * W[2278] - 9.0 * W[889] * W[2683] - 8.5 * W[484] * W[3088]) / (8.0 * W[79]);
-    W[3498] = (-12.0 * W[3314] * W[258] - 11.5 * W[2909] * W[663] - 11.0 * W[2504] * W[1068] - 10.5 * W[2099] * W[1473]
-            - 10.0 * W[1694] * W[1878] - 9.5 * W[1289] * W[2283] - 9.0 * W[884] * W[2688] - 8.5 * W[479] * W[3093]) / (8.0 * W[74]);
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_154(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3524] = (-12.0 * W[3344] * W[284] - 11.5 * W[2939] * W[689] - 11.0 * W[2534] * W[1094] - 10.5 * W[2129] * W[1499]
             - 10.0 * W[1724] * W[1904] - 9.5 * W[1319] * W[2309] - 9.0 * W[914] * W[2714] - 8.5 * W[509] * W[3119]) / (8.0 * W[104]);
     W[3528] = (-12.0 * W[3339] * W[288] - 11.5 * W[2934] * W[693] - 11.0 * W[2529] * W[1098] - 10.5 * W[2124] * W[1503]
@@ -6845,46 +5597,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2090] * W[1415] + W[2495] * W[1010] + W[2900] * W[605] + W[3305] * W[200];
     W[3445] = W[60] * W[3444] + W[465] * W[3039] + W[870] * W[2634] + W[1275] * W[2229] + W[1680] * W[1824]
             + W[2085] * W[1419] + W[2490] * W[1014] + W[2895] * W[609] + W[3300] * W[204];
-    W[3450] = W[55] * W[3449] + W[460] * W[3044] + W[865] * W[2639] + W[1270] * W[2234] + W[1675] * W[1829]
-            + W[2080] * W[1424] + W[2485] * W[1019] + W[2890] * W[614] + W[3295] * W[209];
-    W[3455] = W[50] * W[3454] + W[455] * W[3049] + W[860] * W[2644] + W[1265] * W[2239] + W[1670] * W[1834]
-            + W[2075] * W[1429] + W[2480] * W[1024] + W[2885] * W[619] + W[3290] * W[214];
-    W[3460] = W[45] * W[3459] + W[450] * W[3054] + W[855] * W[2649] + W[1260] * W[2244] + W[1665] * W[1839]
-            + W[2070] * W[1434] + W[2475] * W[1029] + W[2880] * W[624] + W[3285] * W[219];
-    W[3466] = W[67] * W[3440] + W[472] * W[3035] + W[877] * W[2630] + W[1282] * W[2225] + W[1687] * W[1820]
-            + W[2092] * W[1415] + W[2497] * W[1010] + W[2902] * W[605] + W[3307] * W[200];
-    W[3468] = W[62] * W[3444] + W[467] * W[3039] + W[872] * W[2634] + W[1277] * W[2229] + W[1682] * W[1824]
-            + W[2087] * W[1419] + W[2492] * W[1014] + W[2897] * W[609] + W[3302] * W[204];
-    W[3471] = W[57] * W[3449] + W[462] * W[3044] + W[867] * W[2639] + W[1272] * W[2234] + W[1677] * W[1829]
-            + W[2082] * W[1424] + W[2487] * W[1019] + W[2892] * W[614] + W[3297] * W[209];
-    W[3474] = W[52] * W[3454] + W[457] * W[3049] + W[862] * W[2644] + W[1267] * W[2239] + W[1672] * W[1834]
-            + W[2077] * W[1429] + W[2482] * W[1024] + W[2887] * W[619] + W[3292] * W[214];
-    W[3477] = W[47] * W[3459] + W[452] * W[3054] + W[857] * W[2649] + W[1262] * W[2244] + W[1667] * W[1839]
-            + W[2072] * W[1434] + W[2477] * W[1029] + W[2882] * W[624] + W[3287] * W[219];
-    W[3485] = W[85] * W[3484] + W[490] * W[3079] + W[895] * W[2674] + W[1300] * W[2269] + W[1705] * W[1864]
-            + W[2110] * W[1459] + W[2515] * W[1054] + W[2920] * W[649] + W[3325] * W[244];
-    W[3489] = W[80] * W[3488] + W[485] * W[3083] + W[890] * W[2678] + W[1295] * W[2273] + W[1700] * W[1868]
-            + W[2105] * W[1463] + W[2510] * W[1058] + W[2915] * W[653] + W[3320] * W[248];
-    W[3494] = W[75] * W[3493] + W[480] * W[3088] + W[885] * W[2683] + W[1290] * W[2278] + W[1695] * W[1873]
-            + W[2100] * W[1468] + W[2505] * W[1063] + W[2910] * W[658] + W[3315] * W[253];
-    W[3499] = W[70] * W[3498] + W[475] * W[3093] + W[880] * W[2688] + W[1285] * W[2283] + W[1690] * W[1878]
-            + W[2095] * W[1473] + W[2500] * W[1068] + W[2905] * W[663] + W[3310] * W[258];
-    W[3507] = W[87] * W[3484] + W[492] * W[3079] + W[897] * W[2674] + W[1302] * W[2269] + W[1707] * W[1864]
-            + W[2112] * W[1459] + W[2517] * W[1054] + W[2922] * W[649] + W[3327] * W[244];
-    W[3509] = W[82] * W[3488] + W[487] * W[3083] + W[892] * W[2678] + W[1297] * W[2273] + W[1702] * W[1868]
-            + W[2107] * W[1463] + W[2512] * W[1058] + W[2917] * W[653] + W[3322] * W[248];
-    W[3512] = W[77] * W[3493] + W[482] * W[3088] + W[887] * W[2683] + W[1292] * W[2278] + W[1697] * W[1873]
-            + W[2102] * W[1468] + W[2507] * W[1063] + W[2912] * W[658] + W[3317] * W[253];
-    W[3515] = W[72] * W[3498] + W[477] * W[3093] + W[882] * W[2688] + W[1287] * W[2283] + W[1692] * W[1878]
-            + W[2097] * W[1473] + W[2502] * W[1068] + W[2907] * W[663] + W[3312] * W[258];
-    W[3525] = W[100] * W[3524] + W[505] * W[3119] + W[910] * W[2714] + W[1315] * W[2309] + W[1720] * W[1904]
-            + W[2125] * W[1499] + W[2530] * W[1094] + W[2935] * W[689] + W[3340] * W[284];
-    W[3529] = W[95] * W[3528] + W[500] * W[3123] + W[905] * W[2718] + W[1310] * W[2313] + W[1715] * W[1908]
-            + W[2120] * W[1503] + W[2525] * W[1098] + W[2930] * W[693] + W[3335] * W[288];
-    W[3534] = W[90] * W[3533] + W[495] * W[3128] + W[900] * W[2723] + W[1305] * W[2318] + W[1710] * W[1913]
-            + W[2115] * W[1508] + W[2520] * W[1103] + W[2925] * W[698] + W[3330] * W[293];
-    W[3544] = W[102] * W[3524] + W[507] * W[3119] + W[912] * W[2714] + W[1317] * W[2309] + W[1722] * W[1904]
-            + W[2127] * W[1499] + W[2532] * W[1094] + W[2937] * W[689] + W[3342] * W[284];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_156(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3546] = W[97] * W[3528] + W[502] * W[3123] + W[907] * W[2718] + W[1312] * W[2313] + W[1717] * W[1908]
             + W[2122] * W[1503] + W[2527] * W[1098] + W[2932] * W[693] + W[3337] * W[288];
     W[3549] = W[92] * W[3533] + W[497] * W[3128] + W[902] * W[2723] + W[1307] * W[2318] + W[1712] * W[1913]
@@ -6913,26 +5635,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3430] = W[165] * W[3429];
     W[3433] = W[170] * W[3432];
     W[3436] = W[175] * W[3435];
-    W[3442] = W[199] * W[3441];
-    W[3446] = W[203] * W[3445];
-    W[3451] = W[208] * W[3450];
-    W[3456] = W[213] * W[3455];
-    W[3461] = W[218] * W[3460];
-    W[3464] = W[127] * W[3417];
-    W[3467] = W[199] * W[3466];
-    W[3469] = W[203] * W[3468];
-    W[3472] = W[208] * W[3471];
-    W[3475] = W[213] * W[3474];
-    W[3478] = W[218] * W[3477];
-    W[3481] = W[127] * W[3435];
-    W[3486] = W[243] * W[3485];
-    W[3490] = W[247] * W[3489];
-    W[3495] = W[252] * W[3494];
-    W[3500] = W[257] * W[3499];
-    W[3503] = W[133] * W[3460];
-    W[3505] = W[128] * W[3412];
-    W[3508] = W[243] * W[3507];
-    W[3510] = W[247] * W[3509];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_158(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3513] = W[252] * W[3512];
     W[3516] = W[257] * W[3515];
     W[3519] = W[133] * W[3477];
@@ -6953,26 +5665,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3566] = W[323] * W[3565];
     W[3569] = W[142] * W[3534];
     W[3571] = W[139] * W[3494];
-    W[3573] = W[135] * W[3450];
-    W[3575] = W[130] * W[3402];
-    W[3578] = W[319] * W[3577];
-    W[3580] = W[323] * W[3579];
-    W[3583] = W[142] * W[3549];
-    W[3585] = W[139] * W[3512];
-    W[3587] = W[135] * W[3471];
-    W[3589] = W[130] * W[3426];
-    W[3594] = W[147] * W[3593];
-    W[3595] = W[145] * W[3565];
-    W[3597] = W[143] * W[3529];
-    W[3599] = W[140] * W[3489];
-    W[3601] = W[136] * W[3445];
-    W[3603] = W[131] * W[3397];
-    W[3606] = W[147] * W[3605];
-    W[3607] = W[145] * W[3579];
-    W[3609] = W[143] * W[3546];
-    W[3611] = W[140] * W[3509];
-    W[3613] = W[136] * W[3468];
-    W[3615] = W[131] * W[3423];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_160(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3617] = W[351] * W[3593];
     W[3624] = W[351] * W[3605];
     W[3399] = W[3394] + W[3398];
@@ -6993,26 +5695,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3428] = W[3425] + W[3427];
     W[3452] = W[3447] + W[3451];
     W[3473] = W[3470] + W[3472];
-    W[3496] = W[3491] + W[3495];
-    W[3514] = W[3511] + W[3513];
-    W[3536] = W[3531] + W[3535];
-    W[3551] = W[3548] + W[3550];
-    W[3568] = W[3] * W[3567];
-    W[3582] = W[3] * W[3581];
-    W[3598] = W[3596] - W[3597];
-    W[3610] = W[3608] - W[3609];
-    W[3619] = W[3526] + W[3618];
-    W[3626] = W[3545] + W[3625];
-    W[3409] = W[3404] + W[3408];
-    W[3431] = W[3428] + W[3430];
-    W[3457] = W[3452] + W[3456];
-    W[3476] = W[3473] + W[3475];
-    W[3501] = W[3496] + W[3500];
-    W[3517] = W[3514] + W[3516];
-    W[3537] = W[3] * W[3536];
-    W[3552] = W[3] * W[3551];
-    W[3570] = W[3568] - W[3569];
-    W[3584] = W[3582] - W[3583];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_162(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3600] = W[3598] - W[3599];
     W[3612] = W[3610] - W[3611];
     W[3620] = W[3486] + W[3619];
@@ -7033,26 +5725,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3628] = W[3467] + W[3627];
     W[3419] = W[3414] + W[3418];
     W[3437] = W[3434] + W[3436];
-    W[3463] = W[3] * W[3462];
-    W[3480] = W[3] * W[3479];
-    W[3504] = W[3502] - W[3503];
-    W[3520] = W[3518] - W[3519];
-    W[3541] = W[3539] - W[3540];
-    W[3556] = W[3554] - W[3555];
-    W[3574] = W[3572] - W[3573];
-    W[3588] = W[3586] - W[3587];
-    W[3604] = W[3602] - W[3603];
-    W[3616] = W[3614] - W[3615];
-    W[3622] = W[3394] + W[3621];
-    W[3629] = W[3422] + W[3628];
-    W[3420] = W[3] * W[3419];
-    W[3438] = W[3] * W[3437];
-    W[3465] = W[3463] - W[3464];
-    W[3482] = W[3480] - W[3481];
-    W[3506] = W[3504] - W[3505];
-    W[3522] = W[3520] - W[3521];
-    W[3543] = W[3541] - W[3542];
-    W[3558] = W[3556] - W[3557];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_164(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3576] = W[3574] - W[3575];
     W[3590] = W[3588] - W[3589];
     W[3623] = W[148] * W[3622];
@@ -7073,21 +5755,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[265] = X[251] / 9.0;
     X[266] = -W[3420] / W[120] / 9.0;
     X[267] = -W[3438] / W[120] / 9.0;
-    X[268] = -W[3465] / W[121] / 9.0;
-    X[269] = -W[3482] / W[121] / 9.0;
-    X[270] = -W[3506] / W[122] / 9.0;
-    X[271] = -W[3522] / W[122] / 9.0;
-    X[272] = -W[3543] / W[123] / 9.0;
-    X[273] = -W[3558] / W[123] / 9.0;
-    X[274] = -W[3576] / W[124] / 9.0;
-    X[275] = -W[3590] / W[124] / 9.0;
-    X[276] = -W[3604] / W[125] / 9.0;
-    X[277] = -W[3616] / W[125] / 9.0;
-    X[278] = -W[3623] / W[126] / 9.0;
-    X[279] = -W[3630] / W[126] / 9.0;
-    if (K == 9)
-        goto out;
-    /* order 9 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_166(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3647] = X[252] - X[254];
     W[3652] = X[253] - X[255];
     W[3656] = X[252] - X[256];
@@ -7108,26 +5785,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3702] = X[255] - X[261];
     W[3705] = X[254] - X[262];
     W[3707] = X[255] - X[263];
-    W[3710] = X[254] - X[264];
-    W[3712] = X[255] - X[265];
-    W[3715] = X[256] - X[258];
-    W[3717] = X[257] - X[259];
-    W[3720] = X[256] - X[260];
-    W[3722] = X[257] - X[261];
-    W[3725] = X[256] - X[262];
-    W[3727] = X[257] - X[263];
-    W[3730] = X[256] - X[264];
-    W[3732] = X[257] - X[265];
-    W[3735] = X[258] - X[260];
-    W[3737] = X[259] - X[261];
-    W[3740] = X[258] - X[262];
-    W[3742] = X[259] - X[263];
-    W[3745] = X[258] - X[264];
-    W[3747] = X[259] - X[265];
-    W[3750] = X[260] - X[262];
-    W[3752] = X[261] - X[263];
-    W[3755] = X[260] - X[264];
-    W[3757] = X[261] - X[265];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_168(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3760] = X[262] - X[264];
     W[3762] = X[263] - X[265];
     W[3649] = (W[2] * W[3647] + W[407] * W[3242] + W[812] * W[2837] + W[1217] * W[2432] + W[1622] * W[2027]) * 2.0;
@@ -7148,26 +5815,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3698] = (W[52] * W[3697] + W[457] * W[3292] + W[862] * W[2887] + W[1267] * W[2482] + W[1672] * W[2077]) * 2.0;
     W[3701] = (W[55] * W[3700] + W[460] * W[3295] + W[865] * W[2890] + W[1270] * W[2485] + W[1675] * W[2080]) * 2.0;
     W[3703] = (W[57] * W[3702] + W[462] * W[3297] + W[867] * W[2892] + W[1272] * W[2487] + W[1677] * W[2082]) * 2.0;
-    W[3706] = (W[60] * W[3705] + W[465] * W[3300] + W[870] * W[2895] + W[1275] * W[2490] + W[1680] * W[2085]) * 2.0;
-    W[3708] = (W[62] * W[3707] + W[467] * W[3302] + W[872] * W[2897] + W[1277] * W[2492] + W[1682] * W[2087]) * 2.0;
-    W[3711] = (W[65] * W[3710] + W[470] * W[3305] + W[875] * W[2900] + W[1280] * W[2495] + W[1685] * W[2090]) * 2.0;
-    W[3713] = (W[67] * W[3712] + W[472] * W[3307] + W[877] * W[2902] + W[1282] * W[2497] + W[1687] * W[2092]) * 2.0;
-    W[3716] = (W[70] * W[3715] + W[475] * W[3310] + W[880] * W[2905] + W[1285] * W[2500] + W[1690] * W[2095]) * 2.0;
-    W[3718] = (W[72] * W[3717] + W[477] * W[3312] + W[882] * W[2907] + W[1287] * W[2502] + W[1692] * W[2097]) * 2.0;
-    W[3721] = (W[75] * W[3720] + W[480] * W[3315] + W[885] * W[2910] + W[1290] * W[2505] + W[1695] * W[2100]) * 2.0;
-    W[3723] = (W[77] * W[3722] + W[482] * W[3317] + W[887] * W[2912] + W[1292] * W[2507] + W[1697] * W[2102]) * 2.0;
-    W[3726] = (W[80] * W[3725] + W[485] * W[3320] + W[890] * W[2915] + W[1295] * W[2510] + W[1700] * W[2105]) * 2.0;
-    W[3728] = (W[82] * W[3727] + W[487] * W[3322] + W[892] * W[2917] + W[1297] * W[2512] + W[1702] * W[2107]) * 2.0;
-    W[3731] = (W[85] * W[3730] + W[490] * W[3325] + W[895] * W[2920] + W[1300] * W[2515] + W[1705] * W[2110]) * 2.0;
-    W[3733] = (W[87] * W[3732] + W[492] * W[3327] + W[897] * W[2922] + W[1302] * W[2517] + W[1707] * W[2112]) * 2.0;
-    W[3736] = (W[90] * W[3735] + W[495] * W[3330] + W[900] * W[2925] + W[1305] * W[2520] + W[1710] * W[2115]) * 2.0;
-    W[3738] = (W[92] * W[3737] + W[497] * W[3332] + W[902] * W[2927] + W[1307] * W[2522] + W[1712] * W[2117]) * 2.0;
-    W[3741] = (W[95] * W[3740] + W[500] * W[3335] + W[905] * W[2930] + W[1310] * W[2525] + W[1715] * W[2120]) * 2.0;
-    W[3743] = (W[97] * W[3742] + W[502] * W[3337] + W[907] * W[2932] + W[1312] * W[2527] + W[1717] * W[2122]) * 2.0;
-    W[3746] = (W[100] * W[3745] + W[505] * W[3340] + W[910] * W[2935] + W[1315] * W[2530] + W[1720] * W[2125]) * 2.0;
-    W[3748] = (W[102] * W[3747] + W[507] * W[3342] + W[912] * W[2937] + W[1317] * W[2532] + W[1722] * W[2127]) * 2.0;
-    W[3751] = (W[105] * W[3750] + W[510] * W[3345] + W[915] * W[2940] + W[1320] * W[2535] + W[1725] * W[2130]) * 2.0;
-    W[3753] = (W[107] * W[3752] + W[512] * W[3347] + W[917] * W[2942] + W[1322] * W[2537] + W[1727] * W[2132]) * 2.0;
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_170(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3756] = (W[110] * W[3755] + W[515] * W[3350] + W[920] * W[2945] + W[1325] * W[2540] + W[1730] * W[2135]) * 2.0;
     W[3758] = (W[112] * W[3757] + W[517] * W[3352] + W[922] * W[2947] + W[1327] * W[2542] + W[1732] * W[2137]) * 2.0;
     W[3761] = (W[115] * W[3760] + W[520] * W[3355] + W[925] * W[2950] + W[1330] * W[2545] + W[1735] * W[2140]) * 2.0;
@@ -7188,56 +5845,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3729] = W[3726] + W[3728];
     W[3734] = W[3731] + W[3733];
     W[3739] = W[3736] + W[3738];
-    W[3744] = W[3741] + W[3743];
-    W[3749] = W[3746] + W[3748];
-    W[3754] = W[3751] + W[3753];
-    W[3759] = W[3756] + W[3758];
-    W[3764] = W[3761] + W[3763];
-    W[3797] = (-13.5 * W[3689] * W[152] - 13.0 * W[3284] * W[557] - 12.5 * W[2879] * W[962] - 12.0 * W[2474] * W[1367]
-            - 11.5 * W[2069] * W[1772] - 11.0 * W[1664] * W[2177] - 10.5 * W[1259] * W[2582] - 10.0 * W[854] * W[2987]
-            - 9.5 * W[449] * W[3392]) / (9.0 * W[44]);
-    W[3801] = (-13.5 * W[3682] * W[156] - 13.0 * W[3277] * W[561] - 12.5 * W[2872] * W[966] - 12.0 * W[2467] * W[1371]
-            - 11.5 * W[2062] * W[1776] - 11.0 * W[1657] * W[2181] - 10.5 * W[1252] * W[2586] - 10.0 * W[847] * W[2991]
-            - 9.5 * W[442] * W[3396]) / (9.0 * W[37]);
-    W[3806] = (-13.5 * W[3675] * W[161] - 13.0 * W[3270] * W[566] - 12.5 * W[2865] * W[971] - 12.0 * W[2460] * W[1376]
-            - 11.5 * W[2055] * W[1781] - 11.0 * W[1650] * W[2186] - 10.5 * W[1245] * W[2591] - 10.0 * W[840] * W[2996]
-            - 9.5 * W[435] * W[3401]) / (9.0 * W[30]);
-    W[3811] = (-13.5 * W[3668] * W[166] - 13.0 * W[3263] * W[571] - 12.5 * W[2858] * W[976] - 12.0 * W[2453] * W[1381]
-            - 11.5 * W[2048] * W[1786] - 11.0 * W[1643] * W[2191] - 10.5 * W[1238] * W[2596] - 10.0 * W[833] * W[3001]
-            - 9.5 * W[428] * W[3406]) / (9.0 * W[23]);
-    W[3816] = (-13.5 * W[3661] * W[171] - 13.0 * W[3256] * W[576] - 12.5 * W[2851] * W[981] - 12.0 * W[2446] * W[1386]
-            - 11.5 * W[2041] * W[1791] - 11.0 * W[1636] * W[2196] - 10.5 * W[1231] * W[2601] - 10.0 * W[826] * W[3006]
-            - 9.5 * W[421] * W[3411]) / (9.0 * W[16]);
-    W[3821] = (-13.5 * W[3654] * W[176] - 13.0 * W[3249] * W[581] - 12.5 * W[2844] * W[986] - 12.0 * W[2439] * W[1391]
-            - 11.5 * W[2034] * W[1796] - 11.0 * W[1629] * W[2201] - 10.5 * W[1224] * W[2606] - 10.0 * W[819] * W[3011]
-            - 9.5 * W[414] * W[3416]) / (9.0 * W[9]);
-    W[3845] = (-13.5 * W[3714] * W[200] - 13.0 * W[3309] * W[605] - 12.5 * W[2904] * W[1010] - 12.0 * W[2499] * W[1415]
-            - 11.5 * W[2094] * W[1820] - 11.0 * W[1689] * W[2225] - 10.5 * W[1284] * W[2630] - 10.0 * W[879] * W[3035]
-            - 9.5 * W[474] * W[3440]) / (9.0 * W[69]);
-    W[3849] = (-13.5 * W[3709] * W[204] - 13.0 * W[3304] * W[609] - 12.5 * W[2899] * W[1014] - 12.0 * W[2494] * W[1419]
-            - 11.5 * W[2089] * W[1824] - 11.0 * W[1684] * W[2229] - 10.5 * W[1279] * W[2634] - 10.0 * W[874] * W[3039]
-            - 9.5 * W[469] * W[3444]) / (9.0 * W[64]);
-    W[3854] = (-13.5 * W[3704] * W[209] - 13.0 * W[3299] * W[614] - 12.5 * W[2894] * W[1019] - 12.0 * W[2489] * W[1424]
-            - 11.5 * W[2084] * W[1829] - 11.0 * W[1679] * W[2234] - 10.5 * W[1274] * W[2639] - 10.0 * W[869] * W[3044]
-            - 9.5 * W[464] * W[3449]) / (9.0 * W[59]);
-    W[3859] = (-13.5 * W[3699] * W[214] - 13.0 * W[3294] * W[619] - 12.5 * W[2889] * W[1024] - 12.0 * W[2484] * W[1429]
-            - 11.5 * W[2079] * W[1834] - 11.0 * W[1674] * W[2239] - 10.5 * W[1269] * W[2644] - 10.0 * W[864] * W[3049]
-            - 9.5 * W[459] * W[3454]) / (9.0 * W[54]);
-    W[3864] = (-13.5 * W[3694] * W[219] - 13.0 * W[3289] * W[624] - 12.5 * W[2884] * W[1029] - 12.0 * W[2479] * W[1434]
-            - 11.5 * W[2074] * W[1839] - 11.0 * W[1669] * W[2244] - 10.5 * W[1264] * W[2649] - 10.0 * W[859] * W[3054]
-            - 9.5 * W[454] * W[3459]) / (9.0 * W[49]);
-    W[3889] = (-13.5 * W[3734] * W[244] - 13.0 * W[3329] * W[649] - 12.5 * W[2924] * W[1054] - 12.0 * W[2519] * W[1459]
-            - 11.5 * W[2114] * W[1864] - 11.0 * W[1709] * W[2269] - 10.5 * W[1304] * W[2674] - 10.0 * W[899] * W[3079]
-            - 9.5 * W[494] * W[3484]) / (9.0 * W[89]);
-    W[3893] = (-13.5 * W[3729] * W[248] - 13.0 * W[3324] * W[653] - 12.5 * W[2919] * W[1058] - 12.0 * W[2514] * W[1463]
-            - 11.5 * W[2109] * W[1868] - 11.0 * W[1704] * W[2273] - 10.5 * W[1299] * W[2678] - 10.0 * W[894] * W[3083]
-            - 9.5 * W[489] * W[3488]) / (9.0 * W[84]);
-    W[3898] = (-13.5 * W[3724] * W[253] - 13.0 * W[3319] * W[658] - 12.5 * W[2914] * W[1063] - 12.0 * W[2509] * W[1468]
-            - 11.5 * W[2104] * W[1873] - 11.0 * W[1699] * W[2278] - 10.5 * W[1294] * W[2683] - 10.0 * W[889] * W[3088]
-            - 9.5 * W[484] * W[3493]) / (9.0 * W[79]);
-    W[3903] = (-13.5 * W[3719] * W[258] - 13.0 * W[3314] * W[663] - 12.5 * W[2909] * W[1068] - 12.0 * W[2504] * W[1473]
-            - 11.5 * W[2099] * W[1878] - 11.0 * W[1694] * W[2283] - 10.5 * W[1289] * W[2688] - 10.0 * W[884] * W[3093]
-            - 9.5 * W[479] * W[3498]) / (9.0 * W[74]);
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_172(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3929] = (-13.5 * W[3749] * W[284] - 13.0 * W[3344] * W[689] - 12.5 * W[2939] * W[1094] - 12.0 * W[2534] * W[1499]
             - 11.5 * W[2129] * W[1904] - 11.0 * W[1724] * W[2309] - 10.5 * W[1319] * W[2714] - 10.0 * W[914] * W[3119]
             - 9.5 * W[509] * W[3524]) / (9.0 * W[104]);
@@ -7284,46 +5901,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2090] * W[1820] + W[2495] * W[1415] + W[2900] * W[1010] + W[3305] * W[605] + W[3710] * W[200];
     W[3850] = W[60] * W[3849] + W[465] * W[3444] + W[870] * W[3039] + W[1275] * W[2634] + W[1680] * W[2229]
             + W[2085] * W[1824] + W[2490] * W[1419] + W[2895] * W[1014] + W[3300] * W[609] + W[3705] * W[204];
-    W[3855] = W[55] * W[3854] + W[460] * W[3449] + W[865] * W[3044] + W[1270] * W[2639] + W[1675] * W[2234]
-            + W[2080] * W[1829] + W[2485] * W[1424] + W[2890] * W[1019] + W[3295] * W[614] + W[3700] * W[209];
-    W[3860] = W[50] * W[3859] + W[455] * W[3454] + W[860] * W[3049] + W[1265] * W[2644] + W[1670] * W[2239]
-            + W[2075] * W[1834] + W[2480] * W[1429] + W[2885] * W[1024] + W[3290] * W[619] + W[3695] * W[214];
-    W[3865] = W[45] * W[3864] + W[450] * W[3459] + W[855] * W[3054] + W[1260] * W[2649] + W[1665] * W[2244]
-            + W[2070] * W[1839] + W[2475] * W[1434] + W[2880] * W[1029] + W[3285] * W[624] + W[3690] * W[219];
-    W[3871] = W[67] * W[3845] + W[472] * W[3440] + W[877] * W[3035] + W[1282] * W[2630] + W[1687] * W[2225]
-            + W[2092] * W[1820] + W[2497] * W[1415] + W[2902] * W[1010] + W[3307] * W[605] + W[3712] * W[200];
-    W[3873] = W[62] * W[3849] + W[467] * W[3444] + W[872] * W[3039] + W[1277] * W[2634] + W[1682] * W[2229]
-            + W[2087] * W[1824] + W[2492] * W[1419] + W[2897] * W[1014] + W[3302] * W[609] + W[3707] * W[204];
-    W[3876] = W[57] * W[3854] + W[462] * W[3449] + W[867] * W[3044] + W[1272] * W[2639] + W[1677] * W[2234]
-            + W[2082] * W[1829] + W[2487] * W[1424] + W[2892] * W[1019] + W[3297] * W[614] + W[3702] * W[209];
-    W[3879] = W[52] * W[3859] + W[457] * W[3454] + W[862] * W[3049] + W[1267] * W[2644] + W[1672] * W[2239]
-            + W[2077] * W[1834] + W[2482] * W[1429] + W[2887] * W[1024] + W[3292] * W[619] + W[3697] * W[214];
-    W[3882] = W[47] * W[3864] + W[452] * W[3459] + W[857] * W[3054] + W[1262] * W[2649] + W[1667] * W[2244]
-            + W[2072] * W[1839] + W[2477] * W[1434] + W[2882] * W[1029] + W[3287] * W[624] + W[3692] * W[219];
-    W[3890] = W[85] * W[3889] + W[490] * W[3484] + W[895] * W[3079] + W[1300] * W[2674] + W[1705] * W[2269]
-            + W[2110] * W[1864] + W[2515] * W[1459] + W[2920] * W[1054] + W[3325] * W[649] + W[3730] * W[244];
-    W[3894] = W[80] * W[3893] + W[485] * W[3488] + W[890] * W[3083] + W[1295] * W[2678] + W[1700] * W[2273]
-            + W[2105] * W[1868] + W[2510] * W[1463] + W[2915] * W[1058] + W[3320] * W[653] + W[3725] * W[248];
-    W[3899] = W[75] * W[3898] + W[480] * W[3493] + W[885] * W[3088] + W[1290] * W[2683] + W[1695] * W[2278]
-            + W[2100] * W[1873] + W[2505] * W[1468] + W[2910] * W[1063] + W[3315] * W[658] + W[3720] * W[253];
-    W[3904] = W[70] * W[3903] + W[475] * W[3498] + W[880] * W[3093] + W[1285] * W[2688] + W[1690] * W[2283]
-            + W[2095] * W[1878] + W[2500] * W[1473] + W[2905] * W[1068] + W[3310] * W[663] + W[3715] * W[258];
-    W[3912] = W[87] * W[3889] + W[492] * W[3484] + W[897] * W[3079] + W[1302] * W[2674] + W[1707] * W[2269]
-            + W[2112] * W[1864] + W[2517] * W[1459] + W[2922] * W[1054] + W[3327] * W[649] + W[3732] * W[244];
-    W[3914] = W[82] * W[3893] + W[487] * W[3488] + W[892] * W[3083] + W[1297] * W[2678] + W[1702] * W[2273]
-            + W[2107] * W[1868] + W[2512] * W[1463] + W[2917] * W[1058] + W[3322] * W[653] + W[3727] * W[248];
-    W[3917] = W[77] * W[3898] + W[482] * W[3493] + W[887] * W[3088] + W[1292] * W[2683] + W[1697] * W[2278]
-            + W[2102] * W[1873] + W[2507] * W[1468] + W[2912] * W[1063] + W[3317] * W[658] + W[3722] * W[253];
-    W[3920] = W[72] * W[3903] + W[477] * W[3498] + W[882] * W[3093] + W[1287] * W[2688] + W[1692] * W[2283]
-            + W[2097] * W[1878] + W[2502] * W[1473] + W[2907] * W[1068] + W[3312] * W[663] + W[3717] * W[258];
-    W[3930] = W[100] * W[3929] + W[505] * W[3524] + W[910] * W[3119] + W[1315] * W[2714] + W[1720] * W[2309]
-            + W[2125] * W[1904] + W[2530] * W[1499] + W[2935] * W[1094] + W[3340] * W[689] + W[3745] * W[284];
-    W[3934] = W[95] * W[3933] + W[500] * W[3528] + W[905] * W[3123] + W[1310] * W[2718] + W[1715] * W[2313]
-            + W[2120] * W[1908] + W[2525] * W[1503] + W[2930] * W[1098] + W[3335] * W[693] + W[3740] * W[288];
-    W[3939] = W[90] * W[3938] + W[495] * W[3533] + W[900] * W[3128] + W[1305] * W[2723] + W[1710] * W[2318]
-            + W[2115] * W[1913] + W[2520] * W[1508] + W[2925] * W[1103] + W[3330] * W[698] + W[3735] * W[293];
-    W[3949] = W[102] * W[3929] + W[507] * W[3524] + W[912] * W[3119] + W[1317] * W[2714] + W[1722] * W[2309]
-            + W[2127] * W[1904] + W[2532] * W[1499] + W[2937] * W[1094] + W[3342] * W[689] + W[3747] * W[284];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_174(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3951] = W[97] * W[3933] + W[502] * W[3528] + W[907] * W[3123] + W[1312] * W[2718] + W[1717] * W[2313]
             + W[2122] * W[1908] + W[2527] * W[1503] + W[2932] * W[1098] + W[3337] * W[693] + W[3742] * W[288];
     W[3954] = W[92] * W[3938] + W[497] * W[3533] + W[902] * W[3128] + W[1307] * W[2723] + W[1712] * W[2318]
@@ -7352,6 +5939,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3835] = W[165] * W[3834];
     W[3838] = W[170] * W[3837];
     W[3841] = W[175] * W[3840];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_175(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3847] = W[199] * W[3846];
     W[3851] = W[203] * W[3850];
     W[3856] = W[208] * W[3855];
@@ -7372,26 +5969,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3910] = W[128] * W[3817];
     W[3913] = W[243] * W[3912];
     W[3915] = W[247] * W[3914];
-    W[3918] = W[252] * W[3917];
-    W[3921] = W[257] * W[3920];
-    W[3924] = W[133] * W[3882];
-    W[3926] = W[128] * W[3837];
-    W[3931] = W[283] * W[3930];
-    W[3935] = W[287] * W[3934];
-    W[3940] = W[292] * W[3939];
-    W[3943] = W[138] * W[3904];
-    W[3945] = W[134] * W[3860];
-    W[3947] = W[129] * W[3812];
-    W[3950] = W[283] * W[3949];
-    W[3952] = W[287] * W[3951];
-    W[3955] = W[292] * W[3954];
-    W[3958] = W[138] * W[3920];
-    W[3960] = W[134] * W[3879];
-    W[3962] = W[129] * W[3834];
-    W[3967] = W[319] * W[3966];
-    W[3971] = W[323] * W[3970];
-    W[3974] = W[142] * W[3939];
-    W[3976] = W[139] * W[3899];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_177(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3978] = W[135] * W[3855];
     W[3980] = W[130] * W[3807];
     W[3983] = W[319] * W[3982];
@@ -7412,26 +5999,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[4016] = W[140] * W[3914];
     W[4018] = W[136] * W[3873];
     W[4020] = W[131] * W[3828];
-    W[4022] = W[351] * W[3998];
-    W[4029] = W[351] * W[4010];
-    W[3804] = W[3799] + W[3803];
-    W[3830] = W[3827] + W[3829];
-    W[3852] = W[3847] + W[3851];
-    W[3875] = W[3872] + W[3874];
-    W[3896] = W[3891] + W[3895];
-    W[3916] = W[3913] + W[3915];
-    W[3936] = W[3931] + W[3935];
-    W[3953] = W[3950] + W[3952];
-    W[3972] = W[3967] + W[3971];
-    W[3986] = W[3983] + W[3985];
-    W[4001] = W[3999] - W[4000];
-    W[4013] = W[4011] - W[4012];
-    W[4023] = W[3967] + W[4022];
-    W[4030] = W[3983] + W[4029];
-    W[3809] = W[3804] + W[3808];
-    W[3833] = W[3830] + W[3832];
-    W[3857] = W[3852] + W[3856];
-    W[3878] = W[3875] + W[3877];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_179(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3901] = W[3896] + W[3900];
     W[3919] = W[3916] + W[3918];
     W[3941] = W[3936] + W[3940];
@@ -7452,26 +6029,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3957] = W[3] * W[3956];
     W[3975] = W[3973] - W[3974];
     W[3989] = W[3987] - W[3988];
-    W[4005] = W[4003] - W[4004];
-    W[4017] = W[4015] - W[4016];
-    W[4025] = W[3891] + W[4024];
-    W[4032] = W[3913] + W[4031];
-    W[3819] = W[3814] + W[3818];
-    W[3839] = W[3836] + W[3838];
-    W[3867] = W[3862] + W[3866];
-    W[3884] = W[3881] + W[3883];
-    W[3907] = W[3] * W[3906];
-    W[3923] = W[3] * W[3922];
-    W[3944] = W[3942] - W[3943];
-    W[3959] = W[3957] - W[3958];
-    W[3977] = W[3975] - W[3976];
-    W[3991] = W[3989] - W[3990];
-    W[4007] = W[4005] - W[4006];
-    W[4019] = W[4017] - W[4018];
-    W[4026] = W[3847] + W[4025];
-    W[4033] = W[3872] + W[4032];
-    W[3824] = W[3819] + W[3823];
-    W[3842] = W[3839] + W[3841];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_181(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3868] = W[3] * W[3867];
     W[3885] = W[3] * W[3884];
     W[3909] = W[3907] - W[3908];
@@ -7492,26 +6059,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3927] = W[3925] - W[3926];
     W[3948] = W[3946] - W[3947];
     W[3963] = W[3961] - W[3962];
-    W[3981] = W[3979] - W[3980];
-    W[3995] = W[3993] - W[3994];
-    W[4028] = W[148] * W[4027];
-    W[4035] = W[148] * W[4034];
-    X[280] = X[266] / 10.0;
-    X[281] = X[267] / 10.0;
-    X[282] = X[268] / 10.0;
-    X[283] = X[269] / 10.0;
-    X[284] = X[270] / 10.0;
-    X[285] = X[271] / 10.0;
-    X[286] = X[272] / 10.0;
-    X[287] = X[273] / 10.0;
-    X[288] = X[274] / 10.0;
-    X[289] = X[275] / 10.0;
-    X[290] = X[276] / 10.0;
-    X[291] = X[277] / 10.0;
-    X[292] = X[278] / 10.0;
-    X[293] = X[279] / 10.0;
-    X[294] = -W[3825] / W[120] / 10.0;
-    X[295] = -W[3843] / W[120] / 10.0;
+    return 0;
+}
+
+/* Lines 340 .. 351 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_183(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[296] = -W[3870] / W[121] / 10.0;
     X[297] = -W[3887] / W[121] / 10.0;
     X[298] = -W[3911] / W[122] / 10.0;
@@ -7524,29 +6081,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[305] = -W[4021] / W[125] / 10.0;
     X[306] = -W[4028] / W[126] / 10.0;
     X[307] = -W[4035] / W[126] / 10.0;
-    if (K == 10)
-        goto out;
-    /* order 10 */
-    W[4052] = X[280] - X[282];
-    W[4057] = X[281] - X[283];
-    W[4061] = X[280] - X[284];
-    W[4064] = X[281] - X[285];
-    W[4068] = X[280] - X[286];
-    W[4071] = X[281] - X[287];
-    W[4075] = X[280] - X[288];
-    W[4078] = X[281] - X[289];
-    W[4082] = X[280] - X[290];
-    W[4085] = X[281] - X[291];
-    W[4089] = X[280] - X[292];
-    W[4092] = X[281] - X[293];
-    W[4095] = X[282] - X[284];
-    W[4097] = X[283] - X[285];
-    W[4100] = X[282] - X[286];
-    W[4102] = X[283] - X[287];
-    W[4105] = X[282] - X[288];
-    W[4107] = X[283] - X[289];
-    W[4110] = X[282] - X[290];
-    W[4112] = X[283] - X[291];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_185(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4115] = X[282] - X[292];
     W[4117] = X[283] - X[293];
     W[4120] = X[284] - X[286];
@@ -7567,44 +6111,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[4157] = X[289] - X[291];
     W[4160] = X[288] - X[292];
     W[4162] = X[289] - X[293];
-    W[4165] = X[290] - X[292];
-    W[4167] = X[291] - X[293];
-    W[4054] = (W[2] * W[4052] + W[407] * W[3647] + W[812] * W[3242] + W[1217] * W[2837] + W[1622] * W[2432]) * 2.0
-            + W[2027] * W[2027];
-    W[4058] = (W[7] * W[4057] + W[412] * W[3652] + W[817] * W[3247] + W[1222] * W[2842] + W[1627] * W[2437]) * 2.0
-            + W[2032] * W[2032];
-    W[4062] = (W[11] * W[4061] + W[416] * W[3656] + W[821] * W[3251] + W[1226] * W[2846] + W[1631] * W[2441]) * 2.0
-            + W[2036] * W[2036];
-    W[4065] = (W[14] * W[4064] + W[419] * W[3659] + W[824] * W[3254] + W[1229] * W[2849] + W[1634] * W[2444]) * 2.0
-            + W[2039] * W[2039];
-    W[4069] = (W[18] * W[4068] + W[423] * W[3663] + W[828] * W[3258] + W[1233] * W[2853] + W[1638] * W[2448]) * 2.0
-            + W[2043] * W[2043];
-    W[4072] = (W[21] * W[4071] + W[426] * W[3666] + W[831] * W[3261] + W[1236] * W[2856] + W[1641] * W[2451]) * 2.0
-            + W[2046] * W[2046];
-    W[4076] = (W[25] * W[4075] + W[430] * W[3670] + W[835] * W[3265] + W[1240] * W[2860] + W[1645] * W[2455]) * 2.0
-            + W[2050] * W[2050];
-    W[4079] = (W[28] * W[4078] + W[433] * W[3673] + W[838] * W[3268] + W[1243] * W[2863] + W[1648] * W[2458]) * 2.0
-            + W[2053] * W[2053];
-    W[4083] = (W[32] * W[4082] + W[437] * W[3677] + W[842] * W[3272] + W[1247] * W[2867] + W[1652] * W[2462]) * 2.0
-            + W[2057] * W[2057];
-    W[4086] = (W[35] * W[4085] + W[440] * W[3680] + W[845] * W[3275] + W[1250] * W[2870] + W[1655] * W[2465]) * 2.0
-            + W[2060] * W[2060];
-    W[4090] = (W[39] * W[4089] + W[444] * W[3684] + W[849] * W[3279] + W[1254] * W[2874] + W[1659] * W[2469]) * 2.0
-            + W[2064] * W[2064];
-    W[4093] = (W[42] * W[4092] + W[447] * W[3687] + W[852] * W[3282] + W[1257] * W[2877] + W[1662] * W[2472]) * 2.0
-            + W[2067] * W[2067];
-    W[4096] = (W[45] * W[4095] + W[450] * W[3690] + W[855] * W[3285] + W[1260] * W[2880] + W[1665] * W[2475]) * 2.0
-            + W[2070] * W[2070];
-    W[4098] = (W[47] * W[4097] + W[452] * W[3692] + W[857] * W[3287] + W[1262] * W[2882] + W[1667] * W[2477]) * 2.0
-            + W[2072] * W[2072];
-    W[4101] = (W[50] * W[4100] + W[455] * W[3695] + W[860] * W[3290] + W[1265] * W[2885] + W[1670] * W[2480]) * 2.0
-            + W[2075] * W[2075];
-    W[4103] = (W[52] * W[4102] + W[457] * W[3697] + W[862] * W[3292] + W[1267] * W[2887] + W[1672] * W[2482]) * 2.0
-            + W[2077] * W[2077];
-    W[4106] = (W[55] * W[4105] + W[460] * W[3700] + W[865] * W[3295] + W[1270] * W[2890] + W[1675] * W[2485]) * 2.0
-            + W[2080] * W[2080];
-    W[4108] = (W[57] * W[4107] + W[462] * W[3702] + W[867] * W[3297] + W[1272] * W[2892] + W[1677] * W[2487]) * 2.0
-            + W[2082] * W[2082];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_187(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4111] = (W[60] * W[4110] + W[465] * W[3705] + W[870] * W[3300] + W[1275] * W[2895] + W[1680] * W[2490]) * 2.0
             + W[2085] * W[2085];
     W[4113] = (W[62] * W[4112] + W[467] * W[3707] + W[872] * W[3302] + W[1277] * W[2897] + W[1682] * W[2492]) * 2.0
@@ -7645,30 +6161,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2130] * W[2130];
     W[4158] = (W[107] * W[4157] + W[512] * W[3752] + W[917] * W[3347] + W[1322] * W[2942] + W[1727] * W[2537]) * 2.0
             + W[2132] * W[2132];
-    W[4161] = (W[110] * W[4160] + W[515] * W[3755] + W[920] * W[3350] + W[1325] * W[2945] + W[1730] * W[2540]) * 2.0
-            + W[2135] * W[2135];
-    W[4163] = (W[112] * W[4162] + W[517] * W[3757] + W[922] * W[3352] + W[1327] * W[2947] + W[1732] * W[2542]) * 2.0
-            + W[2137] * W[2137];
-    W[4166] = (W[115] * W[4165] + W[520] * W[3760] + W[925] * W[3355] + W[1330] * W[2950] + W[1735] * W[2545]) * 2.0
-            + W[2140] * W[2140];
-    W[4168] = (W[117] * W[4167] + W[522] * W[3762] + W[927] * W[3357] + W[1332] * W[2952] + W[1737] * W[2547]) * 2.0
-            + W[2142] * W[2142];
-    W[4059] = W[4054] + W[4058];
-    W[4066] = W[4062] + W[4065];
-    W[4073] = W[4069] + W[4072];
-    W[4080] = W[4076] + W[4079];
-    W[4087] = W[4083] + W[4086];
-    W[4094] = W[4090] + W[4093];
-    W[4099] = W[4096] + W[4098];
-    W[4104] = W[4101] + W[4103];
-    W[4109] = W[4106] + W[4108];
-    W[4114] = W[4111] + W[4113];
-    W[4119] = W[4116] + W[4118];
-    W[4124] = W[4121] + W[4123];
-    W[4129] = W[4126] + W[4128];
-    W[4134] = W[4131] + W[4133];
-    W[4139] = W[4136] + W[4138];
-    W[4144] = W[4141] + W[4143];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_189(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4149] = W[4146] + W[4148];
     W[4154] = W[4151] + W[4153];
     W[4159] = W[4156] + W[4158];
@@ -7719,66 +6221,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[4308] = (-15.0 * W[4124] * W[258] - 14.5 * W[3719] * W[663] - 14.0 * W[3314] * W[1068] - 13.5 * W[2909] * W[1473]
             - 13.0 * W[2504] * W[1878] - 12.5 * W[2099] * W[2283] - 12.0 * W[1694] * W[2688] - 11.5 * W[1289] * W[3093]
             - 11.0 * W[884] * W[3498] - 10.5 * W[479] * W[3903]) / (10.0 * W[74]);
-    W[4334] = (-15.0 * W[4154] * W[284] - 14.5 * W[3749] * W[689] - 14.0 * W[3344] * W[1094] - 13.5 * W[2939] * W[1499]
-            - 13.0 * W[2534] * W[1904] - 12.5 * W[2129] * W[2309] - 12.0 * W[1724] * W[2714] - 11.5 * W[1319] * W[3119]
-            - 11.0 * W[914] * W[3524] - 10.5 * W[509] * W[3929]) / (10.0 * W[104]);
-    W[4338] = (-15.0 * W[4149] * W[288] - 14.5 * W[3744] * W[693] - 14.0 * W[3339] * W[1098] - 13.5 * W[2934] * W[1503]
-            - 13.0 * W[2529] * W[1908] - 12.5 * W[2124] * W[2313] - 12.0 * W[1719] * W[2718] - 11.5 * W[1314] * W[3123]
-            - 11.0 * W[909] * W[3528] - 10.5 * W[504] * W[3933]) / (10.0 * W[99]);
-    W[4343] = (-15.0 * W[4144] * W[293] - 14.5 * W[3739] * W[698] - 14.0 * W[3334] * W[1103] - 13.5 * W[2929] * W[1508]
-            - 13.0 * W[2524] * W[1913] - 12.5 * W[2119] * W[2318] - 12.0 * W[1714] * W[2723] - 11.5 * W[1309] * W[3128]
-            - 11.0 * W[904] * W[3533] - 10.5 * W[499] * W[3938]) / (10.0 * W[94]);
-    W[4370] = (-15.0 * W[4164] * W[320] - 14.5 * W[3759] * W[725] - 14.0 * W[3354] * W[1130] - 13.5 * W[2949] * W[1535]
-            - 13.0 * W[2544] * W[1940] - 12.5 * W[2139] * W[2345] - 12.0 * W[1734] * W[2750] - 11.5 * W[1329] * W[3155]
-            - 11.0 * W[924] * W[3560] - 10.5 * W[519] * W[3965]) / (10.0 * W[114]);
-    W[4374] = (-15.0 * W[4159] * W[324] - 14.5 * W[3754] * W[729] - 14.0 * W[3349] * W[1134] - 13.5 * W[2944] * W[1539]
-            - 13.0 * W[2539] * W[1944] - 12.5 * W[2134] * W[2349] - 12.0 * W[1729] * W[2754] - 11.5 * W[1324] * W[3159]
-            - 11.0 * W[919] * W[3564] - 10.5 * W[514] * W[3969]) / (10.0 * W[109]);
-    W[4402] = (-15.0 * W[4169] * W[352] - 14.5 * W[3764] * W[757] - 14.0 * W[3359] * W[1162] - 13.5 * W[2954] * W[1567]
-            - 13.0 * W[2549] * W[1972] - 12.5 * W[2144] * W[2377] - 12.0 * W[1739] * W[2782] - 11.5 * W[1334] * W[3187]
-            - 11.0 * W[929] * W[3592] - 10.5 * W[524] * W[3997]) / (10.0 * W[119]);
-    W[4203] = W[39] * W[4202] + W[444] * W[3797] + W[849] * W[3392] + W[1254] * W[2987] + W[1659] * W[2582]
-            + W[2064] * W[2177] + W[2469] * W[1772] + W[2874] * W[1367] + W[3279] * W[962] + W[3684] * W[557]
-            + W[4089] * W[152];
-    W[4207] = W[32] * W[4206] + W[437] * W[3801] + W[842] * W[3396] + W[1247] * W[2991] + W[1652] * W[2586]
-            + W[2057] * W[2181] + W[2462] * W[1776] + W[2867] * W[1371] + W[3272] * W[966] + W[3677] * W[561]
-            + W[4082] * W[156];
-    W[4212] = W[25] * W[4211] + W[430] * W[3806] + W[835] * W[3401] + W[1240] * W[2996] + W[1645] * W[2591]
-            + W[2050] * W[2186] + W[2455] * W[1781] + W[2860] * W[1376] + W[3265] * W[971] + W[3670] * W[566]
-            + W[4075] * W[161];
-    W[4217] = W[18] * W[4216] + W[423] * W[3811] + W[828] * W[3406] + W[1233] * W[3001] + W[1638] * W[2596]
-            + W[2043] * W[2191] + W[2448] * W[1786] + W[2853] * W[1381] + W[3258] * W[976] + W[3663] * W[571]
-            + W[4068] * W[166];
-    W[4222] = W[11] * W[4221] + W[416] * W[3816] + W[821] * W[3411] + W[1226] * W[3006] + W[1631] * W[2601]
-            + W[2036] * W[2196] + W[2441] * W[1791] + W[2846] * W[1386] + W[3251] * W[981] + W[3656] * W[576]
-            + W[4061] * W[171];
-    W[4227] = W[2] * W[4226] + W[407] * W[3821] + W[812] * W[3416] + W[1217] * W[3011] + W[1622] * W[2606]
-            + W[2027] * W[2201] + W[2432] * W[1796] + W[2837] * W[1391] + W[3242] * W[986] + W[3647] * W[581]
-            + W[4052] * W[176];
-    W[4231] = W[42] * W[4202] + W[447] * W[3797] + W[852] * W[3392] + W[1257] * W[2987] + W[1662] * W[2582]
-            + W[2067] * W[2177] + W[2472] * W[1772] + W[2877] * W[1367] + W[3282] * W[962] + W[3687] * W[557]
-            + W[4092] * W[152];
-    W[4233] = W[35] * W[4206] + W[440] * W[3801] + W[845] * W[3396] + W[1250] * W[2991] + W[1655] * W[2586]
-            + W[2060] * W[2181] + W[2465] * W[1776] + W[2870] * W[1371] + W[3275] * W[966] + W[3680] * W[561]
-            + W[4085] * W[156];
-    W[4236] = W[28] * W[4211] + W[433] * W[3806] + W[838] * W[3401] + W[1243] * W[2996] + W[1648] * W[2591]
-            + W[2053] * W[2186] + W[2458] * W[1781] + W[2863] * W[1376] + W[3268] * W[971] + W[3673] * W[566]
-            + W[4078] * W[161];
-    W[4239] = W[21] * W[4216] + W[426] * W[3811] + W[831] * W[3406] + W[1236] * W[3001] + W[1641] * W[2596]
-            + W[2046] * W[2191] + W[2451] * W[1786] + W[2856] * W[1381] + W[3261] * W[976] + W[3666] * W[571]
-            + W[4071] * W[166];
-    W[4242] = W[14] * W[4221] + W[419] * W[3816] + W[824] * W[3411] + W[1229] * W[3006] + W[1634] * W[2601]
-            + W[2039] * W[2196] + W[2444] * W[1791] + W[2849] * W[1386] + W[3254] * W[981] + W[3659] * W[576]
-            + W[4064] * W[171];
-    W[4245] = W[7] * W[4226] + W[412] * W[3821] + W[817] * W[3416] + W[1222] * W[3011] + W[1627] * W[2606]
-            + W[2032] * W[2201] + W[2437] * W[1796] + W[2842] * W[1391] + W[3247] * W[986] + W[3652] * W[581]
-            + W[4057] * W[176];
-    W[4251] = W[65] * W[4250] + W[470] * W[3845] + W[875] * W[3440] + W[1280] * W[3035] + W[1685] * W[2630]
-            + W[2090] * W[2225] + W[2495] * W[1820] + W[2900] * W[1415] + W[3305] * W[1010] + W[3710] * W[605]
-            + W[4115] * W[200];
-    W[4255] = W[60] * W[4254] + W[465] * W[3849] + W[870] * W[3444] + W[1275] * W[3039] + W[1680] * W[2634]
-            + W[2085] * W[2229] + W[2490] * W[1824] + W[2895] * W[1419] + W[3300] * W[1014] + W[3705] * W[609]
-            + W[4110] * W[204];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_191(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4260] = W[55] * W[4259] + W[460] * W[3854] + W[865] * W[3449] + W[1270] * W[3044] + W[1675] * W[2639]
             + W[2080] * W[2234] + W[2485] * W[1829] + W[2890] * W[1424] + W[3295] * W[1019] + W[3700] * W[614]
             + W[4105] * W[209];
@@ -7839,62 +6291,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[4354] = W[102] * W[4334] + W[507] * W[3929] + W[912] * W[3524] + W[1317] * W[3119] + W[1722] * W[2714]
             + W[2127] * W[2309] + W[2532] * W[1904] + W[2937] * W[1499] + W[3342] * W[1094] + W[3747] * W[689]
             + W[4152] * W[284];
-    W[4356] = W[97] * W[4338] + W[502] * W[3933] + W[907] * W[3528] + W[1312] * W[3123] + W[1717] * W[2718]
-            + W[2122] * W[2313] + W[2527] * W[1908] + W[2932] * W[1503] + W[3337] * W[1098] + W[3742] * W[693]
-            + W[4147] * W[288];
-    W[4359] = W[92] * W[4343] + W[497] * W[3938] + W[902] * W[3533] + W[1307] * W[3128] + W[1712] * W[2723]
-            + W[2117] * W[2318] + W[2522] * W[1913] + W[2927] * W[1508] + W[3332] * W[1103] + W[3737] * W[698]
-            + W[4142] * W[293];
-    W[4371] = W[110] * W[4370] + W[515] * W[3965] + W[920] * W[3560] + W[1325] * W[3155] + W[1730] * W[2750]
-            + W[2135] * W[2345] + W[2540] * W[1940] + W[2945] * W[1535] + W[3350] * W[1130] + W[3755] * W[725]
-            + W[4160] * W[320];
-    W[4375] = W[105] * W[4374] + W[510] * W[3969] + W[915] * W[3564] + W[1320] * W[3159] + W[1725] * W[2754]
-            + W[2130] * W[2349] + W[2535] * W[1944] + W[2940] * W[1539] + W[3345] * W[1134] + W[3750] * W[729]
-            + W[4155] * W[324];
-    W[4387] = W[112] * W[4370] + W[517] * W[3965] + W[922] * W[3560] + W[1327] * W[3155] + W[1732] * W[2750]
-            + W[2137] * W[2345] + W[2542] * W[1940] + W[2947] * W[1535] + W[3352] * W[1130] + W[3757] * W[725]
-            + W[4162] * W[320];
-    W[4389] = W[107] * W[4374] + W[512] * W[3969] + W[917] * W[3564] + W[1322] * W[3159] + W[1727] * W[2754]
-            + W[2132] * W[2349] + W[2537] * W[1944] + W[2942] * W[1539] + W[3347] * W[1134] + W[3752] * W[729]
-            + W[4157] * W[324];
-    W[4403] = W[115] * W[4402] + W[520] * W[3997] + W[925] * W[3592] + W[1330] * W[3187] + W[1735] * W[2782]
-            + W[2140] * W[2377] + W[2545] * W[1972] + W[2950] * W[1567] + W[3355] * W[1162] + W[3760] * W[757]
-            + W[4165] * W[352];
-    W[4415] = W[117] * W[4402] + W[522] * W[3997] + W[927] * W[3592] + W[1332] * W[3187] + W[1737] * W[2782]
-            + W[2142] * W[2377] + W[2547] * W[1972] + W[2952] * W[1567] + W[3357] * W[1162] + W[3762] * W[757]
-            + W[4167] * W[352];
-    W[4204] = W[151] * W[4203];
-    W[4208] = W[155] * W[4207];
-    W[4213] = W[160] * W[4212];
-    W[4218] = W[165] * W[4217];
-    W[4223] = W[170] * W[4222];
-    W[4228] = W[175] * W[4227];
-    W[4232] = W[151] * W[4231];
-    W[4234] = W[155] * W[4233];
-    W[4237] = W[160] * W[4236];
-    W[4240] = W[165] * W[4239];
-    W[4243] = W[170] * W[4242];
-    W[4246] = W[175] * W[4245];
-    W[4252] = W[199] * W[4251];
-    W[4256] = W[203] * W[4255];
-    W[4261] = W[208] * W[4260];
-    W[4266] = W[213] * W[4265];
-    W[4271] = W[218] * W[4270];
-    W[4274] = W[127] * W[4227];
-    W[4277] = W[199] * W[4276];
-    W[4279] = W[203] * W[4278];
-    W[4282] = W[208] * W[4281];
-    W[4285] = W[213] * W[4284];
-    W[4288] = W[218] * W[4287];
-    W[4291] = W[127] * W[4245];
-    W[4296] = W[243] * W[4295];
-    W[4300] = W[247] * W[4299];
-    W[4305] = W[252] * W[4304];
-    W[4310] = W[257] * W[4309];
-    W[4313] = W[133] * W[4270];
-    W[4315] = W[128] * W[4222];
-    W[4318] = W[243] * W[4317];
-    W[4320] = W[247] * W[4319];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_194(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4323] = W[252] * W[4322];
     W[4326] = W[257] * W[4325];
     W[4329] = W[133] * W[4287];
@@ -7915,26 +6321,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[4376] = W[323] * W[4375];
     W[4379] = W[142] * W[4344];
     W[4381] = W[139] * W[4304];
-    W[4383] = W[135] * W[4260];
-    W[4385] = W[130] * W[4212];
-    W[4388] = W[319] * W[4387];
-    W[4390] = W[323] * W[4389];
-    W[4393] = W[142] * W[4359];
-    W[4395] = W[139] * W[4322];
-    W[4397] = W[135] * W[4281];
-    W[4399] = W[130] * W[4236];
-    W[4404] = W[147] * W[4403];
-    W[4405] = W[145] * W[4375];
-    W[4407] = W[143] * W[4339];
-    W[4409] = W[140] * W[4299];
-    W[4411] = W[136] * W[4255];
-    W[4413] = W[131] * W[4207];
-    W[4416] = W[147] * W[4415];
-    W[4417] = W[145] * W[4389];
-    W[4419] = W[143] * W[4356];
-    W[4421] = W[140] * W[4319];
-    W[4423] = W[136] * W[4278];
-    W[4425] = W[131] * W[4233];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_196(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4427] = W[351] * W[4403];
     W[4434] = W[351] * W[4415];
     W[4209] = W[4204] + W[4208];
@@ -7955,26 +6351,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[4238] = W[4235] + W[4237];
     W[4262] = W[4257] + W[4261];
     W[4283] = W[4280] + W[4282];
-    W[4306] = W[4301] + W[4305];
-    W[4324] = W[4321] + W[4323];
-    W[4346] = W[4341] + W[4345];
-    W[4361] = W[4358] + W[4360];
-    W[4378] = W[3] * W[4377];
-    W[4392] = W[3] * W[4391];
-    W[4408] = W[4406] - W[4407];
-    W[4420] = W[4418] - W[4419];
-    W[4429] = W[4336] + W[4428];
-    W[4436] = W[4355] + W[4435];
-    W[4219] = W[4214] + W[4218];
-    W[4241] = W[4238] + W[4240];
-    W[4267] = W[4262] + W[4266];
-    W[4286] = W[4283] + W[4285];
-    W[4311] = W[4306] + W[4310];
-    W[4327] = W[4324] + W[4326];
-    W[4347] = W[3] * W[4346];
-    W[4362] = W[3] * W[4361];
-    W[4380] = W[4378] - W[4379];
-    W[4394] = W[4392] - W[4393];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_198(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4410] = W[4408] - W[4409];
     W[4422] = W[4420] - W[4421];
     W[4430] = W[4296] + W[4429];
@@ -7995,26 +6381,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[4438] = W[4277] + W[4437];
     W[4229] = W[4224] + W[4228];
     W[4247] = W[4244] + W[4246];
-    W[4273] = W[3] * W[4272];
-    W[4290] = W[3] * W[4289];
-    W[4314] = W[4312] - W[4313];
-    W[4330] = W[4328] - W[4329];
-    W[4351] = W[4349] - W[4350];
-    W[4366] = W[4364] - W[4365];
-    W[4384] = W[4382] - W[4383];
-    W[4398] = W[4396] - W[4397];
-    W[4414] = W[4412] - W[4413];
-    W[4426] = W[4424] - W[4425];
-    W[4432] = W[4204] + W[4431];
-    W[4439] = W[4232] + W[4438];
-    W[4230] = W[3] * W[4229];
-    W[4248] = W[3] * W[4247];
-    W[4275] = W[4273] - W[4274];
-    W[4292] = W[4290] - W[4291];
-    W[4316] = W[4314] - W[4315];
-    W[4332] = W[4330] - W[4331];
-    W[4353] = W[4351] - W[4352];
-    W[4368] = W[4366] - W[4367];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_200(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4386] = W[4384] - W[4385];
     W[4400] = W[4398] - W[4399];
     W[4433] = W[148] * W[4432];
@@ -8035,21 +6411,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[321] = X[307] / 11.0;
     X[322] = -W[4230] / W[120] / 11.0;
     X[323] = -W[4248] / W[120] / 11.0;
-    X[324] = -W[4275] / W[121] / 11.0;
-    X[325] = -W[4292] / W[121] / 11.0;
-    X[326] = -W[4316] / W[122] / 11.0;
-    X[327] = -W[4332] / W[122] / 11.0;
-    X[328] = -W[4353] / W[123] / 11.0;
-    X[329] = -W[4368] / W[123] / 11.0;
-    X[330] = -W[4386] / W[124] / 11.0;
-    X[331] = -W[4400] / W[124] / 11.0;
-    X[332] = -W[4414] / W[125] / 11.0;
-    X[333] = -W[4426] / W[125] / 11.0;
-    X[334] = -W[4433] / W[126] / 11.0;
-    X[335] = -W[4440] / W[126] / 11.0;
-    if (K == 11)
-        goto out;
-    /* order 11 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_202(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4457] = X[308] - X[310];
     W[4462] = X[309] - X[311];
     W[4466] = X[308] - X[312];
@@ -8070,26 +6441,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[4512] = X[311] - X[317];
     W[4515] = X[310] - X[318];
     W[4517] = X[311] - X[319];
-    W[4520] = X[310] - X[320];
-    W[4522] = X[311] - X[321];
-    W[4525] = X[312] - X[314];
-    W[4527] = X[313] - X[315];
-    W[4530] = X[312] - X[316];
-    W[4532] = X[313] - X[317];
-    W[4535] = X[312] - X[318];
-    W[4537] = X[313] - X[319];
-    W[4540] = X[312] - X[320];
-    W[4542] = X[313] - X[321];
-    W[4545] = X[314] - X[316];
-    W[4547] = X[315] - X[317];
-    W[4550] = X[314] - X[318];
-    W[4552] = X[315] - X[319];
-    W[4555] = X[314] - X[320];
-    W[4557] = X[315] - X[321];
-    W[4560] = X[316] - X[318];
-    W[4562] = X[317] - X[319];
-    W[4565] = X[316] - X[320];
-    W[4567] = X[317] - X[321];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_204(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4570] = X[318] - X[320];
     W[4572] = X[319] - X[321];
     W[4459] = (W[2] * W[4457] + W[407] * W[4052] + W[812] * W[3647] + W[1217] * W[3242] + W[1622] * W[2837]
@@ -8128,46 +6489,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2080] * W[2485]) * 2.0;
     W[4513] = (W[57] * W[4512] + W[462] * W[4107] + W[867] * W[3702] + W[1272] * W[3297] + W[1677] * W[2892]
             + W[2082] * W[2487]) * 2.0;
-    W[4516] = (W[60] * W[4515] + W[465] * W[4110] + W[870] * W[3705] + W[1275] * W[3300] + W[1680] * W[2895]
-            + W[2085] * W[2490]) * 2.0;
-    W[4518] = (W[62] * W[4517] + W[467] * W[4112] + W[872] * W[3707] + W[1277] * W[3302] + W[1682] * W[2897]
-            + W[2087] * W[2492]) * 2.0;
-    W[4521] = (W[65] * W[4520] + W[470] * W[4115] + W[875] * W[3710] + W[1280] * W[3305] + W[1685] * W[2900]
-            + W[2090] * W[2495]) * 2.0;
-    W[4523] = (W[67] * W[4522] + W[472] * W[4117] + W[877] * W[3712] + W[1282] * W[3307] + W[1687] * W[2902]
-            + W[2092] * W[2497]) * 2.0;
-    W[4526] = (W[70] * W[4525] + W[475] * W[4120] + W[880] * W[3715] + W[1285] * W[3310] + W[1690] * W[2905]
-            + W[2095] * W[2500]) * 2.0;
-    W[4528] = (W[72] * W[4527] + W[477] * W[4122] + W[882] * W[3717] + W[1287] * W[3312] + W[1692] * W[2907]
-            + W[2097] * W[2502]) * 2.0;
-    W[4531] = (W[75] * W[4530] + W[480] * W[4125] + W[885] * W[3720] + W[1290] * W[3315] + W[1695] * W[2910]
-            + W[2100] * W[2505]) * 2.0;
-    W[4533] = (W[77] * W[4532] + W[482] * W[4127] + W[887] * W[3722] + W[1292] * W[3317] + W[1697] * W[2912]
-            + W[2102] * W[2507]) * 2.0;
-    W[4536] = (W[80] * W[4535] + W[485] * W[4130] + W[890] * W[3725] + W[1295] * W[3320] + W[1700] * W[2915]
-            + W[2105] * W[2510]) * 2.0;
-    W[4538] = (W[82] * W[4537] + W[487] * W[4132] + W[892] * W[3727] + W[1297] * W[3322] + W[1702] * W[2917]
-            + W[2107] * W[2512]) * 2.0;
-    W[4541] = (W[85] * W[4540] + W[490] * W[4135] + W[895] * W[3730] + W[1300] * W[3325] + W[1705] * W[2920]
-            + W[2110] * W[2515]) * 2.0;
-    W[4543] = (W[87] * W[4542] + W[492] * W[4137] + W[897] * W[3732] + W[1302] * W[3327] + W[1707] * W[2922]
-            + W[2112] * W[2517]) * 2.0;
-    W[4546] = (W[90] * W[4545] + W[495] * W[4140] + W[900] * W[3735] + W[1305] * W[3330] + W[1710] * W[2925]
-            + W[2115] * W[2520]) * 2.0;
-    W[4548] = (W[92] * W[4547] + W[497] * W[4142] + W[902] * W[3737] + W[1307] * W[3332] + W[1712] * W[2927]
-            + W[2117] * W[2522]) * 2.0;
-    W[4551] = (W[95] * W[4550] + W[500] * W[4145] + W[905] * W[3740] + W[1310] * W[3335] + W[1715] * W[2930]
-            + W[2120] * W[2525]) * 2.0;
-    W[4553] = (W[97] * W[4552] + W[502] * W[4147] + W[907] * W[3742] + W[1312] * W[3337] + W[1717] * W[2932]
-            + W[2122] * W[2527]) * 2.0;
-    W[4556] = (W[100] * W[4555] + W[505] * W[4150] + W[910] * W[3745] + W[1315] * W[3340] + W[1720] * W[2935]
-            + W[2125] * W[2530]) * 2.0;
-    W[4558] = (W[102] * W[4557] + W[507] * W[4152] + W[912] * W[3747] + W[1317] * W[3342] + W[1722] * W[2937]
-            + W[2127] * W[2532]) * 2.0;
-    W[4561] = (W[105] * W[4560] + W[510] * W[4155] + W[915] * W[3750] + W[1320] * W[3345] + W[1725] * W[2940]
-            + W[2130] * W[2535]) * 2.0;
-    W[4563] = (W[107] * W[4562] + W[512] * W[4157] + W[917] * W[3752] + W[1322] * W[3347] + W[1727] * W[2942]
-            + W[2132] * W[2537]) * 2.0;
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_206(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4566] = (W[110] * W[4565] + W[515] * W[4160] + W[920] * W[3755] + W[1325] * W[3350] + W[1730] * W[2945]
             + W[2135] * W[2540]) * 2.0;
     W[4568] = (W[112] * W[4567] + W[517] * W[4162] + W[922] * W[3757] + W[1327] * W[3352] + W[1732] * W[2947]
@@ -8192,56 +6523,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[4539] = W[4536] + W[4538];
     W[4544] = W[4541] + W[4543];
     W[4549] = W[4546] + W[4548];
-    W[4554] = W[4551] + W[4553];
-    W[4559] = W[4556] + W[4558];
-    W[4564] = W[4561] + W[4563];
-    W[4569] = W[4566] + W[4568];
-    W[4574] = W[4571] + W[4573];
-    W[4607] = (-16.5 * W[4499] * W[152] - 16.0 * W[4094] * W[557] - 15.5 * W[3689] * W[962] - 15.0 * W[3284] * W[1367]
-            - 14.5 * W[2879] * W[1772] - 14.0 * W[2474] * W[2177] - 13.5 * W[2069] * W[2582] - 13.0 * W[1664] * W[2987]
-            - 12.5 * W[1259] * W[3392] - 12.0 * W[854] * W[3797] - 11.5 * W[449] * W[4202]) / (11.0 * W[44]);
-    W[4611] = (-16.5 * W[4492] * W[156] - 16.0 * W[4087] * W[561] - 15.5 * W[3682] * W[966] - 15.0 * W[3277] * W[1371]
-            - 14.5 * W[2872] * W[1776] - 14.0 * W[2467] * W[2181] - 13.5 * W[2062] * W[2586] - 13.0 * W[1657] * W[2991]
-            - 12.5 * W[1252] * W[3396] - 12.0 * W[847] * W[3801] - 11.5 * W[442] * W[4206]) / (11.0 * W[37]);
-    W[4616] = (-16.5 * W[4485] * W[161] - 16.0 * W[4080] * W[566] - 15.5 * W[3675] * W[971] - 15.0 * W[3270] * W[1376]
-            - 14.5 * W[2865] * W[1781] - 14.0 * W[2460] * W[2186] - 13.5 * W[2055] * W[2591] - 13.0 * W[1650] * W[2996]
-            - 12.5 * W[1245] * W[3401] - 12.0 * W[840] * W[3806] - 11.5 * W[435] * W[4211]) / (11.0 * W[30]);
-    W[4621] = (-16.5 * W[4478] * W[166] - 16.0 * W[4073] * W[571] - 15.5 * W[3668] * W[976] - 15.0 * W[3263] * W[1381]
-            - 14.5 * W[2858] * W[1786] - 14.0 * W[2453] * W[2191] - 13.5 * W[2048] * W[2596] - 13.0 * W[1643] * W[3001]
-            - 12.5 * W[1238] * W[3406] - 12.0 * W[833] * W[3811] - 11.5 * W[428] * W[4216]) / (11.0 * W[23]);
-    W[4626] = (-16.5 * W[4471] * W[171] - 16.0 * W[4066] * W[576] - 15.5 * W[3661] * W[981] - 15.0 * W[3256] * W[1386]
-            - 14.5 * W[2851] * W[1791] - 14.0 * W[2446] * W[2196] - 13.5 * W[2041] * W[2601] - 13.0 * W[1636] * W[3006]
-            - 12.5 * W[1231] * W[3411] - 12.0 * W[826] * W[3816] - 11.5 * W[421] * W[4221]) / (11.0 * W[16]);
-    W[4631] = (-16.5 * W[4464] * W[176] - 16.0 * W[4059] * W[581] - 15.5 * W[3654] * W[986] - 15.0 * W[3249] * W[1391]
-            - 14.5 * W[2844] * W[1796] - 14.0 * W[2439] * W[2201] - 13.5 * W[2034] * W[2606] - 13.0 * W[1629] * W[3011]
-            - 12.5 * W[1224] * W[3416] - 12.0 * W[819] * W[3821] - 11.5 * W[414] * W[4226]) / (11.0 * W[9]);
-    W[4655] = (-16.5 * W[4524] * W[200] - 16.0 * W[4119] * W[605] - 15.5 * W[3714] * W[1010] - 15.0 * W[3309] * W[1415]
-            - 14.5 * W[2904] * W[1820] - 14.0 * W[2499] * W[2225] - 13.5 * W[2094] * W[2630] - 13.0 * W[1689] * W[3035]
-            - 12.5 * W[1284] * W[3440] - 12.0 * W[879] * W[3845] - 11.5 * W[474] * W[4250]) / (11.0 * W[69]);
-    W[4659] = (-16.5 * W[4519] * W[204] - 16.0 * W[4114] * W[609] - 15.5 * W[3709] * W[1014] - 15.0 * W[3304] * W[1419]
-            - 14.5 * W[2899] * W[1824] - 14.0 * W[2494] * W[2229] - 13.5 * W[2089] * W[2634] - 13.0 * W[1684] * W[3039]
-            - 12.5 * W[1279] * W[3444] - 12.0 * W[874] * W[3849] - 11.5 * W[469] * W[4254]) / (11.0 * W[64]);
-    W[4664] = (-16.5 * W[4514] * W[209] - 16.0 * W[4109] * W[614] - 15.5 * W[3704] * W[1019] - 15.0 * W[3299] * W[1424]
-            - 14.5 * W[2894] * W[1829] - 14.0 * W[2489] * W[2234] - 13.5 * W[2084] * W[2639] - 13.0 * W[1679] * W[3044]
-            - 12.5 * W[1274] * W[3449] - 12.0 * W[869] * W[3854] - 11.5 * W[464] * W[4259]) / (11.0 * W[59]);
-    W[4669] = (-16.5 * W[4509] * W[214] - 16.0 * W[4104] * W[619] - 15.5 * W[3699] * W[1024] - 15.0 * W[3294] * W[1429]
-            - 14.5 * W[2889] * W[1834] - 14.0 * W[2484] * W[2239] - 13.5 * W[2079] * W[2644] - 13.0 * W[1674] * W[3049]
-            - 12.5 * W[1269] * W[3454] - 12.0 * W[864] * W[3859] - 11.5 * W[459] * W[4264]) / (11.0 * W[54]);
-    W[4674] = (-16.5 * W[4504] * W[219] - 16.0 * W[4099] * W[624] - 15.5 * W[3694] * W[1029] - 15.0 * W[3289] * W[1434]
-            - 14.5 * W[2884] * W[1839] - 14.0 * W[2479] * W[2244] - 13.5 * W[2074] * W[2649] - 13.0 * W[1669] * W[3054]
-            - 12.5 * W[1264] * W[3459] - 12.0 * W[859] * W[3864] - 11.5 * W[454] * W[4269]) / (11.0 * W[49]);
-    W[4699] = (-16.5 * W[4544] * W[244] - 16.0 * W[4139] * W[649] - 15.5 * W[3734] * W[1054] - 15.0 * W[3329] * W[1459]
-            - 14.5 * W[2924] * W[1864] - 14.0 * W[2519] * W[2269] - 13.5 * W[2114] * W[2674] - 13.0 * W[1709] * W[3079]
-            - 12.5 * W[1304] * W[3484] - 12.0 * W[899] * W[3889] - 11.5 * W[494] * W[4294]) / (11.0 * W[89]);
-    W[4703] = (-16.5 * W[4539] * W[248] - 16.0 * W[4134] * W[653] - 15.5 * W[3729] * W[1058] - 15.0 * W[3324] * W[1463]
-            - 14.5 * W[2919] * W[1868] - 14.0 * W[2514] * W[2273] - 13.5 * W[2109] * W[2678] - 13.0 * W[1704] * W[3083]
-            - 12.5 * W[1299] * W[3488] - 12.0 * W[894] * W[3893] - 11.5 * W[489] * W[4298]) / (11.0 * W[84]);
-    W[4708] = (-16.5 * W[4534] * W[253] - 16.0 * W[4129] * W[658] - 15.5 * W[3724] * W[1063] - 15.0 * W[3319] * W[1468]
-            - 14.5 * W[2914] * W[1873] - 14.0 * W[2509] * W[2278] - 13.5 * W[2104] * W[2683] - 13.0 * W[1699] * W[3088]
-            - 12.5 * W[1294] * W[3493] - 12.0 * W[889] * W[3898] - 11.5 * W[484] * W[4303]) / (11.0 * W[79]);
-    W[4713] = (-16.5 * W[4529] * W[258] - 16.0 * W[4124] * W[663] - 15.5 * W[3719] * W[1068] - 15.0 * W[3314] * W[1473]
-            - 14.5 * W[2909] * W[1878] - 14.0 * W[2504] * W[2283] - 13.5 * W[2099] * W[2688] - 13.0 * W[1694] * W[3093]
-            - 12.5 * W[1289] * W[3498] - 12.0 * W[884] * W[3903] - 11.5 * W[479] * W[4308]) / (11.0 * W[74]);
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_208(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4739] = (-16.5 * W[4559] * W[284] - 16.0 * W[4154] * W[689] - 15.5 * W[3749] * W[1094] - 15.0 * W[3344] * W[1499]
             - 14.5 * W[2939] * W[1904] - 14.0 * W[2534] * W[2309] - 13.5 * W[2129] * W[2714] - 13.0 * W[1724] * W[3119]
             - 12.5 * W[1319] * W[3524] - 12.0 * W[914] * W[3929] - 11.5 * W[509] * W[4334]) / (11.0 * W[104]);
@@ -8302,66 +6593,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[4660] = W[60] * W[4659] + W[465] * W[4254] + W[870] * W[3849] + W[1275] * W[3444] + W[1680] * W[3039]
             + W[2085] * W[2634] + W[2490] * W[2229] + W[2895] * W[1824] + W[3300] * W[1419] + W[3705] * W[1014]
             + W[4110] * W[609] + W[4515] * W[204];
-    W[4665] = W[55] * W[4664] + W[460] * W[4259] + W[865] * W[3854] + W[1270] * W[3449] + W[1675] * W[3044]
-            + W[2080] * W[2639] + W[2485] * W[2234] + W[2890] * W[1829] + W[3295] * W[1424] + W[3700] * W[1019]
-            + W[4105] * W[614] + W[4510] * W[209];
-    W[4670] = W[50] * W[4669] + W[455] * W[4264] + W[860] * W[3859] + W[1265] * W[3454] + W[1670] * W[3049]
-            + W[2075] * W[2644] + W[2480] * W[2239] + W[2885] * W[1834] + W[3290] * W[1429] + W[3695] * W[1024]
-            + W[4100] * W[619] + W[4505] * W[214];
-    W[4675] = W[45] * W[4674] + W[450] * W[4269] + W[855] * W[3864] + W[1260] * W[3459] + W[1665] * W[3054]
-            + W[2070] * W[2649] + W[2475] * W[2244] + W[2880] * W[1839] + W[3285] * W[1434] + W[3690] * W[1029]
-            + W[4095] * W[624] + W[4500] * W[219];
-    W[4681] = W[67] * W[4655] + W[472] * W[4250] + W[877] * W[3845] + W[1282] * W[3440] + W[1687] * W[3035]
-            + W[2092] * W[2630] + W[2497] * W[2225] + W[2902] * W[1820] + W[3307] * W[1415] + W[3712] * W[1010]
-            + W[4117] * W[605] + W[4522] * W[200];
-    W[4683] = W[62] * W[4659] + W[467] * W[4254] + W[872] * W[3849] + W[1277] * W[3444] + W[1682] * W[3039]
-            + W[2087] * W[2634] + W[2492] * W[2229] + W[2897] * W[1824] + W[3302] * W[1419] + W[3707] * W[1014]
-            + W[4112] * W[609] + W[4517] * W[204];
-    W[4686] = W[57] * W[4664] + W[462] * W[4259] + W[867] * W[3854] + W[1272] * W[3449] + W[1677] * W[3044]
-            + W[2082] * W[2639] + W[2487] * W[2234] + W[2892] * W[1829] + W[3297] * W[1424] + W[3702] * W[1019]
-            + W[4107] * W[614] + W[4512] * W[209];
-    W[4689] = W[52] * W[4669] + W[457] * W[4264] + W[862] * W[3859] + W[1267] * W[3454] + W[1672] * W[3049]
-            + W[2077] * W[2644] + W[2482] * W[2239] + W[2887] * W[1834] + W[3292] * W[1429] + W[3697] * W[1024]
-            + W[4102] * W[619] + W[4507] * W[214];
-    W[4692] = W[47] * W[4674] + W[452] * W[4269] + W[857] * W[3864] + W[1262] * W[3459] + W[1667] * W[3054]
-            + W[2072] * W[2649] + W[2477] * W[2244] + W[2882] * W[1839] + W[3287] * W[1434] + W[3692] * W[1029]
-            + W[4097] * W[624] + W[4502] * W[219];
-    W[4700] = W[85] * W[4699] + W[490] * W[4294] + W[895] * W[3889] + W[1300] * W[3484] + W[1705] * W[3079]
-            + W[2110] * W[2674] + W[2515] * W[2269] + W[2920] * W[1864] + W[3325] * W[1459] + W[3730] * W[1054]
-            + W[4135] * W[649] + W[4540] * W[244];
-    W[4704] = W[80] * W[4703] + W[485] * W[4298] + W[890] * W[3893] + W[1295] * W[3488] + W[1700] * W[3083]
-            + W[2105] * W[2678] + W[2510] * W[2273] + W[2915] * W[1868] + W[3320] * W[1463] + W[3725] * W[1058]
-            + W[4130] * W[653] + W[4535] * W[248];
-    W[4709] = W[75] * W[4708] + W[480] * W[4303] + W[885] * W[3898] + W[1290] * W[3493] + W[1695] * W[3088]
-            + W[2100] * W[2683] + W[2505] * W[2278] + W[2910] * W[1873] + W[3315] * W[1468] + W[3720] * W[1063]
-            + W[4125] * W[658] + W[4530] * W[253];
-    W[4714] = W[70] * W[4713] + W[475] * W[4308] + W[880] * W[3903] + W[1285] * W[3498] + W[1690] * W[3093]
-            + W[2095] * W[2688] + W[2500] * W[2283] + W[2905] * W[1878] + W[3310] * W[1473] + W[3715] * W[1068]
-            + W[4120] * W[663] + W[4525] * W[258];
-    W[4722] = W[87] * W[4699] + W[492] * W[4294] + W[897] * W[3889] + W[1302] * W[3484] + W[1707] * W[3079]
-            + W[2112] * W[2674] + W[2517] * W[2269] + W[2922] * W[1864] + W[3327] * W[1459] + W[3732] * W[1054]
-            + W[4137] * W[649] + W[4542] * W[244];
-    W[4724] = W[82] * W[4703] + W[487] * W[4298] + W[892] * W[3893] + W[1297] * W[3488] + W[1702] * W[3083]
-            + W[2107] * W[2678] + W[2512] * W[2273] + W[2917] * W[1868] + W[3322] * W[1463] + W[3727] * W[1058]
-            + W[4132] * W[653] + W[4537] * W[248];
-    W[4727] = W[77] * W[4708] + W[482] * W[4303] + W[887] * W[3898] + W[1292] * W[3493] + W[1697] * W[3088]
-            + W[2102] * W[2683] + W[2507] * W[2278] + W[2912] * W[1873] + W[3317] * W[1468] + W[3722] * W[1063]
-            + W[4127] * W[658] + W[4532] * W[253];
-    W[4730] = W[72] * W[4713] + W[477] * W[4308] + W[882] * W[3903] + W[1287] * W[3498] + W[1692] * W[3093]
-            + W[2097] * W[2688] + W[2502] * W[2283] + W[2907] * W[1878] + W[3312] * W[1473] + W[3717] * W[1068]
-            + W[4122] * W[663] + W[4527] * W[258];
-    W[4740] = W[100] * W[4739] + W[505] * W[4334] + W[910] * W[3929] + W[1315] * W[3524] + W[1720] * W[3119]
-            + W[2125] * W[2714] + W[2530] * W[2309] + W[2935] * W[1904] + W[3340] * W[1499] + W[3745] * W[1094]
-            + W[4150] * W[689] + W[4555] * W[284];
-    W[4744] = W[95] * W[4743] + W[500] * W[4338] + W[905] * W[3933] + W[1310] * W[3528] + W[1715] * W[3123]
-            + W[2120] * W[2718] + W[2525] * W[2313] + W[2930] * W[1908] + W[3335] * W[1503] + W[3740] * W[1098]
-            + W[4145] * W[693] + W[4550] * W[288];
-    W[4749] = W[90] * W[4748] + W[495] * W[4343] + W[900] * W[3938] + W[1305] * W[3533] + W[1710] * W[3128]
-            + W[2115] * W[2723] + W[2520] * W[2318] + W[2925] * W[1913] + W[3330] * W[1508] + W[3735] * W[1103]
-            + W[4140] * W[698] + W[4545] * W[293];
-    W[4759] = W[102] * W[4739] + W[507] * W[4334] + W[912] * W[3929] + W[1317] * W[3524] + W[1722] * W[3119]
-            + W[2127] * W[2714] + W[2532] * W[2309] + W[2937] * W[1904] + W[3342] * W[1499] + W[3747] * W[1094]
-            + W[4152] * W[689] + W[4557] * W[284];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_210(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4761] = W[97] * W[4743] + W[502] * W[4338] + W[907] * W[3933] + W[1312] * W[3528] + W[1717] * W[3123]
             + W[2122] * W[2718] + W[2527] * W[2313] + W[2932] * W[1908] + W[3337] * W[1503] + W[3742] * W[1098]
             + W[4147] * W[693] + W[4552] * W[288];
@@ -8398,6 +6639,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[4645] = W[165] * W[4644];
     W[4648] = W[170] * W[4647];
     W[4651] = W[175] * W[4650];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_211(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4657] = W[199] * W[4656];
     W[4661] = W[203] * W[4660];
     W[4666] = W[208] * W[4665];
@@ -8418,26 +6669,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[4720] = W[128] * W[4627];
     W[4723] = W[243] * W[4722];
     W[4725] = W[247] * W[4724];
-    W[4728] = W[252] * W[4727];
-    W[4731] = W[257] * W[4730];
-    W[4734] = W[133] * W[4692];
-    W[4736] = W[128] * W[4647];
-    W[4741] = W[283] * W[4740];
-    W[4745] = W[287] * W[4744];
-    W[4750] = W[292] * W[4749];
-    W[4753] = W[138] * W[4714];
-    W[4755] = W[134] * W[4670];
-    W[4757] = W[129] * W[4622];
-    W[4760] = W[283] * W[4759];
-    W[4762] = W[287] * W[4761];
-    W[4765] = W[292] * W[4764];
-    W[4768] = W[138] * W[4730];
-    W[4770] = W[134] * W[4689];
-    W[4772] = W[129] * W[4644];
-    W[4777] = W[319] * W[4776];
-    W[4781] = W[323] * W[4780];
-    W[4784] = W[142] * W[4749];
-    W[4786] = W[139] * W[4709];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_213(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4788] = W[135] * W[4665];
     W[4790] = W[130] * W[4617];
     W[4793] = W[319] * W[4792];
@@ -8458,26 +6699,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[4826] = W[140] * W[4724];
     W[4828] = W[136] * W[4683];
     W[4830] = W[131] * W[4638];
-    W[4832] = W[351] * W[4808];
-    W[4839] = W[351] * W[4820];
-    W[4614] = W[4609] + W[4613];
-    W[4640] = W[4637] + W[4639];
-    W[4662] = W[4657] + W[4661];
-    W[4685] = W[4682] + W[4684];
-    W[4706] = W[4701] + W[4705];
-    W[4726] = W[4723] + W[4725];
-    W[4746] = W[4741] + W[4745];
-    W[4763] = W[4760] + W[4762];
-    W[4782] = W[4777] + W[4781];
-    W[4796] = W[4793] + W[4795];
-    W[4811] = W[4809] - W[4810];
-    W[4823] = W[4821] - W[4822];
-    W[4833] = W[4777] + W[4832];
-    W[4840] = W[4793] + W[4839];
-    W[4619] = W[4614] + W[4618];
-    W[4643] = W[4640] + W[4642];
-    W[4667] = W[4662] + W[4666];
-    W[4688] = W[4685] + W[4687];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_215(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4711] = W[4706] + W[4710];
     W[4729] = W[4726] + W[4728];
     W[4751] = W[4746] + W[4750];
@@ -8498,26 +6729,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[4767] = W[3] * W[4766];
     W[4785] = W[4783] - W[4784];
     W[4799] = W[4797] - W[4798];
-    W[4815] = W[4813] - W[4814];
-    W[4827] = W[4825] - W[4826];
-    W[4835] = W[4701] + W[4834];
-    W[4842] = W[4723] + W[4841];
-    W[4629] = W[4624] + W[4628];
-    W[4649] = W[4646] + W[4648];
-    W[4677] = W[4672] + W[4676];
-    W[4694] = W[4691] + W[4693];
-    W[4717] = W[3] * W[4716];
-    W[4733] = W[3] * W[4732];
-    W[4754] = W[4752] - W[4753];
-    W[4769] = W[4767] - W[4768];
-    W[4787] = W[4785] - W[4786];
-    W[4801] = W[4799] - W[4800];
-    W[4817] = W[4815] - W[4816];
-    W[4829] = W[4827] - W[4828];
-    W[4836] = W[4657] + W[4835];
-    W[4843] = W[4682] + W[4842];
-    W[4634] = W[4629] + W[4633];
-    W[4652] = W[4649] + W[4651];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_217(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4678] = W[3] * W[4677];
     W[4695] = W[3] * W[4694];
     W[4719] = W[4717] - W[4718];
@@ -8538,26 +6759,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[4737] = W[4735] - W[4736];
     W[4758] = W[4756] - W[4757];
     W[4773] = W[4771] - W[4772];
-    W[4791] = W[4789] - W[4790];
-    W[4805] = W[4803] - W[4804];
-    W[4838] = W[148] * W[4837];
-    W[4845] = W[148] * W[4844];
-    X[336] = X[322] / 12.0;
-    X[337] = X[323] / 12.0;
-    X[338] = X[324] / 12.0;
-    X[339] = X[325] / 12.0;
-    X[340] = X[326] / 12.0;
-    X[341] = X[327] / 12.0;
-    X[342] = X[328] / 12.0;
-    X[343] = X[329] / 12.0;
-    X[344] = X[330] / 12.0;
-    X[345] = X[331] / 12.0;
-    X[346] = X[332] / 12.0;
-    X[347] = X[333] / 12.0;
-    X[348] = X[334] / 12.0;
-    X[349] = X[335] / 12.0;
-    X[350] = -W[4635] / W[120] / 12.0;
-    X[351] = -W[4653] / W[120] / 12.0;
+    return 0;
+}
+
+/* Lines 340 .. 351 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_219(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[352] = -W[4680] / W[121] / 12.0;
     X[353] = -W[4697] / W[121] / 12.0;
     X[354] = -W[4721] / W[122] / 12.0;
@@ -8570,29 +6781,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[361] = -W[4831] / W[125] / 12.0;
     X[362] = -W[4838] / W[126] / 12.0;
     X[363] = -W[4845] / W[126] / 12.0;
-    if (K == 12)
-        goto out;
-    /* order 12 */
-    W[4862] = X[336] - X[338];
-    W[4867] = X[337] - X[339];
-    W[4871] = X[336] - X[340];
-    W[4874] = X[337] - X[341];
-    W[4878] = X[336] - X[342];
-    W[4881] = X[337] - X[343];
-    W[4885] = X[336] - X[344];
-    W[4888] = X[337] - X[345];
-    W[4892] = X[336] - X[346];
-    W[4895] = X[337] - X[347];
-    W[4899] = X[336] - X[348];
-    W[4902] = X[337] - X[349];
-    W[4905] = X[338] - X[340];
-    W[4907] = X[339] - X[341];
-    W[4910] = X[338] - X[342];
-    W[4912] = X[339] - X[343];
-    W[4915] = X[338] - X[344];
-    W[4917] = X[339] - X[345];
-    W[4920] = X[338] - X[346];
-    W[4922] = X[339] - X[347];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_221(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4925] = X[338] - X[348];
     W[4927] = X[339] - X[349];
     W[4930] = X[340] - X[342];
@@ -8613,44 +6811,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[4967] = X[345] - X[347];
     W[4970] = X[344] - X[348];
     W[4972] = X[345] - X[349];
-    W[4975] = X[346] - X[348];
-    W[4977] = X[347] - X[349];
-    W[4864] = (W[2] * W[4862] + W[407] * W[4457] + W[812] * W[4052] + W[1217] * W[3647] + W[1622] * W[3242]
-            + W[2027] * W[2837]) * 2.0 + W[2432] * W[2432];
-    W[4868] = (W[7] * W[4867] + W[412] * W[4462] + W[817] * W[4057] + W[1222] * W[3652] + W[1627] * W[3247]
-            + W[2032] * W[2842]) * 2.0 + W[2437] * W[2437];
-    W[4872] = (W[11] * W[4871] + W[416] * W[4466] + W[821] * W[4061] + W[1226] * W[3656] + W[1631] * W[3251]
-            + W[2036] * W[2846]) * 2.0 + W[2441] * W[2441];
-    W[4875] = (W[14] * W[4874] + W[419] * W[4469] + W[824] * W[4064] + W[1229] * W[3659] + W[1634] * W[3254]
-            + W[2039] * W[2849]) * 2.0 + W[2444] * W[2444];
-    W[4879] = (W[18] * W[4878] + W[423] * W[4473] + W[828] * W[4068] + W[1233] * W[3663] + W[1638] * W[3258]
-            + W[2043] * W[2853]) * 2.0 + W[2448] * W[2448];
-    W[4882] = (W[21] * W[4881] + W[426] * W[4476] + W[831] * W[4071] + W[1236] * W[3666] + W[1641] * W[3261]
-            + W[2046] * W[2856]) * 2.0 + W[2451] * W[2451];
-    W[4886] = (W[25] * W[4885] + W[430] * W[4480] + W[835] * W[4075] + W[1240] * W[3670] + W[1645] * W[3265]
-            + W[2050] * W[2860]) * 2.0 + W[2455] * W[2455];
-    W[4889] = (W[28] * W[4888] + W[433] * W[4483] + W[838] * W[4078] + W[1243] * W[3673] + W[1648] * W[3268]
-            + W[2053] * W[2863]) * 2.0 + W[2458] * W[2458];
-    W[4893] = (W[32] * W[4892] + W[437] * W[4487] + W[842] * W[4082] + W[1247] * W[3677] + W[1652] * W[3272]
-            + W[2057] * W[2867]) * 2.0 + W[2462] * W[2462];
-    W[4896] = (W[35] * W[4895] + W[440] * W[4490] + W[845] * W[4085] + W[1250] * W[3680] + W[1655] * W[3275]
-            + W[2060] * W[2870]) * 2.0 + W[2465] * W[2465];
-    W[4900] = (W[39] * W[4899] + W[444] * W[4494] + W[849] * W[4089] + W[1254] * W[3684] + W[1659] * W[3279]
-            + W[2064] * W[2874]) * 2.0 + W[2469] * W[2469];
-    W[4903] = (W[42] * W[4902] + W[447] * W[4497] + W[852] * W[4092] + W[1257] * W[3687] + W[1662] * W[3282]
-            + W[2067] * W[2877]) * 2.0 + W[2472] * W[2472];
-    W[4906] = (W[45] * W[4905] + W[450] * W[4500] + W[855] * W[4095] + W[1260] * W[3690] + W[1665] * W[3285]
-            + W[2070] * W[2880]) * 2.0 + W[2475] * W[2475];
-    W[4908] = (W[47] * W[4907] + W[452] * W[4502] + W[857] * W[4097] + W[1262] * W[3692] + W[1667] * W[3287]
-            + W[2072] * W[2882]) * 2.0 + W[2477] * W[2477];
-    W[4911] = (W[50] * W[4910] + W[455] * W[4505] + W[860] * W[4100] + W[1265] * W[3695] + W[1670] * W[3290]
-            + W[2075] * W[2885]) * 2.0 + W[2480] * W[2480];
-    W[4913] = (W[52] * W[4912] + W[457] * W[4507] + W[862] * W[4102] + W[1267] * W[3697] + W[1672] * W[3292]
-            + W[2077] * W[2887]) * 2.0 + W[2482] * W[2482];
-    W[4916] = (W[55] * W[4915] + W[460] * W[4510] + W[865] * W[4105] + W[1270] * W[3700] + W[1675] * W[3295]
-            + W[2080] * W[2890]) * 2.0 + W[2485] * W[2485];
-    W[4918] = (W[57] * W[4917] + W[462] * W[4512] + W[867] * W[4107] + W[1272] * W[3702] + W[1677] * W[3297]
-            + W[2082] * W[2892]) * 2.0 + W[2487] * W[2487];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_223(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4921] = (W[60] * W[4920] + W[465] * W[4515] + W[870] * W[4110] + W[1275] * W[3705] + W[1680] * W[3300]
             + W[2085] * W[2895]) * 2.0 + W[2490] * W[2490];
     W[4923] = (W[62] * W[4922] + W[467] * W[4517] + W[872] * W[4112] + W[1277] * W[3707] + W[1682] * W[3302]
@@ -8691,30 +6861,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2130] * W[2940]) * 2.0 + W[2535] * W[2535];
     W[4968] = (W[107] * W[4967] + W[512] * W[4562] + W[917] * W[4157] + W[1322] * W[3752] + W[1727] * W[3347]
             + W[2132] * W[2942]) * 2.0 + W[2537] * W[2537];
-    W[4971] = (W[110] * W[4970] + W[515] * W[4565] + W[920] * W[4160] + W[1325] * W[3755] + W[1730] * W[3350]
-            + W[2135] * W[2945]) * 2.0 + W[2540] * W[2540];
-    W[4973] = (W[112] * W[4972] + W[517] * W[4567] + W[922] * W[4162] + W[1327] * W[3757] + W[1732] * W[3352]
-            + W[2137] * W[2947]) * 2.0 + W[2542] * W[2542];
-    W[4976] = (W[115] * W[4975] + W[520] * W[4570] + W[925] * W[4165] + W[1330] * W[3760] + W[1735] * W[3355]
-            + W[2140] * W[2950]) * 2.0 + W[2545] * W[2545];
-    W[4978] = (W[117] * W[4977] + W[522] * W[4572] + W[927] * W[4167] + W[1332] * W[3762] + W[1737] * W[3357]
-            + W[2142] * W[2952]) * 2.0 + W[2547] * W[2547];
-    W[4869] = W[4864] + W[4868];
-    W[4876] = W[4872] + W[4875];
-    W[4883] = W[4879] + W[4882];
-    W[4890] = W[4886] + W[4889];
-    W[4897] = W[4893] + W[4896];
-    W[4904] = W[4900] + W[4903];
-    W[4909] = W[4906] + W[4908];
-    W[4914] = W[4911] + W[4913];
-    W[4919] = W[4916] + W[4918];
-    W[4924] = W[4921] + W[4923];
-    W[4929] = W[4926] + W[4928];
-    W[4934] = W[4931] + W[4933];
-    W[4939] = W[4936] + W[4938];
-    W[4944] = W[4941] + W[4943];
-    W[4949] = W[4946] + W[4948];
-    W[4954] = W[4951] + W[4953];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_225(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4959] = W[4956] + W[4958];
     W[4964] = W[4961] + W[4963];
     W[4969] = W[4966] + W[4968];
@@ -8765,66 +6921,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[5118] = (-18.0 * W[4934] * W[258] - 17.5 * W[4529] * W[663] - 17.0 * W[4124] * W[1068] - 16.5 * W[3719] * W[1473]
             - 16.0 * W[3314] * W[1878] - 15.5 * W[2909] * W[2283] - 15.0 * W[2504] * W[2688] - 14.5 * W[2099] * W[3093]
             - 14.0 * W[1694] * W[3498] - 13.5 * W[1289] * W[3903] - 13.0 * W[884] * W[4308] - 12.5 * W[479] * W[4713]) / (12.0 * W[74]);
-    W[5144] = (-18.0 * W[4964] * W[284] - 17.5 * W[4559] * W[689] - 17.0 * W[4154] * W[1094] - 16.5 * W[3749] * W[1499]
-            - 16.0 * W[3344] * W[1904] - 15.5 * W[2939] * W[2309] - 15.0 * W[2534] * W[2714] - 14.5 * W[2129] * W[3119]
-            - 14.0 * W[1724] * W[3524] - 13.5 * W[1319] * W[3929] - 13.0 * W[914] * W[4334] - 12.5 * W[509] * W[4739]) / (12.0 * W[104]);
-    W[5148] = (-18.0 * W[4959] * W[288] - 17.5 * W[4554] * W[693] - 17.0 * W[4149] * W[1098] - 16.5 * W[3744] * W[1503]
-            - 16.0 * W[3339] * W[1908] - 15.5 * W[2934] * W[2313] - 15.0 * W[2529] * W[2718] - 14.5 * W[2124] * W[3123]
-            - 14.0 * W[1719] * W[3528] - 13.5 * W[1314] * W[3933] - 13.0 * W[909] * W[4338] - 12.5 * W[504] * W[4743]) / (12.0 * W[99]);
-    W[5153] = (-18.0 * W[4954] * W[293] - 17.5 * W[4549] * W[698] - 17.0 * W[4144] * W[1103] - 16.5 * W[3739] * W[1508]
-            - 16.0 * W[3334] * W[1913] - 15.5 * W[2929] * W[2318] - 15.0 * W[2524] * W[2723] - 14.5 * W[2119] * W[3128]
-            - 14.0 * W[1714] * W[3533] - 13.5 * W[1309] * W[3938] - 13.0 * W[904] * W[4343] - 12.5 * W[499] * W[4748]) / (12.0 * W[94]);
-    W[5180] = (-18.0 * W[4974] * W[320] - 17.5 * W[4569] * W[725] - 17.0 * W[4164] * W[1130] - 16.5 * W[3759] * W[1535]
-            - 16.0 * W[3354] * W[1940] - 15.5 * W[2949] * W[2345] - 15.0 * W[2544] * W[2750] - 14.5 * W[2139] * W[3155]
-            - 14.0 * W[1734] * W[3560] - 13.5 * W[1329] * W[3965] - 13.0 * W[924] * W[4370] - 12.5 * W[519] * W[4775]) / (12.0 * W[114]);
-    W[5184] = (-18.0 * W[4969] * W[324] - 17.5 * W[4564] * W[729] - 17.0 * W[4159] * W[1134] - 16.5 * W[3754] * W[1539]
-            - 16.0 * W[3349] * W[1944] - 15.5 * W[2944] * W[2349] - 15.0 * W[2539] * W[2754] - 14.5 * W[2134] * W[3159]
-            - 14.0 * W[1729] * W[3564] - 13.5 * W[1324] * W[3969] - 13.0 * W[919] * W[4374] - 12.5 * W[514] * W[4779]) / (12.0 * W[109]);
-    W[5212] = (-18.0 * W[4979] * W[352] - 17.5 * W[4574] * W[757] - 17.0 * W[4169] * W[1162] - 16.5 * W[3764] * W[1567]
-            - 16.0 * W[3359] * W[1972] - 15.5 * W[2954] * W[2377] - 15.0 * W[2549] * W[2782] - 14.5 * W[2144] * W[3187]
-            - 14.0 * W[1739] * W[3592] - 13.5 * W[1334] * W[3997] - 13.0 * W[929] * W[4402] - 12.5 * W[524] * W[4807]) / (12.0 * W[119]);
-    W[5013] = W[39] * W[5012] + W[444] * W[4607] + W[849] * W[4202] + W[1254] * W[3797] + W[1659] * W[3392]
-            + W[2064] * W[2987] + W[2469] * W[2582] + W[2874] * W[2177] + W[3279] * W[1772] + W[3684] * W[1367]
-            + W[4089] * W[962] + W[4494] * W[557] + W[4899] * W[152];
-    W[5017] = W[32] * W[5016] + W[437] * W[4611] + W[842] * W[4206] + W[1247] * W[3801] + W[1652] * W[3396]
-            + W[2057] * W[2991] + W[2462] * W[2586] + W[2867] * W[2181] + W[3272] * W[1776] + W[3677] * W[1371]
-            + W[4082] * W[966] + W[4487] * W[561] + W[4892] * W[156];
-    W[5022] = W[25] * W[5021] + W[430] * W[4616] + W[835] * W[4211] + W[1240] * W[3806] + W[1645] * W[3401]
-            + W[2050] * W[2996] + W[2455] * W[2591] + W[2860] * W[2186] + W[3265] * W[1781] + W[3670] * W[1376]
-            + W[4075] * W[971] + W[4480] * W[566] + W[4885] * W[161];
-    W[5027] = W[18] * W[5026] + W[423] * W[4621] + W[828] * W[4216] + W[1233] * W[3811] + W[1638] * W[3406]
-            + W[2043] * W[3001] + W[2448] * W[2596] + W[2853] * W[2191] + W[3258] * W[1786] + W[3663] * W[1381]
-            + W[4068] * W[976] + W[4473] * W[571] + W[4878] * W[166];
-    W[5032] = W[11] * W[5031] + W[416] * W[4626] + W[821] * W[4221] + W[1226] * W[3816] + W[1631] * W[3411]
-            + W[2036] * W[3006] + W[2441] * W[2601] + W[2846] * W[2196] + W[3251] * W[1791] + W[3656] * W[1386]
-            + W[4061] * W[981] + W[4466] * W[576] + W[4871] * W[171];
-    W[5037] = W[2] * W[5036] + W[407] * W[4631] + W[812] * W[4226] + W[1217] * W[3821] + W[1622] * W[3416]
-            + W[2027] * W[3011] + W[2432] * W[2606] + W[2837] * W[2201] + W[3242] * W[1796] + W[3647] * W[1391]
-            + W[4052] * W[986] + W[4457] * W[581] + W[4862] * W[176];
-    W[5041] = W[42] * W[5012] + W[447] * W[4607] + W[852] * W[4202] + W[1257] * W[3797] + W[1662] * W[3392]
-            + W[2067] * W[2987] + W[2472] * W[2582] + W[2877] * W[2177] + W[3282] * W[1772] + W[3687] * W[1367]
-            + W[4092] * W[962] + W[4497] * W[557] + W[4902] * W[152];
-    W[5043] = W[35] * W[5016] + W[440] * W[4611] + W[845] * W[4206] + W[1250] * W[3801] + W[1655] * W[3396]
-            + W[2060] * W[2991] + W[2465] * W[2586] + W[2870] * W[2181] + W[3275] * W[1776] + W[3680] * W[1371]
-            + W[4085] * W[966] + W[4490] * W[561] + W[4895] * W[156];
-    W[5046] = W[28] * W[5021] + W[433] * W[4616] + W[838] * W[4211] + W[1243] * W[3806] + W[1648] * W[3401]
-            + W[2053] * W[2996] + W[2458] * W[2591] + W[2863] * W[2186] + W[3268] * W[1781] + W[3673] * W[1376]
-            + W[4078] * W[971] + W[4483] * W[566] + W[4888] * W[161];
-    W[5049] = W[21] * W[5026] + W[426] * W[4621] + W[831] * W[4216] + W[1236] * W[3811] + W[1641] * W[3406]
-            + W[2046] * W[3001] + W[2451] * W[2596] + W[2856] * W[2191] + W[3261] * W[1786] + W[3666] * W[1381]
-            + W[4071] * W[976] + W[4476] * W[571] + W[4881] * W[166];
-    W[5052] = W[14] * W[5031] + W[419] * W[4626] + W[824] * W[4221] + W[1229] * W[3816] + W[1634] * W[3411]
-            + W[2039] * W[3006] + W[2444] * W[2601] + W[2849] * W[2196] + W[3254] * W[1791] + W[3659] * W[1386]
-            + W[4064] * W[981] + W[4469] * W[576] + W[4874] * W[171];
-    W[5055] = W[7] * W[5036] + W[412] * W[4631] + W[817] * W[4226] + W[1222] * W[3821] + W[1627] * W[3416]
-            + W[2032] * W[3011] + W[2437] * W[2606] + W[2842] * W[2201] + W[3247] * W[1796] + W[3652] * W[1391]
-            + W[4057] * W[986] + W[4462] * W[581] + W[4867] * W[176];
-    W[5061] = W[65] * W[5060] + W[470] * W[4655] + W[875] * W[4250] + W[1280] * W[3845] + W[1685] * W[3440]
-            + W[2090] * W[3035] + W[2495] * W[2630] + W[2900] * W[2225] + W[3305] * W[1820] + W[3710] * W[1415]
-            + W[4115] * W[1010] + W[4520] * W[605] + W[4925] * W[200];
-    W[5065] = W[60] * W[5064] + W[465] * W[4659] + W[870] * W[4254] + W[1275] * W[3849] + W[1680] * W[3444]
-            + W[2085] * W[3039] + W[2490] * W[2634] + W[2895] * W[2229] + W[3300] * W[1824] + W[3705] * W[1419]
-            + W[4110] * W[1014] + W[4515] * W[609] + W[4920] * W[204];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_227(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5070] = W[55] * W[5069] + W[460] * W[4664] + W[865] * W[4259] + W[1270] * W[3854] + W[1675] * W[3449]
             + W[2080] * W[3044] + W[2485] * W[2639] + W[2890] * W[2234] + W[3295] * W[1829] + W[3700] * W[1424]
             + W[4105] * W[1019] + W[4510] * W[614] + W[4915] * W[209];
@@ -8885,62 +6991,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[5164] = W[102] * W[5144] + W[507] * W[4739] + W[912] * W[4334] + W[1317] * W[3929] + W[1722] * W[3524]
             + W[2127] * W[3119] + W[2532] * W[2714] + W[2937] * W[2309] + W[3342] * W[1904] + W[3747] * W[1499]
             + W[4152] * W[1094] + W[4557] * W[689] + W[4962] * W[284];
-    W[5166] = W[97] * W[5148] + W[502] * W[4743] + W[907] * W[4338] + W[1312] * W[3933] + W[1717] * W[3528]
-            + W[2122] * W[3123] + W[2527] * W[2718] + W[2932] * W[2313] + W[3337] * W[1908] + W[3742] * W[1503]
-            + W[4147] * W[1098] + W[4552] * W[693] + W[4957] * W[288];
-    W[5169] = W[92] * W[5153] + W[497] * W[4748] + W[902] * W[4343] + W[1307] * W[3938] + W[1712] * W[3533]
-            + W[2117] * W[3128] + W[2522] * W[2723] + W[2927] * W[2318] + W[3332] * W[1913] + W[3737] * W[1508]
-            + W[4142] * W[1103] + W[4547] * W[698] + W[4952] * W[293];
-    W[5181] = W[110] * W[5180] + W[515] * W[4775] + W[920] * W[4370] + W[1325] * W[3965] + W[1730] * W[3560]
-            + W[2135] * W[3155] + W[2540] * W[2750] + W[2945] * W[2345] + W[3350] * W[1940] + W[3755] * W[1535]
-            + W[4160] * W[1130] + W[4565] * W[725] + W[4970] * W[320];
-    W[5185] = W[105] * W[5184] + W[510] * W[4779] + W[915] * W[4374] + W[1320] * W[3969] + W[1725] * W[3564]
-            + W[2130] * W[3159] + W[2535] * W[2754] + W[2940] * W[2349] + W[3345] * W[1944] + W[3750] * W[1539]
-            + W[4155] * W[1134] + W[4560] * W[729] + W[4965] * W[324];
-    W[5197] = W[112] * W[5180] + W[517] * W[4775] + W[922] * W[4370] + W[1327] * W[3965] + W[1732] * W[3560]
-            + W[2137] * W[3155] + W[2542] * W[2750] + W[2947] * W[2345] + W[3352] * W[1940] + W[3757] * W[1535]
-            + W[4162] * W[1130] + W[4567] * W[725] + W[4972] * W[320];
-    W[5199] = W[107] * W[5184] + W[512] * W[4779] + W[917] * W[4374] + W[1322] * W[3969] + W[1727] * W[3564]
-            + W[2132] * W[3159] + W[2537] * W[2754] + W[2942] * W[2349] + W[3347] * W[1944] + W[3752] * W[1539]
-            + W[4157] * W[1134] + W[4562] * W[729] + W[4967] * W[324];
-    W[5213] = W[115] * W[5212] + W[520] * W[4807] + W[925] * W[4402] + W[1330] * W[3997] + W[1735] * W[3592]
-            + W[2140] * W[3187] + W[2545] * W[2782] + W[2950] * W[2377] + W[3355] * W[1972] + W[3760] * W[1567]
-            + W[4165] * W[1162] + W[4570] * W[757] + W[4975] * W[352];
-    W[5225] = W[117] * W[5212] + W[522] * W[4807] + W[927] * W[4402] + W[1332] * W[3997] + W[1737] * W[3592]
-            + W[2142] * W[3187] + W[2547] * W[2782] + W[2952] * W[2377] + W[3357] * W[1972] + W[3762] * W[1567]
-            + W[4167] * W[1162] + W[4572] * W[757] + W[4977] * W[352];
-    W[5014] = W[151] * W[5013];
-    W[5018] = W[155] * W[5017];
-    W[5023] = W[160] * W[5022];
-    W[5028] = W[165] * W[5027];
-    W[5033] = W[170] * W[5032];
-    W[5038] = W[175] * W[5037];
-    W[5042] = W[151] * W[5041];
-    W[5044] = W[155] * W[5043];
-    W[5047] = W[160] * W[5046];
-    W[5050] = W[165] * W[5049];
-    W[5053] = W[170] * W[5052];
-    W[5056] = W[175] * W[5055];
-    W[5062] = W[199] * W[5061];
-    W[5066] = W[203] * W[5065];
-    W[5071] = W[208] * W[5070];
-    W[5076] = W[213] * W[5075];
-    W[5081] = W[218] * W[5080];
-    W[5084] = W[127] * W[5037];
-    W[5087] = W[199] * W[5086];
-    W[5089] = W[203] * W[5088];
-    W[5092] = W[208] * W[5091];
-    W[5095] = W[213] * W[5094];
-    W[5098] = W[218] * W[5097];
-    W[5101] = W[127] * W[5055];
-    W[5106] = W[243] * W[5105];
-    W[5110] = W[247] * W[5109];
-    W[5115] = W[252] * W[5114];
-    W[5120] = W[257] * W[5119];
-    W[5123] = W[133] * W[5080];
-    W[5125] = W[128] * W[5032];
-    W[5128] = W[243] * W[5127];
-    W[5130] = W[247] * W[5129];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_230(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5133] = W[252] * W[5132];
     W[5136] = W[257] * W[5135];
     W[5139] = W[133] * W[5097];
@@ -8961,26 +7021,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[5186] = W[323] * W[5185];
     W[5189] = W[142] * W[5154];
     W[5191] = W[139] * W[5114];
-    W[5193] = W[135] * W[5070];
-    W[5195] = W[130] * W[5022];
-    W[5198] = W[319] * W[5197];
-    W[5200] = W[323] * W[5199];
-    W[5203] = W[142] * W[5169];
-    W[5205] = W[139] * W[5132];
-    W[5207] = W[135] * W[5091];
-    W[5209] = W[130] * W[5046];
-    W[5214] = W[147] * W[5213];
-    W[5215] = W[145] * W[5185];
-    W[5217] = W[143] * W[5149];
-    W[5219] = W[140] * W[5109];
-    W[5221] = W[136] * W[5065];
-    W[5223] = W[131] * W[5017];
-    W[5226] = W[147] * W[5225];
-    W[5227] = W[145] * W[5199];
-    W[5229] = W[143] * W[5166];
-    W[5231] = W[140] * W[5129];
-    W[5233] = W[136] * W[5088];
-    W[5235] = W[131] * W[5043];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_232(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5237] = W[351] * W[5213];
     W[5244] = W[351] * W[5225];
     W[5019] = W[5014] + W[5018];
@@ -9001,26 +7051,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[5048] = W[5045] + W[5047];
     W[5072] = W[5067] + W[5071];
     W[5093] = W[5090] + W[5092];
-    W[5116] = W[5111] + W[5115];
-    W[5134] = W[5131] + W[5133];
-    W[5156] = W[5151] + W[5155];
-    W[5171] = W[5168] + W[5170];
-    W[5188] = W[3] * W[5187];
-    W[5202] = W[3] * W[5201];
-    W[5218] = W[5216] - W[5217];
-    W[5230] = W[5228] - W[5229];
-    W[5239] = W[5146] + W[5238];
-    W[5246] = W[5165] + W[5245];
-    W[5029] = W[5024] + W[5028];
-    W[5051] = W[5048] + W[5050];
-    W[5077] = W[5072] + W[5076];
-    W[5096] = W[5093] + W[5095];
-    W[5121] = W[5116] + W[5120];
-    W[5137] = W[5134] + W[5136];
-    W[5157] = W[3] * W[5156];
-    W[5172] = W[3] * W[5171];
-    W[5190] = W[5188] - W[5189];
-    W[5204] = W[5202] - W[5203];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_234(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5220] = W[5218] - W[5219];
     W[5232] = W[5230] - W[5231];
     W[5240] = W[5106] + W[5239];
@@ -9041,26 +7081,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[5248] = W[5087] + W[5247];
     W[5039] = W[5034] + W[5038];
     W[5057] = W[5054] + W[5056];
-    W[5083] = W[3] * W[5082];
-    W[5100] = W[3] * W[5099];
-    W[5124] = W[5122] - W[5123];
-    W[5140] = W[5138] - W[5139];
-    W[5161] = W[5159] - W[5160];
-    W[5176] = W[5174] - W[5175];
-    W[5194] = W[5192] - W[5193];
-    W[5208] = W[5206] - W[5207];
-    W[5224] = W[5222] - W[5223];
-    W[5236] = W[5234] - W[5235];
-    W[5242] = W[5014] + W[5241];
-    W[5249] = W[5042] + W[5248];
-    W[5040] = W[3] * W[5039];
-    W[5058] = W[3] * W[5057];
-    W[5085] = W[5083] - W[5084];
-    W[5102] = W[5100] - W[5101];
-    W[5126] = W[5124] - W[5125];
-    W[5142] = W[5140] - W[5141];
-    W[5163] = W[5161] - W[5162];
-    W[5178] = W[5176] - W[5177];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_236(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5196] = W[5194] - W[5195];
     W[5210] = W[5208] - W[5209];
     W[5243] = W[148] * W[5242];
@@ -9081,41 +7111,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[377] = X[363] / 13.0;
     X[378] = -W[5040] / W[120] / 13.0;
     X[379] = -W[5058] / W[120] / 13.0;
-    X[380] = -W[5085] / W[121] / 13.0;
-    X[381] = -W[5102] / W[121] / 13.0;
-    X[382] = -W[5126] / W[122] / 13.0;
-    X[383] = -W[5142] / W[122] / 13.0;
-    X[384] = -W[5163] / W[123] / 13.0;
-    X[385] = -W[5178] / W[123] / 13.0;
-    X[386] = -W[5196] / W[124] / 13.0;
-    X[387] = -W[5210] / W[124] / 13.0;
-    X[388] = -W[5224] / W[125] / 13.0;
-    X[389] = -W[5236] / W[125] / 13.0;
-    X[390] = -W[5243] / W[126] / 13.0;
-    X[391] = -W[5250] / W[126] / 13.0;
-    if (K == 13)
-        goto out;
-    /* order 13 */
-    W[5267] = X[364] - X[366];
-    W[5272] = X[365] - X[367];
-    W[5276] = X[364] - X[368];
-    W[5279] = X[365] - X[369];
-    W[5283] = X[364] - X[370];
-    W[5286] = X[365] - X[371];
-    W[5290] = X[364] - X[372];
-    W[5293] = X[365] - X[373];
-    W[5297] = X[364] - X[374];
-    W[5300] = X[365] - X[375];
-    W[5304] = X[364] - X[376];
-    W[5307] = X[365] - X[377];
-    W[5310] = X[366] - X[368];
-    W[5312] = X[367] - X[369];
-    W[5315] = X[366] - X[370];
-    W[5317] = X[367] - X[371];
-    W[5320] = X[366] - X[372];
-    W[5322] = X[367] - X[373];
-    W[5325] = X[366] - X[374];
-    W[5327] = X[367] - X[375];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 13. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_239(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5330] = X[366] - X[376];
     W[5332] = X[367] - X[377];
     W[5335] = X[368] - X[370];
@@ -9136,44 +7141,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[5372] = X[373] - X[375];
     W[5375] = X[372] - X[376];
     W[5377] = X[373] - X[377];
-    W[5380] = X[374] - X[376];
-    W[5382] = X[375] - X[377];
-    W[5269] = (W[2] * W[5267] + W[407] * W[4862] + W[812] * W[4457] + W[1217] * W[4052] + W[1622] * W[3647]
-            + W[2027] * W[3242] + W[2432] * W[2837]) * 2.0;
-    W[5273] = (W[7] * W[5272] + W[412] * W[4867] + W[817] * W[4462] + W[1222] * W[4057] + W[1627] * W[3652]
-            + W[2032] * W[3247] + W[2437] * W[2842]) * 2.0;
-    W[5277] = (W[11] * W[5276] + W[416] * W[4871] + W[821] * W[4466] + W[1226] * W[4061] + W[1631] * W[3656]
-            + W[2036] * W[3251] + W[2441] * W[2846]) * 2.0;
-    W[5280] = (W[14] * W[5279] + W[419] * W[4874] + W[824] * W[4469] + W[1229] * W[4064] + W[1634] * W[3659]
-            + W[2039] * W[3254] + W[2444] * W[2849]) * 2.0;
-    W[5284] = (W[18] * W[5283] + W[423] * W[4878] + W[828] * W[4473] + W[1233] * W[4068] + W[1638] * W[3663]
-            + W[2043] * W[3258] + W[2448] * W[2853]) * 2.0;
-    W[5287] = (W[21] * W[5286] + W[426] * W[4881] + W[831] * W[4476] + W[1236] * W[4071] + W[1641] * W[3666]
-            + W[2046] * W[3261] + W[2451] * W[2856]) * 2.0;
-    W[5291] = (W[25] * W[5290] + W[430] * W[4885] + W[835] * W[4480] + W[1240] * W[4075] + W[1645] * W[3670]
-            + W[2050] * W[3265] + W[2455] * W[2860]) * 2.0;
-    W[5294] = (W[28] * W[5293] + W[433] * W[4888] + W[838] * W[4483] + W[1243] * W[4078] + W[1648] * W[3673]
-            + W[2053] * W[3268] + W[2458] * W[2863]) * 2.0;
-    W[5298] = (W[32] * W[5297] + W[437] * W[4892] + W[842] * W[4487] + W[1247] * W[4082] + W[1652] * W[3677]
-            + W[2057] * W[3272] + W[2462] * W[2867]) * 2.0;
-    W[5301] = (W[35] * W[5300] + W[440] * W[4895] + W[845] * W[4490] + W[1250] * W[4085] + W[1655] * W[3680]
-            + W[2060] * W[3275] + W[2465] * W[2870]) * 2.0;
-    W[5305] = (W[39] * W[5304] + W[444] * W[4899] + W[849] * W[4494] + W[1254] * W[4089] + W[1659] * W[3684]
-            + W[2064] * W[3279] + W[2469] * W[2874]) * 2.0;
-    W[5308] = (W[42] * W[5307] + W[447] * W[4902] + W[852] * W[4497] + W[1257] * W[4092] + W[1662] * W[3687]
-            + W[2067] * W[3282] + W[2472] * W[2877]) * 2.0;
-    W[5311] = (W[45] * W[5310] + W[450] * W[4905] + W[855] * W[4500] + W[1260] * W[4095] + W[1665] * W[3690]
-            + W[2070] * W[3285] + W[2475] * W[2880]) * 2.0;
-    W[5313] = (W[47] * W[5312] + W[452] * W[4907] + W[857] * W[4502] + W[1262] * W[4097] + W[1667] * W[3692]
-            + W[2072] * W[3287] + W[2477] * W[2882]) * 2.0;
-    W[5316] = (W[50] * W[5315] + W[455] * W[4910] + W[860] * W[4505] + W[1265] * W[4100] + W[1670] * W[3695]
-            + W[2075] * W[3290] + W[2480] * W[2885]) * 2.0;
-    W[5318] = (W[52] * W[5317] + W[457] * W[4912] + W[862] * W[4507] + W[1267] * W[4102] + W[1672] * W[3697]
-            + W[2077] * W[3292] + W[2482] * W[2887]) * 2.0;
-    W[5321] = (W[55] * W[5320] + W[460] * W[4915] + W[865] * W[4510] + W[1270] * W[4105] + W[1675] * W[3700]
-            + W[2080] * W[3295] + W[2485] * W[2890]) * 2.0;
-    W[5323] = (W[57] * W[5322] + W[462] * W[4917] + W[867] * W[4512] + W[1272] * W[4107] + W[1677] * W[3702]
-            + W[2082] * W[3297] + W[2487] * W[2892]) * 2.0;
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 13. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_241(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5326] = (W[60] * W[5325] + W[465] * W[4920] + W[870] * W[4515] + W[1275] * W[4110] + W[1680] * W[3705]
             + W[2085] * W[3300] + W[2490] * W[2895]) * 2.0;
     W[5328] = (W[62] * W[5327] + W[467] * W[4922] + W[872] * W[4517] + W[1277] * W[4112] + W[1682] * W[3707]
@@ -9214,30 +7191,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2130] * W[3345] + W[2535] * W[2940]) * 2.0;
     W[5373] = (W[107] * W[5372] + W[512] * W[4967] + W[917] * W[4562] + W[1322] * W[4157] + W[1727] * W[3752]
             + W[2132] * W[3347] + W[2537] * W[2942]) * 2.0;
-    W[5376] = (W[110] * W[5375] + W[515] * W[4970] + W[920] * W[4565] + W[1325] * W[4160] + W[1730] * W[3755]
-            + W[2135] * W[3350] + W[2540] * W[2945]) * 2.0;
-    W[5378] = (W[112] * W[5377] + W[517] * W[4972] + W[922] * W[4567] + W[1327] * W[4162] + W[1732] * W[3757]
-            + W[2137] * W[3352] + W[2542] * W[2947]) * 2.0;
-    W[5381] = (W[115] * W[5380] + W[520] * W[4975] + W[925] * W[4570] + W[1330] * W[4165] + W[1735] * W[3760]
-            + W[2140] * W[3355] + W[2545] * W[2950]) * 2.0;
-    W[5383] = (W[117] * W[5382] + W[522] * W[4977] + W[927] * W[4572] + W[1332] * W[4167] + W[1737] * W[3762]
-            + W[2142] * W[3357] + W[2547] * W[2952]) * 2.0;
-    W[5274] = W[5269] + W[5273];
-    W[5281] = W[5277] + W[5280];
-    W[5288] = W[5284] + W[5287];
-    W[5295] = W[5291] + W[5294];
-    W[5302] = W[5298] + W[5301];
-    W[5309] = W[5305] + W[5308];
-    W[5314] = W[5311] + W[5313];
-    W[5319] = W[5316] + W[5318];
-    W[5324] = W[5321] + W[5323];
-    W[5329] = W[5326] + W[5328];
-    W[5334] = W[5331] + W[5333];
-    W[5339] = W[5336] + W[5338];
-    W[5344] = W[5341] + W[5343];
-    W[5349] = W[5346] + W[5348];
-    W[5354] = W[5351] + W[5353];
-    W[5359] = W[5356] + W[5358];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 13. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_243(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5364] = W[5361] + W[5363];
     W[5369] = W[5366] + W[5368];
     W[5374] = W[5371] + W[5373];
@@ -9303,72 +7266,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             - 17.5 * W[3719] * W[1878] - 17.0 * W[3314] * W[2283] - 16.5 * W[2909] * W[2688] - 16.0 * W[2504] * W[3093]
             - 15.5 * W[2099] * W[3498] - 15.0 * W[1694] * W[3903] - 14.5 * W[1289] * W[4308] - 14.0 * W[884] * W[4713]
             - 13.5 * W[479] * W[5118]) / (13.0 * W[74]);
-    W[5549] = (-19.5 * W[5369] * W[284] - 19.0 * W[4964] * W[689] - 18.5 * W[4559] * W[1094] - 18.0 * W[4154] * W[1499]
-            - 17.5 * W[3749] * W[1904] - 17.0 * W[3344] * W[2309] - 16.5 * W[2939] * W[2714] - 16.0 * W[2534] * W[3119]
-            - 15.5 * W[2129] * W[3524] - 15.0 * W[1724] * W[3929] - 14.5 * W[1319] * W[4334] - 14.0 * W[914] * W[4739]
-            - 13.5 * W[509] * W[5144]) / (13.0 * W[104]);
-    W[5553] = (-19.5 * W[5364] * W[288] - 19.0 * W[4959] * W[693] - 18.5 * W[4554] * W[1098] - 18.0 * W[4149] * W[1503]
-            - 17.5 * W[3744] * W[1908] - 17.0 * W[3339] * W[2313] - 16.5 * W[2934] * W[2718] - 16.0 * W[2529] * W[3123]
-            - 15.5 * W[2124] * W[3528] - 15.0 * W[1719] * W[3933] - 14.5 * W[1314] * W[4338] - 14.0 * W[909] * W[4743]
-            - 13.5 * W[504] * W[5148]) / (13.0 * W[99]);
-    W[5558] = (-19.5 * W[5359] * W[293] - 19.0 * W[4954] * W[698] - 18.5 * W[4549] * W[1103] - 18.0 * W[4144] * W[1508]
-            - 17.5 * W[3739] * W[1913] - 17.0 * W[3334] * W[2318] - 16.5 * W[2929] * W[2723] - 16.0 * W[2524] * W[3128]
-            - 15.5 * W[2119] * W[3533] - 15.0 * W[1714] * W[3938] - 14.5 * W[1309] * W[4343] - 14.0 * W[904] * W[4748]
-            - 13.5 * W[499] * W[5153]) / (13.0 * W[94]);
-    W[5585] = (-19.5 * W[5379] * W[320] - 19.0 * W[4974] * W[725] - 18.5 * W[4569] * W[1130] - 18.0 * W[4164] * W[1535]
-            - 17.5 * W[3759] * W[1940] - 17.0 * W[3354] * W[2345] - 16.5 * W[2949] * W[2750] - 16.0 * W[2544] * W[3155]
-            - 15.5 * W[2139] * W[3560] - 15.0 * W[1734] * W[3965] - 14.5 * W[1329] * W[4370] - 14.0 * W[924] * W[4775]
-            - 13.5 * W[519] * W[5180]) / (13.0 * W[114]);
-    W[5589] = (-19.5 * W[5374] * W[324] - 19.0 * W[4969] * W[729] - 18.5 * W[4564] * W[1134] - 18.0 * W[4159] * W[1539]
-            - 17.5 * W[3754] * W[1944] - 17.0 * W[3349] * W[2349] - 16.5 * W[2944] * W[2754] - 16.0 * W[2539] * W[3159]
-            - 15.5 * W[2134] * W[3564] - 15.0 * W[1729] * W[3969] - 14.5 * W[1324] * W[4374] - 14.0 * W[919] * W[4779]
-            - 13.5 * W[514] * W[5184]) / (13.0 * W[109]);
-    W[5617] = (-19.5 * W[5384] * W[352] - 19.0 * W[4979] * W[757] - 18.5 * W[4574] * W[1162] - 18.0 * W[4169] * W[1567]
-            - 17.5 * W[3764] * W[1972] - 17.0 * W[3359] * W[2377] - 16.5 * W[2954] * W[2782] - 16.0 * W[2549] * W[3187]
-            - 15.5 * W[2144] * W[3592] - 15.0 * W[1739] * W[3997] - 14.5 * W[1334] * W[4402] - 14.0 * W[929] * W[4807]
-            - 13.5 * W[524] * W[5212]) / (13.0 * W[119]);
-    W[5418] = W[39] * W[5417] + W[444] * W[5012] + W[849] * W[4607] + W[1254] * W[4202] + W[1659] * W[3797]
-            + W[2064] * W[3392] + W[2469] * W[2987] + W[2874] * W[2582] + W[3279] * W[2177] + W[3684] * W[1772]
-            + W[4089] * W[1367] + W[4494] * W[962] + W[4899] * W[557] + W[5304] * W[152];
-    W[5422] = W[32] * W[5421] + W[437] * W[5016] + W[842] * W[4611] + W[1247] * W[4206] + W[1652] * W[3801]
-            + W[2057] * W[3396] + W[2462] * W[2991] + W[2867] * W[2586] + W[3272] * W[2181] + W[3677] * W[1776]
-            + W[4082] * W[1371] + W[4487] * W[966] + W[4892] * W[561] + W[5297] * W[156];
-    W[5427] = W[25] * W[5426] + W[430] * W[5021] + W[835] * W[4616] + W[1240] * W[4211] + W[1645] * W[3806]
-            + W[2050] * W[3401] + W[2455] * W[2996] + W[2860] * W[2591] + W[3265] * W[2186] + W[3670] * W[1781]
-            + W[4075] * W[1376] + W[4480] * W[971] + W[4885] * W[566] + W[5290] * W[161];
-    W[5432] = W[18] * W[5431] + W[423] * W[5026] + W[828] * W[4621] + W[1233] * W[4216] + W[1638] * W[3811]
-            + W[2043] * W[3406] + W[2448] * W[3001] + W[2853] * W[2596] + W[3258] * W[2191] + W[3663] * W[1786]
-            + W[4068] * W[1381] + W[4473] * W[976] + W[4878] * W[571] + W[5283] * W[166];
-    W[5437] = W[11] * W[5436] + W[416] * W[5031] + W[821] * W[4626] + W[1226] * W[4221] + W[1631] * W[3816]
-            + W[2036] * W[3411] + W[2441] * W[3006] + W[2846] * W[2601] + W[3251] * W[2196] + W[3656] * W[1791]
-            + W[4061] * W[1386] + W[4466] * W[981] + W[4871] * W[576] + W[5276] * W[171];
-    W[5442] = W[2] * W[5441] + W[407] * W[5036] + W[812] * W[4631] + W[1217] * W[4226] + W[1622] * W[3821]
-            + W[2027] * W[3416] + W[2432] * W[3011] + W[2837] * W[2606] + W[3242] * W[2201] + W[3647] * W[1796]
-            + W[4052] * W[1391] + W[4457] * W[986] + W[4862] * W[581] + W[5267] * W[176];
-    W[5446] = W[42] * W[5417] + W[447] * W[5012] + W[852] * W[4607] + W[1257] * W[4202] + W[1662] * W[3797]
-            + W[2067] * W[3392] + W[2472] * W[2987] + W[2877] * W[2582] + W[3282] * W[2177] + W[3687] * W[1772]
-            + W[4092] * W[1367] + W[4497] * W[962] + W[4902] * W[557] + W[5307] * W[152];
-    W[5448] = W[35] * W[5421] + W[440] * W[5016] + W[845] * W[4611] + W[1250] * W[4206] + W[1655] * W[3801]
-            + W[2060] * W[3396] + W[2465] * W[2991] + W[2870] * W[2586] + W[3275] * W[2181] + W[3680] * W[1776]
-            + W[4085] * W[1371] + W[4490] * W[966] + W[4895] * W[561] + W[5300] * W[156];
-    W[5451] = W[28] * W[5426] + W[433] * W[5021] + W[838] * W[4616] + W[1243] * W[4211] + W[1648] * W[3806]
-            + W[2053] * W[3401] + W[2458] * W[2996] + W[2863] * W[2591] + W[3268] * W[2186] + W[3673] * W[1781]
-            + W[4078] * W[1376] + W[4483] * W[971] + W[4888] * W[566] + W[5293] * W[161];
-    W[5454] = W[21] * W[5431] + W[426] * W[5026] + W[831] * W[4621] + W[1236] * W[4216] + W[1641] * W[3811]
-            + W[2046] * W[3406] + W[2451] * W[3001] + W[2856] * W[2596] + W[3261] * W[2191] + W[3666] * W[1786]
-            + W[4071] * W[1381] + W[4476] * W[976] + W[4881] * W[571] + W[5286] * W[166];
-    W[5457] = W[14] * W[5436] + W[419] * W[5031] + W[824] * W[4626] + W[1229] * W[4221] + W[1634] * W[3816]
-            + W[2039] * W[3411] + W[2444] * W[3006] + W[2849] * W[2601] + W[3254] * W[2196] + W[3659] * W[1791]
-            + W[4064] * W[1386] + W[4469] * W[981] + W[4874] * W[576] + W[5279] * W[171];
-    W[5460] = W[7] * W[5441] + W[412] * W[5036] + W[817] * W[4631] + W[1222] * W[4226] + W[1627] * W[3821]
-            + W[2032] * W[3416] + W[2437] * W[3011] + W[2842] * W[2606] + W[3247] * W[2201] + W[3652] * W[1796]
-            + W[4057] * W[1391] + W[4462] * W[986] + W[4867] * W[581] + W[5272] * W[176];
-    W[5466] = W[65] * W[5465] + W[470] * W[5060] + W[875] * W[4655] + W[1280] * W[4250] + W[1685] * W[3845]
-            + W[2090] * W[3440] + W[2495] * W[3035] + W[2900] * W[2630] + W[3305] * W[2225] + W[3710] * W[1820]
-            + W[4115] * W[1415] + W[4520] * W[1010] + W[4925] * W[605] + W[5330] * W[200];
-    W[5470] = W[60] * W[5469] + W[465] * W[5064] + W[870] * W[4659] + W[1275] * W[4254] + W[1680] * W[3849]
-            + W[2085] * W[3444] + W[2490] * W[3039] + W[2895] * W[2634] + W[3300] * W[2229] + W[3705] * W[1824]
-            + W[4110] * W[1419] + W[4515] * W[1014] + W[4920] * W[609] + W[5325] * W[204];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 13. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_245(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5475] = W[55] * W[5474] + W[460] * W[5069] + W[865] * W[4664] + W[1270] * W[4259] + W[1675] * W[3854]
             + W[2080] * W[3449] + W[2485] * W[3044] + W[2890] * W[2639] + W[3295] * W[2234] + W[3700] * W[1829]
             + W[4105] * W[1424] + W[4510] * W[1019] + W[4915] * W[614] + W[5320] * W[209];
@@ -9429,62 +7336,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[5569] = W[102] * W[5549] + W[507] * W[5144] + W[912] * W[4739] + W[1317] * W[4334] + W[1722] * W[3929]
             + W[2127] * W[3524] + W[2532] * W[3119] + W[2937] * W[2714] + W[3342] * W[2309] + W[3747] * W[1904]
             + W[4152] * W[1499] + W[4557] * W[1094] + W[4962] * W[689] + W[5367] * W[284];
-    W[5571] = W[97] * W[5553] + W[502] * W[5148] + W[907] * W[4743] + W[1312] * W[4338] + W[1717] * W[3933]
-            + W[2122] * W[3528] + W[2527] * W[3123] + W[2932] * W[2718] + W[3337] * W[2313] + W[3742] * W[1908]
-            + W[4147] * W[1503] + W[4552] * W[1098] + W[4957] * W[693] + W[5362] * W[288];
-    W[5574] = W[92] * W[5558] + W[497] * W[5153] + W[902] * W[4748] + W[1307] * W[4343] + W[1712] * W[3938]
-            + W[2117] * W[3533] + W[2522] * W[3128] + W[2927] * W[2723] + W[3332] * W[2318] + W[3737] * W[1913]
-            + W[4142] * W[1508] + W[4547] * W[1103] + W[4952] * W[698] + W[5357] * W[293];
-    W[5586] = W[110] * W[5585] + W[515] * W[5180] + W[920] * W[4775] + W[1325] * W[4370] + W[1730] * W[3965]
-            + W[2135] * W[3560] + W[2540] * W[3155] + W[2945] * W[2750] + W[3350] * W[2345] + W[3755] * W[1940]
-            + W[4160] * W[1535] + W[4565] * W[1130] + W[4970] * W[725] + W[5375] * W[320];
-    W[5590] = W[105] * W[5589] + W[510] * W[5184] + W[915] * W[4779] + W[1320] * W[4374] + W[1725] * W[3969]
-            + W[2130] * W[3564] + W[2535] * W[3159] + W[2940] * W[2754] + W[3345] * W[2349] + W[3750] * W[1944]
-            + W[4155] * W[1539] + W[4560] * W[1134] + W[4965] * W[729] + W[5370] * W[324];
-    W[5602] = W[112] * W[5585] + W[517] * W[5180] + W[922] * W[4775] + W[1327] * W[4370] + W[1732] * W[3965]
-            + W[2137] * W[3560] + W[2542] * W[3155] + W[2947] * W[2750] + W[3352] * W[2345] + W[3757] * W[1940]
-            + W[4162] * W[1535] + W[4567] * W[1130] + W[4972] * W[725] + W[5377] * W[320];
-    W[5604] = W[107] * W[5589] + W[512] * W[5184] + W[917] * W[4779] + W[1322] * W[4374] + W[1727] * W[3969]
-            + W[2132] * W[3564] + W[2537] * W[3159] + W[2942] * W[2754] + W[3347] * W[2349] + W[3752] * W[1944]
-            + W[4157] * W[1539] + W[4562] * W[1134] + W[4967] * W[729] + W[5372] * W[324];
-    W[5618] = W[115] * W[5617] + W[520] * W[5212] + W[925] * W[4807] + W[1330] * W[4402] + W[1735] * W[3997]
-            + W[2140] * W[3592] + W[2545] * W[3187] + W[2950] * W[2782] + W[3355] * W[2377] + W[3760] * W[1972]
-            + W[4165] * W[1567] + W[4570] * W[1162] + W[4975] * W[757] + W[5380] * W[352];
-    W[5630] = W[117] * W[5617] + W[522] * W[5212] + W[927] * W[4807] + W[1332] * W[4402] + W[1737] * W[3997]
-            + W[2142] * W[3592] + W[2547] * W[3187] + W[2952] * W[2782] + W[3357] * W[2377] + W[3762] * W[1972]
-            + W[4167] * W[1567] + W[4572] * W[1162] + W[4977] * W[757] + W[5382] * W[352];
-    W[5419] = W[151] * W[5418];
-    W[5423] = W[155] * W[5422];
-    W[5428] = W[160] * W[5427];
-    W[5433] = W[165] * W[5432];
-    W[5438] = W[170] * W[5437];
-    W[5443] = W[175] * W[5442];
-    W[5447] = W[151] * W[5446];
-    W[5449] = W[155] * W[5448];
-    W[5452] = W[160] * W[5451];
-    W[5455] = W[165] * W[5454];
-    W[5458] = W[170] * W[5457];
-    W[5461] = W[175] * W[5460];
-    W[5467] = W[199] * W[5466];
-    W[5471] = W[203] * W[5470];
-    W[5476] = W[208] * W[5475];
-    W[5481] = W[213] * W[5480];
-    W[5486] = W[218] * W[5485];
-    W[5489] = W[127] * W[5442];
-    W[5492] = W[199] * W[5491];
-    W[5494] = W[203] * W[5493];
-    W[5497] = W[208] * W[5496];
-    W[5500] = W[213] * W[5499];
-    W[5503] = W[218] * W[5502];
-    W[5506] = W[127] * W[5460];
-    W[5511] = W[243] * W[5510];
-    W[5515] = W[247] * W[5514];
-    W[5520] = W[252] * W[5519];
-    W[5525] = W[257] * W[5524];
-    W[5528] = W[133] * W[5485];
-    W[5530] = W[128] * W[5437];
-    W[5533] = W[243] * W[5532];
-    W[5535] = W[247] * W[5534];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 13. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_248(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5538] = W[252] * W[5537];
     W[5541] = W[257] * W[5540];
     W[5544] = W[133] * W[5502];
@@ -9505,26 +7366,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[5591] = W[323] * W[5590];
     W[5594] = W[142] * W[5559];
     W[5596] = W[139] * W[5519];
-    W[5598] = W[135] * W[5475];
-    W[5600] = W[130] * W[5427];
-    W[5603] = W[319] * W[5602];
-    W[5605] = W[323] * W[5604];
-    W[5608] = W[142] * W[5574];
-    W[5610] = W[139] * W[5537];
-    W[5612] = W[135] * W[5496];
-    W[5614] = W[130] * W[5451];
-    W[5619] = W[147] * W[5618];
-    W[5620] = W[145] * W[5590];
-    W[5622] = W[143] * W[5554];
-    W[5624] = W[140] * W[5514];
-    W[5626] = W[136] * W[5470];
-    W[5628] = W[131] * W[5422];
-    W[5631] = W[147] * W[5630];
-    W[5632] = W[145] * W[5604];
-    W[5634] = W[143] * W[5571];
-    W[5636] = W[140] * W[5534];
-    W[5638] = W[136] * W[5493];
-    W[5640] = W[131] * W[5448];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 13. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_250(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5642] = W[351] * W[5618];
     W[5649] = W[351] * W[5630];
     W[5424] = W[5419] + W[5423];
@@ -9545,26 +7396,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[5453] = W[5450] + W[5452];
     W[5477] = W[5472] + W[5476];
     W[5498] = W[5495] + W[5497];
-    W[5521] = W[5516] + W[5520];
-    W[5539] = W[5536] + W[5538];
-    W[5561] = W[5556] + W[5560];
-    W[5576] = W[5573] + W[5575];
-    W[5593] = W[3] * W[5592];
-    W[5607] = W[3] * W[5606];
-    W[5623] = W[5621] - W[5622];
-    W[5635] = W[5633] - W[5634];
-    W[5644] = W[5551] + W[5643];
-    W[5651] = W[5570] + W[5650];
-    W[5434] = W[5429] + W[5433];
-    W[5456] = W[5453] + W[5455];
-    W[5482] = W[5477] + W[5481];
-    W[5501] = W[5498] + W[5500];
-    W[5526] = W[5521] + W[5525];
-    W[5542] = W[5539] + W[5541];
-    W[5562] = W[3] * W[5561];
-    W[5577] = W[3] * W[5576];
-    W[5595] = W[5593] - W[5594];
-    W[5609] = W[5607] - W[5608];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 13. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_252(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5625] = W[5623] - W[5624];
     W[5637] = W[5635] - W[5636];
     W[5645] = W[5511] + W[5644];
@@ -9585,26 +7426,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[5653] = W[5492] + W[5652];
     W[5444] = W[5439] + W[5443];
     W[5462] = W[5459] + W[5461];
-    W[5488] = W[3] * W[5487];
-    W[5505] = W[3] * W[5504];
-    W[5529] = W[5527] - W[5528];
-    W[5545] = W[5543] - W[5544];
-    W[5566] = W[5564] - W[5565];
-    W[5581] = W[5579] - W[5580];
-    W[5599] = W[5597] - W[5598];
-    W[5613] = W[5611] - W[5612];
-    W[5629] = W[5627] - W[5628];
-    W[5641] = W[5639] - W[5640];
-    W[5647] = W[5419] + W[5646];
-    W[5654] = W[5447] + W[5653];
-    W[5445] = W[3] * W[5444];
-    W[5463] = W[3] * W[5462];
-    W[5490] = W[5488] - W[5489];
-    W[5507] = W[5505] - W[5506];
-    W[5531] = W[5529] - W[5530];
-    W[5547] = W[5545] - W[5546];
-    W[5568] = W[5566] - W[5567];
-    W[5583] = W[5581] - W[5582];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 13. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_254(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5601] = W[5599] - W[5600];
     W[5615] = W[5613] - W[5614];
     W[5648] = W[148] * W[5647];
@@ -9625,41 +7456,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[405] = X[391] / 14.0;
     X[406] = -W[5445] / W[120] / 14.0;
     X[407] = -W[5463] / W[120] / 14.0;
-    X[408] = -W[5490] / W[121] / 14.0;
-    X[409] = -W[5507] / W[121] / 14.0;
-    X[410] = -W[5531] / W[122] / 14.0;
-    X[411] = -W[5547] / W[122] / 14.0;
-    X[412] = -W[5568] / W[123] / 14.0;
-    X[413] = -W[5583] / W[123] / 14.0;
-    X[414] = -W[5601] / W[124] / 14.0;
-    X[415] = -W[5615] / W[124] / 14.0;
-    X[416] = -W[5629] / W[125] / 14.0;
-    X[417] = -W[5641] / W[125] / 14.0;
-    X[418] = -W[5648] / W[126] / 14.0;
-    X[419] = -W[5655] / W[126] / 14.0;
-    if (K == 14)
-        goto out;
-    /* order 14 */
-    W[5672] = X[392] - X[394];
-    W[5677] = X[393] - X[395];
-    W[5681] = X[392] - X[396];
-    W[5684] = X[393] - X[397];
-    W[5688] = X[392] - X[398];
-    W[5691] = X[393] - X[399];
-    W[5695] = X[392] - X[400];
-    W[5698] = X[393] - X[401];
-    W[5702] = X[392] - X[402];
-    W[5705] = X[393] - X[403];
-    W[5709] = X[392] - X[404];
-    W[5712] = X[393] - X[405];
-    W[5715] = X[394] - X[396];
-    W[5717] = X[395] - X[397];
-    W[5720] = X[394] - X[398];
-    W[5722] = X[395] - X[399];
-    W[5725] = X[394] - X[400];
-    W[5727] = X[395] - X[401];
-    W[5730] = X[394] - X[402];
-    W[5732] = X[395] - X[403];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 14. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_257(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5735] = X[394] - X[404];
     W[5737] = X[395] - X[405];
     W[5740] = X[396] - X[398];
@@ -9680,44 +7486,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[5777] = X[401] - X[403];
     W[5780] = X[400] - X[404];
     W[5782] = X[401] - X[405];
-    W[5785] = X[402] - X[404];
-    W[5787] = X[403] - X[405];
-    W[5674] = (W[2] * W[5672] + W[407] * W[5267] + W[812] * W[4862] + W[1217] * W[4457] + W[1622] * W[4052]
-            + W[2027] * W[3647] + W[2432] * W[3242]) * 2.0 + W[2837] * W[2837];
-    W[5678] = (W[7] * W[5677] + W[412] * W[5272] + W[817] * W[4867] + W[1222] * W[4462] + W[1627] * W[4057]
-            + W[2032] * W[3652] + W[2437] * W[3247]) * 2.0 + W[2842] * W[2842];
-    W[5682] = (W[11] * W[5681] + W[416] * W[5276] + W[821] * W[4871] + W[1226] * W[4466] + W[1631] * W[4061]
-            + W[2036] * W[3656] + W[2441] * W[3251]) * 2.0 + W[2846] * W[2846];
-    W[5685] = (W[14] * W[5684] + W[419] * W[5279] + W[824] * W[4874] + W[1229] * W[4469] + W[1634] * W[4064]
-            + W[2039] * W[3659] + W[2444] * W[3254]) * 2.0 + W[2849] * W[2849];
-    W[5689] = (W[18] * W[5688] + W[423] * W[5283] + W[828] * W[4878] + W[1233] * W[4473] + W[1638] * W[4068]
-            + W[2043] * W[3663] + W[2448] * W[3258]) * 2.0 + W[2853] * W[2853];
-    W[5692] = (W[21] * W[5691] + W[426] * W[5286] + W[831] * W[4881] + W[1236] * W[4476] + W[1641] * W[4071]
-            + W[2046] * W[3666] + W[2451] * W[3261]) * 2.0 + W[2856] * W[2856];
-    W[5696] = (W[25] * W[5695] + W[430] * W[5290] + W[835] * W[4885] + W[1240] * W[4480] + W[1645] * W[4075]
-            + W[2050] * W[3670] + W[2455] * W[3265]) * 2.0 + W[2860] * W[2860];
-    W[5699] = (W[28] * W[5698] + W[433] * W[5293] + W[838] * W[4888] + W[1243] * W[4483] + W[1648] * W[4078]
-            + W[2053] * W[3673] + W[2458] * W[3268]) * 2.0 + W[2863] * W[2863];
-    W[5703] = (W[32] * W[5702] + W[437] * W[5297] + W[842] * W[4892] + W[1247] * W[4487] + W[1652] * W[4082]
-            + W[2057] * W[3677] + W[2462] * W[3272]) * 2.0 + W[2867] * W[2867];
-    W[5706] = (W[35] * W[5705] + W[440] * W[5300] + W[845] * W[4895] + W[1250] * W[4490] + W[1655] * W[4085]
-            + W[2060] * W[3680] + W[2465] * W[3275]) * 2.0 + W[2870] * W[2870];
-    W[5710] = (W[39] * W[5709] + W[444] * W[5304] + W[849] * W[4899] + W[1254] * W[4494] + W[1659] * W[4089]
-            + W[2064] * W[3684] + W[2469] * W[3279]) * 2.0 + W[2874] * W[2874];
-    W[5713] = (W[42] * W[5712] + W[447] * W[5307] + W[852] * W[4902] + W[1257] * W[4497] + W[1662] * W[4092]
-            + W[2067] * W[3687] + W[2472] * W[3282]) * 2.0 + W[2877] * W[2877];
-    W[5716] = (W[45] * W[5715] + W[450] * W[5310] + W[855] * W[4905] + W[1260] * W[4500] + W[1665] * W[4095]
-            + W[2070] * W[3690] + W[2475] * W[3285]) * 2.0 + W[2880] * W[2880];
-    W[5718] = (W[47] * W[5717] + W[452] * W[5312] + W[857] * W[4907] + W[1262] * W[4502] + W[1667] * W[4097]
-            + W[2072] * W[3692] + W[2477] * W[3287]) * 2.0 + W[2882] * W[2882];
-    W[5721] = (W[50] * W[5720] + W[455] * W[5315] + W[860] * W[4910] + W[1265] * W[4505] + W[1670] * W[4100]
-            + W[2075] * W[3695] + W[2480] * W[3290]) * 2.0 + W[2885] * W[2885];
-    W[5723] = (W[52] * W[5722] + W[457] * W[5317] + W[862] * W[4912] + W[1267] * W[4507] + W[1672] * W[4102]
-            + W[2077] * W[3697] + W[2482] * W[3292]) * 2.0 + W[2887] * W[2887];
-    W[5726] = (W[55] * W[5725] + W[460] * W[5320] + W[865] * W[4915] + W[1270] * W[4510] + W[1675] * W[4105]
-            + W[2080] * W[3700] + W[2485] * W[3295]) * 2.0 + W[2890] * W[2890];
-    W[5728] = (W[57] * W[5727] + W[462] * W[5322] + W[867] * W[4917] + W[1272] * W[4512] + W[1677] * W[4107]
-            + W[2082] * W[3702] + W[2487] * W[3297]) * 2.0 + W[2892] * W[2892];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 14. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_259(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5731] = (W[60] * W[5730] + W[465] * W[5325] + W[870] * W[4920] + W[1275] * W[4515] + W[1680] * W[4110]
             + W[2085] * W[3705] + W[2490] * W[3300]) * 2.0 + W[2895] * W[2895];
     W[5733] = (W[62] * W[5732] + W[467] * W[5327] + W[872] * W[4922] + W[1277] * W[4517] + W[1682] * W[4112]
@@ -9758,30 +7536,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2130] * W[3750] + W[2535] * W[3345]) * 2.0 + W[2940] * W[2940];
     W[5778] = (W[107] * W[5777] + W[512] * W[5372] + W[917] * W[4967] + W[1322] * W[4562] + W[1727] * W[4157]
             + W[2132] * W[3752] + W[2537] * W[3347]) * 2.0 + W[2942] * W[2942];
-    W[5781] = (W[110] * W[5780] + W[515] * W[5375] + W[920] * W[4970] + W[1325] * W[4565] + W[1730] * W[4160]
-            + W[2135] * W[3755] + W[2540] * W[3350]) * 2.0 + W[2945] * W[2945];
-    W[5783] = (W[112] * W[5782] + W[517] * W[5377] + W[922] * W[4972] + W[1327] * W[4567] + W[1732] * W[4162]
-            + W[2137] * W[3757] + W[2542] * W[3352]) * 2.0 + W[2947] * W[2947];
-    W[5786] = (W[115] * W[5785] + W[520] * W[5380] + W[925] * W[4975] + W[1330] * W[4570] + W[1735] * W[4165]
-            + W[2140] * W[3760] + W[2545] * W[3355]) * 2.0 + W[2950] * W[2950];
-    W[5788] = (W[117] * W[5787] + W[522] * W[5382] + W[927] * W[4977] + W[1332] * W[4572] + W[1737] * W[4167]
-            + W[2142] * W[3762] + W[2547] * W[3357]) * 2.0 + W[2952] * W[2952];
-    W[5679] = W[5674] + W[5678];
-    W[5686] = W[5682] + W[5685];
-    W[5693] = W[5689] + W[5692];
-    W[5700] = W[5696] + W[5699];
-    W[5707] = W[5703] + W[5706];
-    W[5714] = W[5710] + W[5713];
-    W[5719] = W[5716] + W[5718];
-    W[5724] = W[5721] + W[5723];
-    W[5729] = W[5726] + W[5728];
-    W[5734] = W[5731] + W[5733];
-    W[5739] = W[5736] + W[5738];
-    W[5744] = W[5741] + W[5743];
-    W[5749] = W[5746] + W[5748];
-    W[5754] = W[5751] + W[5753];
-    W[5759] = W[5756] + W[5758];
-    W[5764] = W[5761] + W[5763];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 14. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_261(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5769] = W[5766] + W[5768];
     W[5774] = W[5771] + W[5773];
     W[5779] = W[5776] + W[5778];
@@ -9847,72 +7611,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             - 19.0 * W[4124] * W[1878] - 18.5 * W[3719] * W[2283] - 18.0 * W[3314] * W[2688] - 17.5 * W[2909] * W[3093]
             - 17.0 * W[2504] * W[3498] - 16.5 * W[2099] * W[3903] - 16.0 * W[1694] * W[4308] - 15.5 * W[1289] * W[4713]
             - 15.0 * W[884] * W[5118] - 14.5 * W[479] * W[5523]) / (14.0 * W[74]);
-    W[5954] = (-21.0 * W[5774] * W[284] - 20.5 * W[5369] * W[689] - 20.0 * W[4964] * W[1094] - 19.5 * W[4559] * W[1499]
-            - 19.0 * W[4154] * W[1904] - 18.5 * W[3749] * W[2309] - 18.0 * W[3344] * W[2714] - 17.5 * W[2939] * W[3119]
-            - 17.0 * W[2534] * W[3524] - 16.5 * W[2129] * W[3929] - 16.0 * W[1724] * W[4334] - 15.5 * W[1319] * W[4739]
-            - 15.0 * W[914] * W[5144] - 14.5 * W[509] * W[5549]) / (14.0 * W[104]);
-    W[5958] = (-21.0 * W[5769] * W[288] - 20.5 * W[5364] * W[693] - 20.0 * W[4959] * W[1098] - 19.5 * W[4554] * W[1503]
-            - 19.0 * W[4149] * W[1908] - 18.5 * W[3744] * W[2313] - 18.0 * W[3339] * W[2718] - 17.5 * W[2934] * W[3123]
-            - 17.0 * W[2529] * W[3528] - 16.5 * W[2124] * W[3933] - 16.0 * W[1719] * W[4338] - 15.5 * W[1314] * W[4743]
-            - 15.0 * W[909] * W[5148] - 14.5 * W[504] * W[5553]) / (14.0 * W[99]);
-    W[5963] = (-21.0 * W[5764] * W[293] - 20.5 * W[5359] * W[698] - 20.0 * W[4954] * W[1103] - 19.5 * W[4549] * W[1508]
-            - 19.0 * W[4144] * W[1913] - 18.5 * W[3739] * W[2318] - 18.0 * W[3334] * W[2723] - 17.5 * W[2929] * W[3128]
-            - 17.0 * W[2524] * W[3533] - 16.5 * W[2119] * W[3938] - 16.0 * W[1714] * W[4343] - 15.5 * W[1309] * W[4748]
-            - 15.0 * W[904] * W[5153] - 14.5 * W[499] * W[5558]) / (14.0 * W[94]);
-    W[5990] = (-21.0 * W[5784] * W[320] - 20.5 * W[5379] * W[725] - 20.0 * W[4974] * W[1130] - 19.5 * W[4569] * W[1535]
-            - 19.0 * W[4164] * W[1940] - 18.5 * W[3759] * W[2345] - 18.0 * W[3354] * W[2750] - 17.5 * W[2949] * W[3155]
-            - 17.0 * W[2544] * W[3560] - 16.5 * W[2139] * W[3965] - 16.0 * W[1734] * W[4370] - 15.5 * W[1329] * W[4775]
-            - 15.0 * W[924] * W[5180] - 14.5 * W[519] * W[5585]) / (14.0 * W[114]);
-    W[5994] = (-21.0 * W[5779] * W[324] - 20.5 * W[5374] * W[729] - 20.0 * W[4969] * W[1134] - 19.5 * W[4564] * W[1539]
-            - 19.0 * W[4159] * W[1944] - 18.5 * W[3754] * W[2349] - 18.0 * W[3349] * W[2754] - 17.5 * W[2944] * W[3159]
-            - 17.0 * W[2539] * W[3564] - 16.5 * W[2134] * W[3969] - 16.0 * W[1729] * W[4374] - 15.5 * W[1324] * W[4779]
-            - 15.0 * W[919] * W[5184] - 14.5 * W[514] * W[5589]) / (14.0 * W[109]);
-    W[6022] = (-21.0 * W[5789] * W[352] - 20.5 * W[5384] * W[757] - 20.0 * W[4979] * W[1162] - 19.5 * W[4574] * W[1567]
-            - 19.0 * W[4169] * W[1972] - 18.5 * W[3764] * W[2377] - 18.0 * W[3359] * W[2782] - 17.5 * W[2954] * W[3187]
-            - 17.0 * W[2549] * W[3592] - 16.5 * W[2144] * W[3997] - 16.0 * W[1739] * W[4402] - 15.5 * W[1334] * W[4807]
-            - 15.0 * W[929] * W[5212] - 14.5 * W[524] * W[5617]) / (14.0 * W[119]);
-    W[5823] = W[39] * W[5822] + W[444] * W[5417] + W[849] * W[5012] + W[1254] * W[4607] + W[1659] * W[4202]
-            + W[2064] * W[3797] + W[2469] * W[3392] + W[2874] * W[2987] + W[3279] * W[2582] + W[3684] * W[2177]
-            + W[4089] * W[1772] + W[4494] * W[1367] + W[4899] * W[962] + W[5304] * W[557] + W[5709] * W[152];
-    W[5827] = W[32] * W[5826] + W[437] * W[5421] + W[842] * W[5016] + W[1247] * W[4611] + W[1652] * W[4206]
-            + W[2057] * W[3801] + W[2462] * W[3396] + W[2867] * W[2991] + W[3272] * W[2586] + W[3677] * W[2181]
-            + W[4082] * W[1776] + W[4487] * W[1371] + W[4892] * W[966] + W[5297] * W[561] + W[5702] * W[156];
-    W[5832] = W[25] * W[5831] + W[430] * W[5426] + W[835] * W[5021] + W[1240] * W[4616] + W[1645] * W[4211]
-            + W[2050] * W[3806] + W[2455] * W[3401] + W[2860] * W[2996] + W[3265] * W[2591] + W[3670] * W[2186]
-            + W[4075] * W[1781] + W[4480] * W[1376] + W[4885] * W[971] + W[5290] * W[566] + W[5695] * W[161];
-    W[5837] = W[18] * W[5836] + W[423] * W[5431] + W[828] * W[5026] + W[1233] * W[4621] + W[1638] * W[4216]
-            + W[2043] * W[3811] + W[2448] * W[3406] + W[2853] * W[3001] + W[3258] * W[2596] + W[3663] * W[2191]
-            + W[4068] * W[1786] + W[4473] * W[1381] + W[4878] * W[976] + W[5283] * W[571] + W[5688] * W[166];
-    W[5842] = W[11] * W[5841] + W[416] * W[5436] + W[821] * W[5031] + W[1226] * W[4626] + W[1631] * W[4221]
-            + W[2036] * W[3816] + W[2441] * W[3411] + W[2846] * W[3006] + W[3251] * W[2601] + W[3656] * W[2196]
-            + W[4061] * W[1791] + W[4466] * W[1386] + W[4871] * W[981] + W[5276] * W[576] + W[5681] * W[171];
-    W[5847] = W[2] * W[5846] + W[407] * W[5441] + W[812] * W[5036] + W[1217] * W[4631] + W[1622] * W[4226]
-            + W[2027] * W[3821] + W[2432] * W[3416] + W[2837] * W[3011] + W[3242] * W[2606] + W[3647] * W[2201]
-            + W[4052] * W[1796] + W[4457] * W[1391] + W[4862] * W[986] + W[5267] * W[581] + W[5672] * W[176];
-    W[5851] = W[42] * W[5822] + W[447] * W[5417] + W[852] * W[5012] + W[1257] * W[4607] + W[1662] * W[4202]
-            + W[2067] * W[3797] + W[2472] * W[3392] + W[2877] * W[2987] + W[3282] * W[2582] + W[3687] * W[2177]
-            + W[4092] * W[1772] + W[4497] * W[1367] + W[4902] * W[962] + W[5307] * W[557] + W[5712] * W[152];
-    W[5853] = W[35] * W[5826] + W[440] * W[5421] + W[845] * W[5016] + W[1250] * W[4611] + W[1655] * W[4206]
-            + W[2060] * W[3801] + W[2465] * W[3396] + W[2870] * W[2991] + W[3275] * W[2586] + W[3680] * W[2181]
-            + W[4085] * W[1776] + W[4490] * W[1371] + W[4895] * W[966] + W[5300] * W[561] + W[5705] * W[156];
-    W[5856] = W[28] * W[5831] + W[433] * W[5426] + W[838] * W[5021] + W[1243] * W[4616] + W[1648] * W[4211]
-            + W[2053] * W[3806] + W[2458] * W[3401] + W[2863] * W[2996] + W[3268] * W[2591] + W[3673] * W[2186]
-            + W[4078] * W[1781] + W[4483] * W[1376] + W[4888] * W[971] + W[5293] * W[566] + W[5698] * W[161];
-    W[5859] = W[21] * W[5836] + W[426] * W[5431] + W[831] * W[5026] + W[1236] * W[4621] + W[1641] * W[4216]
-            + W[2046] * W[3811] + W[2451] * W[3406] + W[2856] * W[3001] + W[3261] * W[2596] + W[3666] * W[2191]
-            + W[4071] * W[1786] + W[4476] * W[1381] + W[4881] * W[976] + W[5286] * W[571] + W[5691] * W[166];
-    W[5862] = W[14] * W[5841] + W[419] * W[5436] + W[824] * W[5031] + W[1229] * W[4626] + W[1634] * W[4221]
-            + W[2039] * W[3816] + W[2444] * W[3411] + W[2849] * W[3006] + W[3254] * W[2601] + W[3659] * W[2196]
-            + W[4064] * W[1791] + W[4469] * W[1386] + W[4874] * W[981] + W[5279] * W[576] + W[5684] * W[171];
-    W[5865] = W[7] * W[5846] + W[412] * W[5441] + W[817] * W[5036] + W[1222] * W[4631] + W[1627] * W[4226]
-            + W[2032] * W[3821] + W[2437] * W[3416] + W[2842] * W[3011] + W[3247] * W[2606] + W[3652] * W[2201]
-            + W[4057] * W[1796] + W[4462] * W[1391] + W[4867] * W[986] + W[5272] * W[581] + W[5677] * W[176];
-    W[5871] = W[65] * W[5870] + W[470] * W[5465] + W[875] * W[5060] + W[1280] * W[4655] + W[1685] * W[4250]
-            + W[2090] * W[3845] + W[2495] * W[3440] + W[2900] * W[3035] + W[3305] * W[2630] + W[3710] * W[2225]
-            + W[4115] * W[1820] + W[4520] * W[1415] + W[4925] * W[1010] + W[5330] * W[605] + W[5735] * W[200];
-    W[5875] = W[60] * W[5874] + W[465] * W[5469] + W[870] * W[5064] + W[1275] * W[4659] + W[1680] * W[4254]
-            + W[2085] * W[3849] + W[2490] * W[3444] + W[2895] * W[3039] + W[3300] * W[2634] + W[3705] * W[2229]
-            + W[4110] * W[1824] + W[4515] * W[1419] + W[4920] * W[1014] + W[5325] * W[609] + W[5730] * W[204];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 14. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_263(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5880] = W[55] * W[5879] + W[460] * W[5474] + W[865] * W[5069] + W[1270] * W[4664] + W[1675] * W[4259]
             + W[2080] * W[3854] + W[2485] * W[3449] + W[2890] * W[3044] + W[3295] * W[2639] + W[3700] * W[2234]
             + W[4105] * W[1829] + W[4510] * W[1424] + W[4915] * W[1019] + W[5320] * W[614] + W[5725] * W[209];
@@ -9973,62 +7681,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[5974] = W[102] * W[5954] + W[507] * W[5549] + W[912] * W[5144] + W[1317] * W[4739] + W[1722] * W[4334]
             + W[2127] * W[3929] + W[2532] * W[3524] + W[2937] * W[3119] + W[3342] * W[2714] + W[3747] * W[2309]
             + W[4152] * W[1904] + W[4557] * W[1499] + W[4962] * W[1094] + W[5367] * W[689] + W[5772] * W[284];
-    W[5976] = W[97] * W[5958] + W[502] * W[5553] + W[907] * W[5148] + W[1312] * W[4743] + W[1717] * W[4338]
-            + W[2122] * W[3933] + W[2527] * W[3528] + W[2932] * W[3123] + W[3337] * W[2718] + W[3742] * W[2313]
-            + W[4147] * W[1908] + W[4552] * W[1503] + W[4957] * W[1098] + W[5362] * W[693] + W[5767] * W[288];
-    W[5979] = W[92] * W[5963] + W[497] * W[5558] + W[902] * W[5153] + W[1307] * W[4748] + W[1712] * W[4343]
-            + W[2117] * W[3938] + W[2522] * W[3533] + W[2927] * W[3128] + W[3332] * W[2723] + W[3737] * W[2318]
-            + W[4142] * W[1913] + W[4547] * W[1508] + W[4952] * W[1103] + W[5357] * W[698] + W[5762] * W[293];
-    W[5991] = W[110] * W[5990] + W[515] * W[5585] + W[920] * W[5180] + W[1325] * W[4775] + W[1730] * W[4370]
-            + W[2135] * W[3965] + W[2540] * W[3560] + W[2945] * W[3155] + W[3350] * W[2750] + W[3755] * W[2345]
-            + W[4160] * W[1940] + W[4565] * W[1535] + W[4970] * W[1130] + W[5375] * W[725] + W[5780] * W[320];
-    W[5995] = W[105] * W[5994] + W[510] * W[5589] + W[915] * W[5184] + W[1320] * W[4779] + W[1725] * W[4374]
-            + W[2130] * W[3969] + W[2535] * W[3564] + W[2940] * W[3159] + W[3345] * W[2754] + W[3750] * W[2349]
-            + W[4155] * W[1944] + W[4560] * W[1539] + W[4965] * W[1134] + W[5370] * W[729] + W[5775] * W[324];
-    W[6007] = W[112] * W[5990] + W[517] * W[5585] + W[922] * W[5180] + W[1327] * W[4775] + W[1732] * W[4370]
-            + W[2137] * W[3965] + W[2542] * W[3560] + W[2947] * W[3155] + W[3352] * W[2750] + W[3757] * W[2345]
-            + W[4162] * W[1940] + W[4567] * W[1535] + W[4972] * W[1130] + W[5377] * W[725] + W[5782] * W[320];
-    W[6009] = W[107] * W[5994] + W[512] * W[5589] + W[917] * W[5184] + W[1322] * W[4779] + W[1727] * W[4374]
-            + W[2132] * W[3969] + W[2537] * W[3564] + W[2942] * W[3159] + W[3347] * W[2754] + W[3752] * W[2349]
-            + W[4157] * W[1944] + W[4562] * W[1539] + W[4967] * W[1134] + W[5372] * W[729] + W[5777] * W[324];
-    W[6023] = W[115] * W[6022] + W[520] * W[5617] + W[925] * W[5212] + W[1330] * W[4807] + W[1735] * W[4402]
-            + W[2140] * W[3997] + W[2545] * W[3592] + W[2950] * W[3187] + W[3355] * W[2782] + W[3760] * W[2377]
-            + W[4165] * W[1972] + W[4570] * W[1567] + W[4975] * W[1162] + W[5380] * W[757] + W[5785] * W[352];
-    W[6035] = W[117] * W[6022] + W[522] * W[5617] + W[927] * W[5212] + W[1332] * W[4807] + W[1737] * W[4402]
-            + W[2142] * W[3997] + W[2547] * W[3592] + W[2952] * W[3187] + W[3357] * W[2782] + W[3762] * W[2377]
-            + W[4167] * W[1972] + W[4572] * W[1567] + W[4977] * W[1162] + W[5382] * W[757] + W[5787] * W[352];
-    W[5824] = W[151] * W[5823];
-    W[5828] = W[155] * W[5827];
-    W[5833] = W[160] * W[5832];
-    W[5838] = W[165] * W[5837];
-    W[5843] = W[170] * W[5842];
-    W[5848] = W[175] * W[5847];
-    W[5852] = W[151] * W[5851];
-    W[5854] = W[155] * W[5853];
-    W[5857] = W[160] * W[5856];
-    W[5860] = W[165] * W[5859];
-    W[5863] = W[170] * W[5862];
-    W[5866] = W[175] * W[5865];
-    W[5872] = W[199] * W[5871];
-    W[5876] = W[203] * W[5875];
-    W[5881] = W[208] * W[5880];
-    W[5886] = W[213] * W[5885];
-    W[5891] = W[218] * W[5890];
-    W[5894] = W[127] * W[5847];
-    W[5897] = W[199] * W[5896];
-    W[5899] = W[203] * W[5898];
-    W[5902] = W[208] * W[5901];
-    W[5905] = W[213] * W[5904];
-    W[5908] = W[218] * W[5907];
-    W[5911] = W[127] * W[5865];
-    W[5916] = W[243] * W[5915];
-    W[5920] = W[247] * W[5919];
-    W[5925] = W[252] * W[5924];
-    W[5930] = W[257] * W[5929];
-    W[5933] = W[133] * W[5890];
-    W[5935] = W[128] * W[5842];
-    W[5938] = W[243] * W[5937];
-    W[5940] = W[247] * W[5939];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 14. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_266(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[5943] = W[252] * W[5942];
     W[5946] = W[257] * W[5945];
     W[5949] = W[133] * W[5907];
@@ -10049,26 +7711,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[5996] = W[323] * W[5995];
     W[5999] = W[142] * W[5964];
     W[6001] = W[139] * W[5924];
-    W[6003] = W[135] * W[5880];
-    W[6005] = W[130] * W[5832];
-    W[6008] = W[319] * W[6007];
-    W[6010] = W[323] * W[6009];
-    W[6013] = W[142] * W[5979];
-    W[6015] = W[139] * W[5942];
-    W[6017] = W[135] * W[5901];
-    W[6019] = W[130] * W[5856];
-    W[6024] = W[147] * W[6023];
-    W[6025] = W[145] * W[5995];
-    W[6027] = W[143] * W[5959];
-    W[6029] = W[140] * W[5919];
-    W[6031] = W[136] * W[5875];
-    W[6033] = W[131] * W[5827];
-    W[6036] = W[147] * W[6035];
-    W[6037] = W[145] * W[6009];
-    W[6039] = W[143] * W[5976];
-    W[6041] = W[140] * W[5939];
-    W[6043] = W[136] * W[5898];
-    W[6045] = W[131] * W[5853];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 14. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_268(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6047] = W[351] * W[6023];
     W[6054] = W[351] * W[6035];
     W[5829] = W[5824] + W[5828];
@@ -10089,26 +7741,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[5858] = W[5855] + W[5857];
     W[5882] = W[5877] + W[5881];
     W[5903] = W[5900] + W[5902];
-    W[5926] = W[5921] + W[5925];
-    W[5944] = W[5941] + W[5943];
-    W[5966] = W[5961] + W[5965];
-    W[5981] = W[5978] + W[5980];
-    W[5998] = W[3] * W[5997];
-    W[6012] = W[3] * W[6011];
-    W[6028] = W[6026] - W[6027];
-    W[6040] = W[6038] - W[6039];
-    W[6049] = W[5956] + W[6048];
-    W[6056] = W[5975] + W[6055];
-    W[5839] = W[5834] + W[5838];
-    W[5861] = W[5858] + W[5860];
-    W[5887] = W[5882] + W[5886];
-    W[5906] = W[5903] + W[5905];
-    W[5931] = W[5926] + W[5930];
-    W[5947] = W[5944] + W[5946];
-    W[5967] = W[3] * W[5966];
-    W[5982] = W[3] * W[5981];
-    W[6000] = W[5998] - W[5999];
-    W[6014] = W[6012] - W[6013];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 14. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_270(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6030] = W[6028] - W[6029];
     W[6042] = W[6040] - W[6041];
     W[6050] = W[5916] + W[6049];
@@ -10129,26 +7771,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[6058] = W[5897] + W[6057];
     W[5849] = W[5844] + W[5848];
     W[5867] = W[5864] + W[5866];
-    W[5893] = W[3] * W[5892];
-    W[5910] = W[3] * W[5909];
-    W[5934] = W[5932] - W[5933];
-    W[5950] = W[5948] - W[5949];
-    W[5971] = W[5969] - W[5970];
-    W[5986] = W[5984] - W[5985];
-    W[6004] = W[6002] - W[6003];
-    W[6018] = W[6016] - W[6017];
-    W[6034] = W[6032] - W[6033];
-    W[6046] = W[6044] - W[6045];
-    W[6052] = W[5824] + W[6051];
-    W[6059] = W[5852] + W[6058];
-    W[5850] = W[3] * W[5849];
-    W[5868] = W[3] * W[5867];
-    W[5895] = W[5893] - W[5894];
-    W[5912] = W[5910] - W[5911];
-    W[5936] = W[5934] - W[5935];
-    W[5952] = W[5950] - W[5951];
-    W[5973] = W[5971] - W[5972];
-    W[5988] = W[5986] - W[5987];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 14. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_272(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6006] = W[6004] - W[6005];
     W[6020] = W[6018] - W[6019];
     W[6053] = W[148] * W[6052];
@@ -10169,41 +7801,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[433] = X[419] / 15.0;
     X[434] = -W[5850] / W[120] / 15.0;
     X[435] = -W[5868] / W[120] / 15.0;
-    X[436] = -W[5895] / W[121] / 15.0;
-    X[437] = -W[5912] / W[121] / 15.0;
-    X[438] = -W[5936] / W[122] / 15.0;
-    X[439] = -W[5952] / W[122] / 15.0;
-    X[440] = -W[5973] / W[123] / 15.0;
-    X[441] = -W[5988] / W[123] / 15.0;
-    X[442] = -W[6006] / W[124] / 15.0;
-    X[443] = -W[6020] / W[124] / 15.0;
-    X[444] = -W[6034] / W[125] / 15.0;
-    X[445] = -W[6046] / W[125] / 15.0;
-    X[446] = -W[6053] / W[126] / 15.0;
-    X[447] = -W[6060] / W[126] / 15.0;
-    if (K == 15)
-        goto out;
-    /* order 15 */
-    W[6077] = X[420] - X[422];
-    W[6082] = X[421] - X[423];
-    W[6086] = X[420] - X[424];
-    W[6089] = X[421] - X[425];
-    W[6093] = X[420] - X[426];
-    W[6096] = X[421] - X[427];
-    W[6100] = X[420] - X[428];
-    W[6103] = X[421] - X[429];
-    W[6107] = X[420] - X[430];
-    W[6110] = X[421] - X[431];
-    W[6114] = X[420] - X[432];
-    W[6117] = X[421] - X[433];
-    W[6120] = X[422] - X[424];
-    W[6122] = X[423] - X[425];
-    W[6125] = X[422] - X[426];
-    W[6127] = X[423] - X[427];
-    W[6130] = X[422] - X[428];
-    W[6132] = X[423] - X[429];
-    W[6135] = X[422] - X[430];
-    W[6137] = X[423] - X[431];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_275(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6140] = X[422] - X[432];
     W[6142] = X[423] - X[433];
     W[6145] = X[424] - X[426];
@@ -10224,44 +7831,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[6182] = X[429] - X[431];
     W[6185] = X[428] - X[432];
     W[6187] = X[429] - X[433];
-    W[6190] = X[430] - X[432];
-    W[6192] = X[431] - X[433];
-    W[6079] = (W[2] * W[6077] + W[407] * W[5672] + W[812] * W[5267] + W[1217] * W[4862] + W[1622] * W[4457]
-            + W[2027] * W[4052] + W[2432] * W[3647] + W[2837] * W[3242]) * 2.0;
-    W[6083] = (W[7] * W[6082] + W[412] * W[5677] + W[817] * W[5272] + W[1222] * W[4867] + W[1627] * W[4462]
-            + W[2032] * W[4057] + W[2437] * W[3652] + W[2842] * W[3247]) * 2.0;
-    W[6087] = (W[11] * W[6086] + W[416] * W[5681] + W[821] * W[5276] + W[1226] * W[4871] + W[1631] * W[4466]
-            + W[2036] * W[4061] + W[2441] * W[3656] + W[2846] * W[3251]) * 2.0;
-    W[6090] = (W[14] * W[6089] + W[419] * W[5684] + W[824] * W[5279] + W[1229] * W[4874] + W[1634] * W[4469]
-            + W[2039] * W[4064] + W[2444] * W[3659] + W[2849] * W[3254]) * 2.0;
-    W[6094] = (W[18] * W[6093] + W[423] * W[5688] + W[828] * W[5283] + W[1233] * W[4878] + W[1638] * W[4473]
-            + W[2043] * W[4068] + W[2448] * W[3663] + W[2853] * W[3258]) * 2.0;
-    W[6097] = (W[21] * W[6096] + W[426] * W[5691] + W[831] * W[5286] + W[1236] * W[4881] + W[1641] * W[4476]
-            + W[2046] * W[4071] + W[2451] * W[3666] + W[2856] * W[3261]) * 2.0;
-    W[6101] = (W[25] * W[6100] + W[430] * W[5695] + W[835] * W[5290] + W[1240] * W[4885] + W[1645] * W[4480]
-            + W[2050] * W[4075] + W[2455] * W[3670] + W[2860] * W[3265]) * 2.0;
-    W[6104] = (W[28] * W[6103] + W[433] * W[5698] + W[838] * W[5293] + W[1243] * W[4888] + W[1648] * W[4483]
-            + W[2053] * W[4078] + W[2458] * W[3673] + W[2863] * W[3268]) * 2.0;
-    W[6108] = (W[32] * W[6107] + W[437] * W[5702] + W[842] * W[5297] + W[1247] * W[4892] + W[1652] * W[4487]
-            + W[2057] * W[4082] + W[2462] * W[3677] + W[2867] * W[3272]) * 2.0;
-    W[6111] = (W[35] * W[6110] + W[440] * W[5705] + W[845] * W[5300] + W[1250] * W[4895] + W[1655] * W[4490]
-            + W[2060] * W[4085] + W[2465] * W[3680] + W[2870] * W[3275]) * 2.0;
-    W[6115] = (W[39] * W[6114] + W[444] * W[5709] + W[849] * W[5304] + W[1254] * W[4899] + W[1659] * W[4494]
-            + W[2064] * W[4089] + W[2469] * W[3684] + W[2874] * W[3279]) * 2.0;
-    W[6118] = (W[42] * W[6117] + W[447] * W[5712] + W[852] * W[5307] + W[1257] * W[4902] + W[1662] * W[4497]
-            + W[2067] * W[4092] + W[2472] * W[3687] + W[2877] * W[3282]) * 2.0;
-    W[6121] = (W[45] * W[6120] + W[450] * W[5715] + W[855] * W[5310] + W[1260] * W[4905] + W[1665] * W[4500]
-            + W[2070] * W[4095] + W[2475] * W[3690] + W[2880] * W[3285]) * 2.0;
-    W[6123] = (W[47] * W[6122] + W[452] * W[5717] + W[857] * W[5312] + W[1262] * W[4907] + W[1667] * W[4502]
-            + W[2072] * W[4097] + W[2477] * W[3692] + W[2882] * W[3287]) * 2.0;
-    W[6126] = (W[50] * W[6125] + W[455] * W[5720] + W[860] * W[5315] + W[1265] * W[4910] + W[1670] * W[4505]
-            + W[2075] * W[4100] + W[2480] * W[3695] + W[2885] * W[3290]) * 2.0;
-    W[6128] = (W[52] * W[6127] + W[457] * W[5722] + W[862] * W[5317] + W[1267] * W[4912] + W[1672] * W[4507]
-            + W[2077] * W[4102] + W[2482] * W[3697] + W[2887] * W[3292]) * 2.0;
-    W[6131] = (W[55] * W[6130] + W[460] * W[5725] + W[865] * W[5320] + W[1270] * W[4915] + W[1675] * W[4510]
-            + W[2080] * W[4105] + W[2485] * W[3700] + W[2890] * W[3295]) * 2.0;
-    W[6133] = (W[57] * W[6132] + W[462] * W[5727] + W[867] * W[5322] + W[1272] * W[4917] + W[1677] * W[4512]
-            + W[2082] * W[4107] + W[2487] * W[3702] + W[2892] * W[3297]) * 2.0;
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_277(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6136] = (W[60] * W[6135] + W[465] * W[5730] + W[870] * W[5325] + W[1275] * W[4920] + W[1680] * W[4515]
             + W[2085] * W[4110] + W[2490] * W[3705] + W[2895] * W[3300]) * 2.0;
     W[6138] = (W[62] * W[6137] + W[467] * W[5732] + W[872] * W[5327] + W[1277] * W[4922] + W[1682] * W[4517]
@@ -10302,30 +7881,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2130] * W[4155] + W[2535] * W[3750] + W[2940] * W[3345]) * 2.0;
     W[6183] = (W[107] * W[6182] + W[512] * W[5777] + W[917] * W[5372] + W[1322] * W[4967] + W[1727] * W[4562]
             + W[2132] * W[4157] + W[2537] * W[3752] + W[2942] * W[3347]) * 2.0;
-    W[6186] = (W[110] * W[6185] + W[515] * W[5780] + W[920] * W[5375] + W[1325] * W[4970] + W[1730] * W[4565]
-            + W[2135] * W[4160] + W[2540] * W[3755] + W[2945] * W[3350]) * 2.0;
-    W[6188] = (W[112] * W[6187] + W[517] * W[5782] + W[922] * W[5377] + W[1327] * W[4972] + W[1732] * W[4567]
-            + W[2137] * W[4162] + W[2542] * W[3757] + W[2947] * W[3352]) * 2.0;
-    W[6191] = (W[115] * W[6190] + W[520] * W[5785] + W[925] * W[5380] + W[1330] * W[4975] + W[1735] * W[4570]
-            + W[2140] * W[4165] + W[2545] * W[3760] + W[2950] * W[3355]) * 2.0;
-    W[6193] = (W[117] * W[6192] + W[522] * W[5787] + W[927] * W[5382] + W[1332] * W[4977] + W[1737] * W[4572]
-            + W[2142] * W[4167] + W[2547] * W[3762] + W[2952] * W[3357]) * 2.0;
-    W[6084] = W[6079] + W[6083];
-    W[6091] = W[6087] + W[6090];
-    W[6098] = W[6094] + W[6097];
-    W[6105] = W[6101] + W[6104];
-    W[6112] = W[6108] + W[6111];
-    W[6119] = W[6115] + W[6118];
-    W[6124] = W[6121] + W[6123];
-    W[6129] = W[6126] + W[6128];
-    W[6134] = W[6131] + W[6133];
-    W[6139] = W[6136] + W[6138];
-    W[6144] = W[6141] + W[6143];
-    W[6149] = W[6146] + W[6148];
-    W[6154] = W[6151] + W[6153];
-    W[6159] = W[6156] + W[6158];
-    W[6164] = W[6161] + W[6163];
-    W[6169] = W[6166] + W[6168];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_279(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6174] = W[6171] + W[6173];
     W[6179] = W[6176] + W[6178];
     W[6184] = W[6181] + W[6183];
@@ -10391,86 +7956,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             - 20.5 * W[4529] * W[1878] - 20.0 * W[4124] * W[2283] - 19.5 * W[3719] * W[2688] - 19.0 * W[3314] * W[3093]
             - 18.5 * W[2909] * W[3498] - 18.0 * W[2504] * W[3903] - 17.5 * W[2099] * W[4308] - 17.0 * W[1694] * W[4713]
             - 16.5 * W[1289] * W[5118] - 16.0 * W[884] * W[5523] - 15.5 * W[479] * W[5928]) / (15.0 * W[74]);
-    W[6359] = (-22.5 * W[6179] * W[284] - 22.0 * W[5774] * W[689] - 21.5 * W[5369] * W[1094] - 21.0 * W[4964] * W[1499]
-            - 20.5 * W[4559] * W[1904] - 20.0 * W[4154] * W[2309] - 19.5 * W[3749] * W[2714] - 19.0 * W[3344] * W[3119]
-            - 18.5 * W[2939] * W[3524] - 18.0 * W[2534] * W[3929] - 17.5 * W[2129] * W[4334] - 17.0 * W[1724] * W[4739]
-            - 16.5 * W[1319] * W[5144] - 16.0 * W[914] * W[5549] - 15.5 * W[509] * W[5954]) / (15.0 * W[104]);
-    W[6363] = (-22.5 * W[6174] * W[288] - 22.0 * W[5769] * W[693] - 21.5 * W[5364] * W[1098] - 21.0 * W[4959] * W[1503]
-            - 20.5 * W[4554] * W[1908] - 20.0 * W[4149] * W[2313] - 19.5 * W[3744] * W[2718] - 19.0 * W[3339] * W[3123]
-            - 18.5 * W[2934] * W[3528] - 18.0 * W[2529] * W[3933] - 17.5 * W[2124] * W[4338] - 17.0 * W[1719] * W[4743]
-            - 16.5 * W[1314] * W[5148] - 16.0 * W[909] * W[5553] - 15.5 * W[504] * W[5958]) / (15.0 * W[99]);
-    W[6368] = (-22.5 * W[6169] * W[293] - 22.0 * W[5764] * W[698] - 21.5 * W[5359] * W[1103] - 21.0 * W[4954] * W[1508]
-            - 20.5 * W[4549] * W[1913] - 20.0 * W[4144] * W[2318] - 19.5 * W[3739] * W[2723] - 19.0 * W[3334] * W[3128]
-            - 18.5 * W[2929] * W[3533] - 18.0 * W[2524] * W[3938] - 17.5 * W[2119] * W[4343] - 17.0 * W[1714] * W[4748]
-            - 16.5 * W[1309] * W[5153] - 16.0 * W[904] * W[5558] - 15.5 * W[499] * W[5963]) / (15.0 * W[94]);
-    W[6395] = (-22.5 * W[6189] * W[320] - 22.0 * W[5784] * W[725] - 21.5 * W[5379] * W[1130] - 21.0 * W[4974] * W[1535]
-            - 20.5 * W[4569] * W[1940] - 20.0 * W[4164] * W[2345] - 19.5 * W[3759] * W[2750] - 19.0 * W[3354] * W[3155]
-            - 18.5 * W[2949] * W[3560] - 18.0 * W[2544] * W[3965] - 17.5 * W[2139] * W[4370] - 17.0 * W[1734] * W[4775]
-            - 16.5 * W[1329] * W[5180] - 16.0 * W[924] * W[5585] - 15.5 * W[519] * W[5990]) / (15.0 * W[114]);
-    W[6399] = (-22.5 * W[6184] * W[324] - 22.0 * W[5779] * W[729] - 21.5 * W[5374] * W[1134] - 21.0 * W[4969] * W[1539]
-            - 20.5 * W[4564] * W[1944] - 20.0 * W[4159] * W[2349] - 19.5 * W[3754] * W[2754] - 19.0 * W[3349] * W[3159]
-            - 18.5 * W[2944] * W[3564] - 18.0 * W[2539] * W[3969] - 17.5 * W[2134] * W[4374] - 17.0 * W[1729] * W[4779]
-            - 16.5 * W[1324] * W[5184] - 16.0 * W[919] * W[5589] - 15.5 * W[514] * W[5994]) / (15.0 * W[109]);
-    W[6427] = (-22.5 * W[6194] * W[352] - 22.0 * W[5789] * W[757] - 21.5 * W[5384] * W[1162] - 21.0 * W[4979] * W[1567]
-            - 20.5 * W[4574] * W[1972] - 20.0 * W[4169] * W[2377] - 19.5 * W[3764] * W[2782] - 19.0 * W[3359] * W[3187]
-            - 18.5 * W[2954] * W[3592] - 18.0 * W[2549] * W[3997] - 17.5 * W[2144] * W[4402] - 17.0 * W[1739] * W[4807]
-            - 16.5 * W[1334] * W[5212] - 16.0 * W[929] * W[5617] - 15.5 * W[524] * W[6022]) / (15.0 * W[119]);
-    W[6228] = W[39] * W[6227] + W[444] * W[5822] + W[849] * W[5417] + W[1254] * W[5012] + W[1659] * W[4607]
-            + W[2064] * W[4202] + W[2469] * W[3797] + W[2874] * W[3392] + W[3279] * W[2987] + W[3684] * W[2582]
-            + W[4089] * W[2177] + W[4494] * W[1772] + W[4899] * W[1367] + W[5304] * W[962] + W[5709] * W[557]
-            + W[6114] * W[152];
-    W[6232] = W[32] * W[6231] + W[437] * W[5826] + W[842] * W[5421] + W[1247] * W[5016] + W[1652] * W[4611]
-            + W[2057] * W[4206] + W[2462] * W[3801] + W[2867] * W[3396] + W[3272] * W[2991] + W[3677] * W[2586]
-            + W[4082] * W[2181] + W[4487] * W[1776] + W[4892] * W[1371] + W[5297] * W[966] + W[5702] * W[561]
-            + W[6107] * W[156];
-    W[6237] = W[25] * W[6236] + W[430] * W[5831] + W[835] * W[5426] + W[1240] * W[5021] + W[1645] * W[4616]
-            + W[2050] * W[4211] + W[2455] * W[3806] + W[2860] * W[3401] + W[3265] * W[2996] + W[3670] * W[2591]
-            + W[4075] * W[2186] + W[4480] * W[1781] + W[4885] * W[1376] + W[5290] * W[971] + W[5695] * W[566]
-            + W[6100] * W[161];
-    W[6242] = W[18] * W[6241] + W[423] * W[5836] + W[828] * W[5431] + W[1233] * W[5026] + W[1638] * W[4621]
-            + W[2043] * W[4216] + W[2448] * W[3811] + W[2853] * W[3406] + W[3258] * W[3001] + W[3663] * W[2596]
-            + W[4068] * W[2191] + W[4473] * W[1786] + W[4878] * W[1381] + W[5283] * W[976] + W[5688] * W[571]
-            + W[6093] * W[166];
-    W[6247] = W[11] * W[6246] + W[416] * W[5841] + W[821] * W[5436] + W[1226] * W[5031] + W[1631] * W[4626]
-            + W[2036] * W[4221] + W[2441] * W[3816] + W[2846] * W[3411] + W[3251] * W[3006] + W[3656] * W[2601]
-            + W[4061] * W[2196] + W[4466] * W[1791] + W[4871] * W[1386] + W[5276] * W[981] + W[5681] * W[576]
-            + W[6086] * W[171];
-    W[6252] = W[2] * W[6251] + W[407] * W[5846] + W[812] * W[5441] + W[1217] * W[5036] + W[1622] * W[4631]
-            + W[2027] * W[4226] + W[2432] * W[3821] + W[2837] * W[3416] + W[3242] * W[3011] + W[3647] * W[2606]
-            + W[4052] * W[2201] + W[4457] * W[1796] + W[4862] * W[1391] + W[5267] * W[986] + W[5672] * W[581]
-            + W[6077] * W[176];
-    W[6256] = W[42] * W[6227] + W[447] * W[5822] + W[852] * W[5417] + W[1257] * W[5012] + W[1662] * W[4607]
-            + W[2067] * W[4202] + W[2472] * W[3797] + W[2877] * W[3392] + W[3282] * W[2987] + W[3687] * W[2582]
-            + W[4092] * W[2177] + W[4497] * W[1772] + W[4902] * W[1367] + W[5307] * W[962] + W[5712] * W[557]
-            + W[6117] * W[152];
-    W[6258] = W[35] * W[6231] + W[440] * W[5826] + W[845] * W[5421] + W[1250] * W[5016] + W[1655] * W[4611]
-            + W[2060] * W[4206] + W[2465] * W[3801] + W[2870] * W[3396] + W[3275] * W[2991] + W[3680] * W[2586]
-            + W[4085] * W[2181] + W[4490] * W[1776] + W[4895] * W[1371] + W[5300] * W[966] + W[5705] * W[561]
-            + W[6110] * W[156];
-    W[6261] = W[28] * W[6236] + W[433] * W[5831] + W[838] * W[5426] + W[1243] * W[5021] + W[1648] * W[4616]
-            + W[2053] * W[4211] + W[2458] * W[3806] + W[2863] * W[3401] + W[3268] * W[2996] + W[3673] * W[2591]
-            + W[4078] * W[2186] + W[4483] * W[1781] + W[4888] * W[1376] + W[5293] * W[971] + W[5698] * W[566]
-            + W[6103] * W[161];
-    W[6264] = W[21] * W[6241] + W[426] * W[5836] + W[831] * W[5431] + W[1236] * W[5026] + W[1641] * W[4621]
-            + W[2046] * W[4216] + W[2451] * W[3811] + W[2856] * W[3406] + W[3261] * W[3001] + W[3666] * W[2596]
-            + W[4071] * W[2191] + W[4476] * W[1786] + W[4881] * W[1381] + W[5286] * W[976] + W[5691] * W[571]
-            + W[6096] * W[166];
-    W[6267] = W[14] * W[6246] + W[419] * W[5841] + W[824] * W[5436] + W[1229] * W[5031] + W[1634] * W[4626]
-            + W[2039] * W[4221] + W[2444] * W[3816] + W[2849] * W[3411] + W[3254] * W[3006] + W[3659] * W[2601]
-            + W[4064] * W[2196] + W[4469] * W[1791] + W[4874] * W[1386] + W[5279] * W[981] + W[5684] * W[576]
-            + W[6089] * W[171];
-    W[6270] = W[7] * W[6251] + W[412] * W[5846] + W[817] * W[5441] + W[1222] * W[5036] + W[1627] * W[4631]
-            + W[2032] * W[4226] + W[2437] * W[3821] + W[2842] * W[3416] + W[3247] * W[3011] + W[3652] * W[2606]
-            + W[4057] * W[2201] + W[4462] * W[1796] + W[4867] * W[1391] + W[5272] * W[986] + W[5677] * W[581]
-            + W[6082] * W[176];
-    W[6276] = W[65] * W[6275] + W[470] * W[5870] + W[875] * W[5465] + W[1280] * W[5060] + W[1685] * W[4655]
-            + W[2090] * W[4250] + W[2495] * W[3845] + W[2900] * W[3440] + W[3305] * W[3035] + W[3710] * W[2630]
-            + W[4115] * W[2225] + W[4520] * W[1820] + W[4925] * W[1415] + W[5330] * W[1010] + W[5735] * W[605]
-            + W[6140] * W[200];
-    W[6280] = W[60] * W[6279] + W[465] * W[5874] + W[870] * W[5469] + W[1275] * W[5064] + W[1680] * W[4659]
-            + W[2085] * W[4254] + W[2490] * W[3849] + W[2895] * W[3444] + W[3300] * W[3039] + W[3705] * W[2634]
-            + W[4110] * W[2229] + W[4515] * W[1824] + W[4920] * W[1419] + W[5325] * W[1014] + W[5730] * W[609]
-            + W[6135] * W[204];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_281(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6285] = W[55] * W[6284] + W[460] * W[5879] + W[865] * W[5474] + W[1270] * W[5069] + W[1675] * W[4664]
             + W[2080] * W[4259] + W[2485] * W[3854] + W[2890] * W[3449] + W[3295] * W[3044] + W[3700] * W[2639]
             + W[4105] * W[2234] + W[4510] * W[1829] + W[4915] * W[1424] + W[5320] * W[1019] + W[5725] * W[614]
@@ -10551,70 +8046,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2127] * W[4334] + W[2532] * W[3929] + W[2937] * W[3524] + W[3342] * W[3119] + W[3747] * W[2714]
             + W[4152] * W[2309] + W[4557] * W[1904] + W[4962] * W[1499] + W[5367] * W[1094] + W[5772] * W[689]
             + W[6177] * W[284];
-    W[6381] = W[97] * W[6363] + W[502] * W[5958] + W[907] * W[5553] + W[1312] * W[5148] + W[1717] * W[4743]
-            + W[2122] * W[4338] + W[2527] * W[3933] + W[2932] * W[3528] + W[3337] * W[3123] + W[3742] * W[2718]
-            + W[4147] * W[2313] + W[4552] * W[1908] + W[4957] * W[1503] + W[5362] * W[1098] + W[5767] * W[693]
-            + W[6172] * W[288];
-    W[6384] = W[92] * W[6368] + W[497] * W[5963] + W[902] * W[5558] + W[1307] * W[5153] + W[1712] * W[4748]
-            + W[2117] * W[4343] + W[2522] * W[3938] + W[2927] * W[3533] + W[3332] * W[3128] + W[3737] * W[2723]
-            + W[4142] * W[2318] + W[4547] * W[1913] + W[4952] * W[1508] + W[5357] * W[1103] + W[5762] * W[698]
-            + W[6167] * W[293];
-    W[6396] = W[110] * W[6395] + W[515] * W[5990] + W[920] * W[5585] + W[1325] * W[5180] + W[1730] * W[4775]
-            + W[2135] * W[4370] + W[2540] * W[3965] + W[2945] * W[3560] + W[3350] * W[3155] + W[3755] * W[2750]
-            + W[4160] * W[2345] + W[4565] * W[1940] + W[4970] * W[1535] + W[5375] * W[1130] + W[5780] * W[725]
-            + W[6185] * W[320];
-    W[6400] = W[105] * W[6399] + W[510] * W[5994] + W[915] * W[5589] + W[1320] * W[5184] + W[1725] * W[4779]
-            + W[2130] * W[4374] + W[2535] * W[3969] + W[2940] * W[3564] + W[3345] * W[3159] + W[3750] * W[2754]
-            + W[4155] * W[2349] + W[4560] * W[1944] + W[4965] * W[1539] + W[5370] * W[1134] + W[5775] * W[729]
-            + W[6180] * W[324];
-    W[6412] = W[112] * W[6395] + W[517] * W[5990] + W[922] * W[5585] + W[1327] * W[5180] + W[1732] * W[4775]
-            + W[2137] * W[4370] + W[2542] * W[3965] + W[2947] * W[3560] + W[3352] * W[3155] + W[3757] * W[2750]
-            + W[4162] * W[2345] + W[4567] * W[1940] + W[4972] * W[1535] + W[5377] * W[1130] + W[5782] * W[725]
-            + W[6187] * W[320];
-    W[6414] = W[107] * W[6399] + W[512] * W[5994] + W[917] * W[5589] + W[1322] * W[5184] + W[1727] * W[4779]
-            + W[2132] * W[4374] + W[2537] * W[3969] + W[2942] * W[3564] + W[3347] * W[3159] + W[3752] * W[2754]
-            + W[4157] * W[2349] + W[4562] * W[1944] + W[4967] * W[1539] + W[5372] * W[1134] + W[5777] * W[729]
-            + W[6182] * W[324];
-    W[6428] = W[115] * W[6427] + W[520] * W[6022] + W[925] * W[5617] + W[1330] * W[5212] + W[1735] * W[4807]
-            + W[2140] * W[4402] + W[2545] * W[3997] + W[2950] * W[3592] + W[3355] * W[3187] + W[3760] * W[2782]
-            + W[4165] * W[2377] + W[4570] * W[1972] + W[4975] * W[1567] + W[5380] * W[1162] + W[5785] * W[757]
-            + W[6190] * W[352];
-    W[6440] = W[117] * W[6427] + W[522] * W[6022] + W[927] * W[5617] + W[1332] * W[5212] + W[1737] * W[4807]
-            + W[2142] * W[4402] + W[2547] * W[3997] + W[2952] * W[3592] + W[3357] * W[3187] + W[3762] * W[2782]
-            + W[4167] * W[2377] + W[4572] * W[1972] + W[4977] * W[1567] + W[5382] * W[1162] + W[5787] * W[757]
-            + W[6192] * W[352];
-    W[6229] = W[151] * W[6228];
-    W[6233] = W[155] * W[6232];
-    W[6238] = W[160] * W[6237];
-    W[6243] = W[165] * W[6242];
-    W[6248] = W[170] * W[6247];
-    W[6253] = W[175] * W[6252];
-    W[6257] = W[151] * W[6256];
-    W[6259] = W[155] * W[6258];
-    W[6262] = W[160] * W[6261];
-    W[6265] = W[165] * W[6264];
-    W[6268] = W[170] * W[6267];
-    W[6271] = W[175] * W[6270];
-    W[6277] = W[199] * W[6276];
-    W[6281] = W[203] * W[6280];
-    W[6286] = W[208] * W[6285];
-    W[6291] = W[213] * W[6290];
-    W[6296] = W[218] * W[6295];
-    W[6299] = W[127] * W[6252];
-    W[6302] = W[199] * W[6301];
-    W[6304] = W[203] * W[6303];
-    W[6307] = W[208] * W[6306];
-    W[6310] = W[213] * W[6309];
-    W[6313] = W[218] * W[6312];
-    W[6316] = W[127] * W[6270];
-    W[6321] = W[243] * W[6320];
-    W[6325] = W[247] * W[6324];
-    W[6330] = W[252] * W[6329];
-    W[6335] = W[257] * W[6334];
-    W[6338] = W[133] * W[6295];
-    W[6340] = W[128] * W[6247];
-    W[6343] = W[243] * W[6342];
-    W[6345] = W[247] * W[6344];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_284(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6348] = W[252] * W[6347];
     W[6351] = W[257] * W[6350];
     W[6354] = W[133] * W[6312];
@@ -10635,26 +8076,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[6401] = W[323] * W[6400];
     W[6404] = W[142] * W[6369];
     W[6406] = W[139] * W[6329];
-    W[6408] = W[135] * W[6285];
-    W[6410] = W[130] * W[6237];
-    W[6413] = W[319] * W[6412];
-    W[6415] = W[323] * W[6414];
-    W[6418] = W[142] * W[6384];
-    W[6420] = W[139] * W[6347];
-    W[6422] = W[135] * W[6306];
-    W[6424] = W[130] * W[6261];
-    W[6429] = W[147] * W[6428];
-    W[6430] = W[145] * W[6400];
-    W[6432] = W[143] * W[6364];
-    W[6434] = W[140] * W[6324];
-    W[6436] = W[136] * W[6280];
-    W[6438] = W[131] * W[6232];
-    W[6441] = W[147] * W[6440];
-    W[6442] = W[145] * W[6414];
-    W[6444] = W[143] * W[6381];
-    W[6446] = W[140] * W[6344];
-    W[6448] = W[136] * W[6303];
-    W[6450] = W[131] * W[6258];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_286(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6452] = W[351] * W[6428];
     W[6459] = W[351] * W[6440];
     W[6234] = W[6229] + W[6233];
@@ -10675,46 +8106,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[6263] = W[6260] + W[6262];
     W[6287] = W[6282] + W[6286];
     W[6308] = W[6305] + W[6307];
-    W[6331] = W[6326] + W[6330];
-    W[6349] = W[6346] + W[6348];
-    W[6371] = W[6366] + W[6370];
-    W[6386] = W[6383] + W[6385];
-    W[6403] = W[3] * W[6402];
-    W[6417] = W[3] * W[6416];
-    W[6433] = W[6431] - W[6432];
-    W[6445] = W[6443] - W[6444];
-    W[6454] = W[6361] + W[6453];
-    W[6461] = W[6380] + W[6460];
-    W[6244] = W[6239] + W[6243];
-    W[6266] = W[6263] + W[6265];
-    W[6292] = W[6287] + W[6291];
-    W[6311] = W[6308] + W[6310];
-    W[6336] = W[6331] + W[6335];
-    W[6352] = W[6349] + W[6351];
-    W[6372] = W[3] * W[6371];
-    W[6387] = W[3] * W[6386];
-    W[6405] = W[6403] - W[6404];
-    W[6419] = W[6417] - W[6418];
-    W[6435] = W[6433] - W[6434];
-    W[6447] = W[6445] - W[6446];
-    W[6455] = W[6321] + W[6454];
-    W[6462] = W[6343] + W[6461];
-    W[6249] = W[6244] + W[6248];
-    W[6269] = W[6266] + W[6268];
-    W[6297] = W[6292] + W[6296];
-    W[6314] = W[6311] + W[6313];
-    W[6337] = W[3] * W[6336];
-    W[6353] = W[3] * W[6352];
-    W[6374] = W[6372] - W[6373];
-    W[6389] = W[6387] - W[6388];
-    W[6407] = W[6405] - W[6406];
-    W[6421] = W[6419] - W[6420];
-    W[6437] = W[6435] - W[6436];
-    W[6449] = W[6447] - W[6448];
-    W[6456] = W[6277] + W[6455];
-    W[6463] = W[6302] + W[6462];
-    W[6254] = W[6249] + W[6253];
-    W[6272] = W[6269] + W[6271];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_289(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6298] = W[3] * W[6297];
     W[6315] = W[3] * W[6314];
     W[6339] = W[6337] - W[6338];
@@ -10735,6 +8136,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[6357] = W[6355] - W[6356];
     W[6378] = W[6376] - W[6377];
     W[6393] = W[6391] - W[6392];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_290(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6411] = W[6409] - W[6410];
     W[6425] = W[6423] - W[6424];
     W[6458] = W[148] * W[6457];
@@ -10755,41 +8166,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[461] = X[447] / 16.0;
     X[462] = -W[6255] / W[120] / 16.0;
     X[463] = -W[6273] / W[120] / 16.0;
-    X[464] = -W[6300] / W[121] / 16.0;
-    X[465] = -W[6317] / W[121] / 16.0;
-    X[466] = -W[6341] / W[122] / 16.0;
-    X[467] = -W[6357] / W[122] / 16.0;
-    X[468] = -W[6378] / W[123] / 16.0;
-    X[469] = -W[6393] / W[123] / 16.0;
-    X[470] = -W[6411] / W[124] / 16.0;
-    X[471] = -W[6425] / W[124] / 16.0;
-    X[472] = -W[6439] / W[125] / 16.0;
-    X[473] = -W[6451] / W[125] / 16.0;
-    X[474] = -W[6458] / W[126] / 16.0;
-    X[475] = -W[6465] / W[126] / 16.0;
-    if (K == 16)
-        goto out;
-    /* order 16 */
-    W[6482] = X[448] - X[450];
-    W[6487] = X[449] - X[451];
-    W[6491] = X[448] - X[452];
-    W[6494] = X[449] - X[453];
-    W[6498] = X[448] - X[454];
-    W[6501] = X[449] - X[455];
-    W[6505] = X[448] - X[456];
-    W[6508] = X[449] - X[457];
-    W[6512] = X[448] - X[458];
-    W[6515] = X[449] - X[459];
-    W[6519] = X[448] - X[460];
-    W[6522] = X[449] - X[461];
-    W[6525] = X[450] - X[452];
-    W[6527] = X[451] - X[453];
-    W[6530] = X[450] - X[454];
-    W[6532] = X[451] - X[455];
-    W[6535] = X[450] - X[456];
-    W[6537] = X[451] - X[457];
-    W[6540] = X[450] - X[458];
-    W[6542] = X[451] - X[459];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_293(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6545] = X[450] - X[460];
     W[6547] = X[451] - X[461];
     W[6550] = X[452] - X[454];
@@ -10810,44 +8196,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[6587] = X[457] - X[459];
     W[6590] = X[456] - X[460];
     W[6592] = X[457] - X[461];
-    W[6595] = X[458] - X[460];
-    W[6597] = X[459] - X[461];
-    W[6484] = (W[2] * W[6482] + W[407] * W[6077] + W[812] * W[5672] + W[1217] * W[5267] + W[1622] * W[4862]
-            + W[2027] * W[4457] + W[2432] * W[4052] + W[2837] * W[3647]) * 2.0 + W[3242] * W[3242];
-    W[6488] = (W[7] * W[6487] + W[412] * W[6082] + W[817] * W[5677] + W[1222] * W[5272] + W[1627] * W[4867]
-            + W[2032] * W[4462] + W[2437] * W[4057] + W[2842] * W[3652]) * 2.0 + W[3247] * W[3247];
-    W[6492] = (W[11] * W[6491] + W[416] * W[6086] + W[821] * W[5681] + W[1226] * W[5276] + W[1631] * W[4871]
-            + W[2036] * W[4466] + W[2441] * W[4061] + W[2846] * W[3656]) * 2.0 + W[3251] * W[3251];
-    W[6495] = (W[14] * W[6494] + W[419] * W[6089] + W[824] * W[5684] + W[1229] * W[5279] + W[1634] * W[4874]
-            + W[2039] * W[4469] + W[2444] * W[4064] + W[2849] * W[3659]) * 2.0 + W[3254] * W[3254];
-    W[6499] = (W[18] * W[6498] + W[423] * W[6093] + W[828] * W[5688] + W[1233] * W[5283] + W[1638] * W[4878]
-            + W[2043] * W[4473] + W[2448] * W[4068] + W[2853] * W[3663]) * 2.0 + W[3258] * W[3258];
-    W[6502] = (W[21] * W[6501] + W[426] * W[6096] + W[831] * W[5691] + W[1236] * W[5286] + W[1641] * W[4881]
-            + W[2046] * W[4476] + W[2451] * W[4071] + W[2856] * W[3666]) * 2.0 + W[3261] * W[3261];
-    W[6506] = (W[25] * W[6505] + W[430] * W[6100] + W[835] * W[5695] + W[1240] * W[5290] + W[1645] * W[4885]
-            + W[2050] * W[4480] + W[2455] * W[4075] + W[2860] * W[3670]) * 2.0 + W[3265] * W[3265];
-    W[6509] = (W[28] * W[6508] + W[433] * W[6103] + W[838] * W[5698] + W[1243] * W[5293] + W[1648] * W[4888]
-            + W[2053] * W[4483] + W[2458] * W[4078] + W[2863] * W[3673]) * 2.0 + W[3268] * W[3268];
-    W[6513] = (W[32] * W[6512] + W[437] * W[6107] + W[842] * W[5702] + W[1247] * W[5297] + W[1652] * W[4892]
-            + W[2057] * W[4487] + W[2462] * W[4082] + W[2867] * W[3677]) * 2.0 + W[3272] * W[3272];
-    W[6516] = (W[35] * W[6515] + W[440] * W[6110] + W[845] * W[5705] + W[1250] * W[5300] + W[1655] * W[4895]
-            + W[2060] * W[4490] + W[2465] * W[4085] + W[2870] * W[3680]) * 2.0 + W[3275] * W[3275];
-    W[6520] = (W[39] * W[6519] + W[444] * W[6114] + W[849] * W[5709] + W[1254] * W[5304] + W[1659] * W[4899]
-            + W[2064] * W[4494] + W[2469] * W[4089] + W[2874] * W[3684]) * 2.0 + W[3279] * W[3279];
-    W[6523] = (W[42] * W[6522] + W[447] * W[6117] + W[852] * W[5712] + W[1257] * W[5307] + W[1662] * W[4902]
-            + W[2067] * W[4497] + W[2472] * W[4092] + W[2877] * W[3687]) * 2.0 + W[3282] * W[3282];
-    W[6526] = (W[45] * W[6525] + W[450] * W[6120] + W[855] * W[5715] + W[1260] * W[5310] + W[1665] * W[4905]
-            + W[2070] * W[4500] + W[2475] * W[4095] + W[2880] * W[3690]) * 2.0 + W[3285] * W[3285];
-    W[6528] = (W[47] * W[6527] + W[452] * W[6122] + W[857] * W[5717] + W[1262] * W[5312] + W[1667] * W[4907]
-            + W[2072] * W[4502] + W[2477] * W[4097] + W[2882] * W[3692]) * 2.0 + W[3287] * W[3287];
-    W[6531] = (W[50] * W[6530] + W[455] * W[6125] + W[860] * W[5720] + W[1265] * W[5315] + W[1670] * W[4910]
-            + W[2075] * W[4505] + W[2480] * W[4100] + W[2885] * W[3695]) * 2.0 + W[3290] * W[3290];
-    W[6533] = (W[52] * W[6532] + W[457] * W[6127] + W[862] * W[5722] + W[1267] * W[5317] + W[1672] * W[4912]
-            + W[2077] * W[4507] + W[2482] * W[4102] + W[2887] * W[3697]) * 2.0 + W[3292] * W[3292];
-    W[6536] = (W[55] * W[6535] + W[460] * W[6130] + W[865] * W[5725] + W[1270] * W[5320] + W[1675] * W[4915]
-            + W[2080] * W[4510] + W[2485] * W[4105] + W[2890] * W[3700]) * 2.0 + W[3295] * W[3295];
-    W[6538] = (W[57] * W[6537] + W[462] * W[6132] + W[867] * W[5727] + W[1272] * W[5322] + W[1677] * W[4917]
-            + W[2082] * W[4512] + W[2487] * W[4107] + W[2892] * W[3702]) * 2.0 + W[3297] * W[3297];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_295(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6541] = (W[60] * W[6540] + W[465] * W[6135] + W[870] * W[5730] + W[1275] * W[5325] + W[1680] * W[4920]
             + W[2085] * W[4515] + W[2490] * W[4110] + W[2895] * W[3705]) * 2.0 + W[3300] * W[3300];
     W[6543] = (W[62] * W[6542] + W[467] * W[6137] + W[872] * W[5732] + W[1277] * W[5327] + W[1682] * W[4922]
@@ -10888,30 +8246,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2130] * W[4560] + W[2535] * W[4155] + W[2940] * W[3750]) * 2.0 + W[3345] * W[3345];
     W[6588] = (W[107] * W[6587] + W[512] * W[6182] + W[917] * W[5777] + W[1322] * W[5372] + W[1727] * W[4967]
             + W[2132] * W[4562] + W[2537] * W[4157] + W[2942] * W[3752]) * 2.0 + W[3347] * W[3347];
-    W[6591] = (W[110] * W[6590] + W[515] * W[6185] + W[920] * W[5780] + W[1325] * W[5375] + W[1730] * W[4970]
-            + W[2135] * W[4565] + W[2540] * W[4160] + W[2945] * W[3755]) * 2.0 + W[3350] * W[3350];
-    W[6593] = (W[112] * W[6592] + W[517] * W[6187] + W[922] * W[5782] + W[1327] * W[5377] + W[1732] * W[4972]
-            + W[2137] * W[4567] + W[2542] * W[4162] + W[2947] * W[3757]) * 2.0 + W[3352] * W[3352];
-    W[6596] = (W[115] * W[6595] + W[520] * W[6190] + W[925] * W[5785] + W[1330] * W[5380] + W[1735] * W[4975]
-            + W[2140] * W[4570] + W[2545] * W[4165] + W[2950] * W[3760]) * 2.0 + W[3355] * W[3355];
-    W[6598] = (W[117] * W[6597] + W[522] * W[6192] + W[927] * W[5787] + W[1332] * W[5382] + W[1737] * W[4977]
-            + W[2142] * W[4572] + W[2547] * W[4167] + W[2952] * W[3762]) * 2.0 + W[3357] * W[3357];
-    W[6489] = W[6484] + W[6488];
-    W[6496] = W[6492] + W[6495];
-    W[6503] = W[6499] + W[6502];
-    W[6510] = W[6506] + W[6509];
-    W[6517] = W[6513] + W[6516];
-    W[6524] = W[6520] + W[6523];
-    W[6529] = W[6526] + W[6528];
-    W[6534] = W[6531] + W[6533];
-    W[6539] = W[6536] + W[6538];
-    W[6544] = W[6541] + W[6543];
-    W[6549] = W[6546] + W[6548];
-    W[6554] = W[6551] + W[6553];
-    W[6559] = W[6556] + W[6558];
-    W[6564] = W[6561] + W[6563];
-    W[6569] = W[6566] + W[6568];
-    W[6574] = W[6571] + W[6573];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_297(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6579] = W[6576] + W[6578];
     W[6584] = W[6581] + W[6583];
     W[6589] = W[6586] + W[6588];
@@ -10977,86 +8321,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             - 22.0 * W[4934] * W[1878] - 21.5 * W[4529] * W[2283] - 21.0 * W[4124] * W[2688] - 20.5 * W[3719] * W[3093]
             - 20.0 * W[3314] * W[3498] - 19.5 * W[2909] * W[3903] - 19.0 * W[2504] * W[4308] - 18.5 * W[2099] * W[4713]
             - 18.0 * W[1694] * W[5118] - 17.5 * W[1289] * W[5523] - 17.0 * W[884] * W[5928] - 16.5 * W[479] * W[6333]) / (16.0 * W[74]);
-    W[6764] = (-24.0 * W[6584] * W[284] - 23.5 * W[6179] * W[689] - 23.0 * W[5774] * W[1094] - 22.5 * W[5369] * W[1499]
-            - 22.0 * W[4964] * W[1904] - 21.5 * W[4559] * W[2309] - 21.0 * W[4154] * W[2714] - 20.5 * W[3749] * W[3119]
-            - 20.0 * W[3344] * W[3524] - 19.5 * W[2939] * W[3929] - 19.0 * W[2534] * W[4334] - 18.5 * W[2129] * W[4739]
-            - 18.0 * W[1724] * W[5144] - 17.5 * W[1319] * W[5549] - 17.0 * W[914] * W[5954] - 16.5 * W[509] * W[6359]) / (16.0 * W[104]);
-    W[6768] = (-24.0 * W[6579] * W[288] - 23.5 * W[6174] * W[693] - 23.0 * W[5769] * W[1098] - 22.5 * W[5364] * W[1503]
-            - 22.0 * W[4959] * W[1908] - 21.5 * W[4554] * W[2313] - 21.0 * W[4149] * W[2718] - 20.5 * W[3744] * W[3123]
-            - 20.0 * W[3339] * W[3528] - 19.5 * W[2934] * W[3933] - 19.0 * W[2529] * W[4338] - 18.5 * W[2124] * W[4743]
-            - 18.0 * W[1719] * W[5148] - 17.5 * W[1314] * W[5553] - 17.0 * W[909] * W[5958] - 16.5 * W[504] * W[6363]) / (16.0 * W[99]);
-    W[6773] = (-24.0 * W[6574] * W[293] - 23.5 * W[6169] * W[698] - 23.0 * W[5764] * W[1103] - 22.5 * W[5359] * W[1508]
-            - 22.0 * W[4954] * W[1913] - 21.5 * W[4549] * W[2318] - 21.0 * W[4144] * W[2723] - 20.5 * W[3739] * W[3128]
-            - 20.0 * W[3334] * W[3533] - 19.5 * W[2929] * W[3938] - 19.0 * W[2524] * W[4343] - 18.5 * W[2119] * W[4748]
-            - 18.0 * W[1714] * W[5153] - 17.5 * W[1309] * W[5558] - 17.0 * W[904] * W[5963] - 16.5 * W[499] * W[6368]) / (16.0 * W[94]);
-    W[6800] = (-24.0 * W[6594] * W[320] - 23.5 * W[6189] * W[725] - 23.0 * W[5784] * W[1130] - 22.5 * W[5379] * W[1535]
-            - 22.0 * W[4974] * W[1940] - 21.5 * W[4569] * W[2345] - 21.0 * W[4164] * W[2750] - 20.5 * W[3759] * W[3155]
-            - 20.0 * W[3354] * W[3560] - 19.5 * W[2949] * W[3965] - 19.0 * W[2544] * W[4370] - 18.5 * W[2139] * W[4775]
-            - 18.0 * W[1734] * W[5180] - 17.5 * W[1329] * W[5585] - 17.0 * W[924] * W[5990] - 16.5 * W[519] * W[6395]) / (16.0 * W[114]);
-    W[6804] = (-24.0 * W[6589] * W[324] - 23.5 * W[6184] * W[729] - 23.0 * W[5779] * W[1134] - 22.5 * W[5374] * W[1539]
-            - 22.0 * W[4969] * W[1944] - 21.5 * W[4564] * W[2349] - 21.0 * W[4159] * W[2754] - 20.5 * W[3754] * W[3159]
-            - 20.0 * W[3349] * W[3564] - 19.5 * W[2944] * W[3969] - 19.0 * W[2539] * W[4374] - 18.5 * W[2134] * W[4779]
-            - 18.0 * W[1729] * W[5184] - 17.5 * W[1324] * W[5589] - 17.0 * W[919] * W[5994] - 16.5 * W[514] * W[6399]) / (16.0 * W[109]);
-    W[6832] = (-24.0 * W[6599] * W[352] - 23.5 * W[6194] * W[757] - 23.0 * W[5789] * W[1162] - 22.5 * W[5384] * W[1567]
-            - 22.0 * W[4979] * W[1972] - 21.5 * W[4574] * W[2377] - 21.0 * W[4169] * W[2782] - 20.5 * W[3764] * W[3187]
-            - 20.0 * W[3359] * W[3592] - 19.5 * W[2954] * W[3997] - 19.0 * W[2549] * W[4402] - 18.5 * W[2144] * W[4807]
-            - 18.0 * W[1739] * W[5212] - 17.5 * W[1334] * W[5617] - 17.0 * W[929] * W[6022] - 16.5 * W[524] * W[6427]) / (16.0 * W[119]);
-    W[6633] = W[39] * W[6632] + W[444] * W[6227] + W[849] * W[5822] + W[1254] * W[5417] + W[1659] * W[5012]
-            + W[2064] * W[4607] + W[2469] * W[4202] + W[2874] * W[3797] + W[3279] * W[3392] + W[3684] * W[2987]
-            + W[4089] * W[2582] + W[4494] * W[2177] + W[4899] * W[1772] + W[5304] * W[1367] + W[5709] * W[962]
-            + W[6114] * W[557] + W[6519] * W[152];
-    W[6637] = W[32] * W[6636] + W[437] * W[6231] + W[842] * W[5826] + W[1247] * W[5421] + W[1652] * W[5016]
-            + W[2057] * W[4611] + W[2462] * W[4206] + W[2867] * W[3801] + W[3272] * W[3396] + W[3677] * W[2991]
-            + W[4082] * W[2586] + W[4487] * W[2181] + W[4892] * W[1776] + W[5297] * W[1371] + W[5702] * W[966]
-            + W[6107] * W[561] + W[6512] * W[156];
-    W[6642] = W[25] * W[6641] + W[430] * W[6236] + W[835] * W[5831] + W[1240] * W[5426] + W[1645] * W[5021]
-            + W[2050] * W[4616] + W[2455] * W[4211] + W[2860] * W[3806] + W[3265] * W[3401] + W[3670] * W[2996]
-            + W[4075] * W[2591] + W[4480] * W[2186] + W[4885] * W[1781] + W[5290] * W[1376] + W[5695] * W[971]
-            + W[6100] * W[566] + W[6505] * W[161];
-    W[6647] = W[18] * W[6646] + W[423] * W[6241] + W[828] * W[5836] + W[1233] * W[5431] + W[1638] * W[5026]
-            + W[2043] * W[4621] + W[2448] * W[4216] + W[2853] * W[3811] + W[3258] * W[3406] + W[3663] * W[3001]
-            + W[4068] * W[2596] + W[4473] * W[2191] + W[4878] * W[1786] + W[5283] * W[1381] + W[5688] * W[976]
-            + W[6093] * W[571] + W[6498] * W[166];
-    W[6652] = W[11] * W[6651] + W[416] * W[6246] + W[821] * W[5841] + W[1226] * W[5436] + W[1631] * W[5031]
-            + W[2036] * W[4626] + W[2441] * W[4221] + W[2846] * W[3816] + W[3251] * W[3411] + W[3656] * W[3006]
-            + W[4061] * W[2601] + W[4466] * W[2196] + W[4871] * W[1791] + W[5276] * W[1386] + W[5681] * W[981]
-            + W[6086] * W[576] + W[6491] * W[171];
-    W[6657] = W[2] * W[6656] + W[407] * W[6251] + W[812] * W[5846] + W[1217] * W[5441] + W[1622] * W[5036]
-            + W[2027] * W[4631] + W[2432] * W[4226] + W[2837] * W[3821] + W[3242] * W[3416] + W[3647] * W[3011]
-            + W[4052] * W[2606] + W[4457] * W[2201] + W[4862] * W[1796] + W[5267] * W[1391] + W[5672] * W[986]
-            + W[6077] * W[581] + W[6482] * W[176];
-    W[6661] = W[42] * W[6632] + W[447] * W[6227] + W[852] * W[5822] + W[1257] * W[5417] + W[1662] * W[5012]
-            + W[2067] * W[4607] + W[2472] * W[4202] + W[2877] * W[3797] + W[3282] * W[3392] + W[3687] * W[2987]
-            + W[4092] * W[2582] + W[4497] * W[2177] + W[4902] * W[1772] + W[5307] * W[1367] + W[5712] * W[962]
-            + W[6117] * W[557] + W[6522] * W[152];
-    W[6663] = W[35] * W[6636] + W[440] * W[6231] + W[845] * W[5826] + W[1250] * W[5421] + W[1655] * W[5016]
-            + W[2060] * W[4611] + W[2465] * W[4206] + W[2870] * W[3801] + W[3275] * W[3396] + W[3680] * W[2991]
-            + W[4085] * W[2586] + W[4490] * W[2181] + W[4895] * W[1776] + W[5300] * W[1371] + W[5705] * W[966]
-            + W[6110] * W[561] + W[6515] * W[156];
-    W[6666] = W[28] * W[6641] + W[433] * W[6236] + W[838] * W[5831] + W[1243] * W[5426] + W[1648] * W[5021]
-            + W[2053] * W[4616] + W[2458] * W[4211] + W[2863] * W[3806] + W[3268] * W[3401] + W[3673] * W[2996]
-            + W[4078] * W[2591] + W[4483] * W[2186] + W[4888] * W[1781] + W[5293] * W[1376] + W[5698] * W[971]
-            + W[6103] * W[566] + W[6508] * W[161];
-    W[6669] = W[21] * W[6646] + W[426] * W[6241] + W[831] * W[5836] + W[1236] * W[5431] + W[1641] * W[5026]
-            + W[2046] * W[4621] + W[2451] * W[4216] + W[2856] * W[3811] + W[3261] * W[3406] + W[3666] * W[3001]
-            + W[4071] * W[2596] + W[4476] * W[2191] + W[4881] * W[1786] + W[5286] * W[1381] + W[5691] * W[976]
-            + W[6096] * W[571] + W[6501] * W[166];
-    W[6672] = W[14] * W[6651] + W[419] * W[6246] + W[824] * W[5841] + W[1229] * W[5436] + W[1634] * W[5031]
-            + W[2039] * W[4626] + W[2444] * W[4221] + W[2849] * W[3816] + W[3254] * W[3411] + W[3659] * W[3006]
-            + W[4064] * W[2601] + W[4469] * W[2196] + W[4874] * W[1791] + W[5279] * W[1386] + W[5684] * W[981]
-            + W[6089] * W[576] + W[6494] * W[171];
-    W[6675] = W[7] * W[6656] + W[412] * W[6251] + W[817] * W[5846] + W[1222] * W[5441] + W[1627] * W[5036]
-            + W[2032] * W[4631] + W[2437] * W[4226] + W[2842] * W[3821] + W[3247] * W[3416] + W[3652] * W[3011]
-            + W[4057] * W[2606] + W[4462] * W[2201] + W[4867] * W[1796] + W[5272] * W[1391] + W[5677] * W[986]
-            + W[6082] * W[581] + W[6487] * W[176];
-    W[6681] = W[65] * W[6680] + W[470] * W[6275] + W[875] * W[5870] + W[1280] * W[5465] + W[1685] * W[5060]
-            + W[2090] * W[4655] + W[2495] * W[4250] + W[2900] * W[3845] + W[3305] * W[3440] + W[3710] * W[3035]
-            + W[4115] * W[2630] + W[4520] * W[2225] + W[4925] * W[1820] + W[5330] * W[1415] + W[5735] * W[1010]
-            + W[6140] * W[605] + W[6545] * W[200];
-    W[6685] = W[60] * W[6684] + W[465] * W[6279] + W[870] * W[5874] + W[1275] * W[5469] + W[1680] * W[5064]
-            + W[2085] * W[4659] + W[2490] * W[4254] + W[2895] * W[3849] + W[3300] * W[3444] + W[3705] * W[3039]
-            + W[4110] * W[2634] + W[4515] * W[2229] + W[4920] * W[1824] + W[5325] * W[1419] + W[5730] * W[1014]
-            + W[6135] * W[609] + W[6540] * W[204];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_299(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6690] = W[55] * W[6689] + W[460] * W[6284] + W[865] * W[5879] + W[1270] * W[5474] + W[1675] * W[5069]
             + W[2080] * W[4664] + W[2485] * W[4259] + W[2890] * W[3854] + W[3295] * W[3449] + W[3700] * W[3044]
             + W[4105] * W[2639] + W[4510] * W[2234] + W[4915] * W[1829] + W[5320] * W[1424] + W[5725] * W[1019]
@@ -11137,90 +8411,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2127] * W[4739] + W[2532] * W[4334] + W[2937] * W[3929] + W[3342] * W[3524] + W[3747] * W[3119]
             + W[4152] * W[2714] + W[4557] * W[2309] + W[4962] * W[1904] + W[5367] * W[1499] + W[5772] * W[1094]
             + W[6177] * W[689] + W[6582] * W[284];
-    W[6786] = W[97] * W[6768] + W[502] * W[6363] + W[907] * W[5958] + W[1312] * W[5553] + W[1717] * W[5148]
-            + W[2122] * W[4743] + W[2527] * W[4338] + W[2932] * W[3933] + W[3337] * W[3528] + W[3742] * W[3123]
-            + W[4147] * W[2718] + W[4552] * W[2313] + W[4957] * W[1908] + W[5362] * W[1503] + W[5767] * W[1098]
-            + W[6172] * W[693] + W[6577] * W[288];
-    W[6789] = W[92] * W[6773] + W[497] * W[6368] + W[902] * W[5963] + W[1307] * W[5558] + W[1712] * W[5153]
-            + W[2117] * W[4748] + W[2522] * W[4343] + W[2927] * W[3938] + W[3332] * W[3533] + W[3737] * W[3128]
-            + W[4142] * W[2723] + W[4547] * W[2318] + W[4952] * W[1913] + W[5357] * W[1508] + W[5762] * W[1103]
-            + W[6167] * W[698] + W[6572] * W[293];
-    W[6801] = W[110] * W[6800] + W[515] * W[6395] + W[920] * W[5990] + W[1325] * W[5585] + W[1730] * W[5180]
-            + W[2135] * W[4775] + W[2540] * W[4370] + W[2945] * W[3965] + W[3350] * W[3560] + W[3755] * W[3155]
-            + W[4160] * W[2750] + W[4565] * W[2345] + W[4970] * W[1940] + W[5375] * W[1535] + W[5780] * W[1130]
-            + W[6185] * W[725] + W[6590] * W[320];
-    W[6805] = W[105] * W[6804] + W[510] * W[6399] + W[915] * W[5994] + W[1320] * W[5589] + W[1725] * W[5184]
-            + W[2130] * W[4779] + W[2535] * W[4374] + W[2940] * W[3969] + W[3345] * W[3564] + W[3750] * W[3159]
-            + W[4155] * W[2754] + W[4560] * W[2349] + W[4965] * W[1944] + W[5370] * W[1539] + W[5775] * W[1134]
-            + W[6180] * W[729] + W[6585] * W[324];
-    W[6817] = W[112] * W[6800] + W[517] * W[6395] + W[922] * W[5990] + W[1327] * W[5585] + W[1732] * W[5180]
-            + W[2137] * W[4775] + W[2542] * W[4370] + W[2947] * W[3965] + W[3352] * W[3560] + W[3757] * W[3155]
-            + W[4162] * W[2750] + W[4567] * W[2345] + W[4972] * W[1940] + W[5377] * W[1535] + W[5782] * W[1130]
-            + W[6187] * W[725] + W[6592] * W[320];
-    W[6819] = W[107] * W[6804] + W[512] * W[6399] + W[917] * W[5994] + W[1322] * W[5589] + W[1727] * W[5184]
-            + W[2132] * W[4779] + W[2537] * W[4374] + W[2942] * W[3969] + W[3347] * W[3564] + W[3752] * W[3159]
-            + W[4157] * W[2754] + W[4562] * W[2349] + W[4967] * W[1944] + W[5372] * W[1539] + W[5777] * W[1134]
-            + W[6182] * W[729] + W[6587] * W[324];
-    W[6833] = W[115] * W[6832] + W[520] * W[6427] + W[925] * W[6022] + W[1330] * W[5617] + W[1735] * W[5212]
-            + W[2140] * W[4807] + W[2545] * W[4402] + W[2950] * W[3997] + W[3355] * W[3592] + W[3760] * W[3187]
-            + W[4165] * W[2782] + W[4570] * W[2377] + W[4975] * W[1972] + W[5380] * W[1567] + W[5785] * W[1162]
-            + W[6190] * W[757] + W[6595] * W[352];
-    W[6845] = W[117] * W[6832] + W[522] * W[6427] + W[927] * W[6022] + W[1332] * W[5617] + W[1737] * W[5212]
-            + W[2142] * W[4807] + W[2547] * W[4402] + W[2952] * W[3997] + W[3357] * W[3592] + W[3762] * W[3187]
-            + W[4167] * W[2782] + W[4572] * W[2377] + W[4977] * W[1972] + W[5382] * W[1567] + W[5787] * W[1162]
-            + W[6192] * W[757] + W[6597] * W[352];
-    W[6634] = W[151] * W[6633];
-    W[6638] = W[155] * W[6637];
-    W[6643] = W[160] * W[6642];
-    W[6648] = W[165] * W[6647];
-    W[6653] = W[170] * W[6652];
-    W[6658] = W[175] * W[6657];
-    W[6662] = W[151] * W[6661];
-    W[6664] = W[155] * W[6663];
-    W[6667] = W[160] * W[6666];
-    W[6670] = W[165] * W[6669];
-    W[6673] = W[170] * W[6672];
-    W[6676] = W[175] * W[6675];
-    W[6682] = W[199] * W[6681];
-    W[6686] = W[203] * W[6685];
-    W[6691] = W[208] * W[6690];
-    W[6696] = W[213] * W[6695];
-    W[6701] = W[218] * W[6700];
-    W[6704] = W[127] * W[6657];
-    W[6707] = W[199] * W[6706];
-    W[6709] = W[203] * W[6708];
-    W[6712] = W[208] * W[6711];
-    W[6715] = W[213] * W[6714];
-    W[6718] = W[218] * W[6717];
-    W[6721] = W[127] * W[6675];
-    W[6726] = W[243] * W[6725];
-    W[6730] = W[247] * W[6729];
-    W[6735] = W[252] * W[6734];
-    W[6740] = W[257] * W[6739];
-    W[6743] = W[133] * W[6700];
-    W[6745] = W[128] * W[6652];
-    W[6748] = W[243] * W[6747];
-    W[6750] = W[247] * W[6749];
-    W[6753] = W[252] * W[6752];
-    W[6756] = W[257] * W[6755];
-    W[6759] = W[133] * W[6717];
-    W[6761] = W[128] * W[6672];
-    W[6766] = W[283] * W[6765];
-    W[6770] = W[287] * W[6769];
-    W[6775] = W[292] * W[6774];
-    W[6778] = W[138] * W[6739];
-    W[6780] = W[134] * W[6695];
-    W[6782] = W[129] * W[6647];
-    W[6785] = W[283] * W[6784];
-    W[6787] = W[287] * W[6786];
-    W[6790] = W[292] * W[6789];
-    W[6793] = W[138] * W[6755];
-    W[6795] = W[134] * W[6714];
-    W[6797] = W[129] * W[6669];
-    W[6802] = W[319] * W[6801];
-    W[6806] = W[323] * W[6805];
-    W[6809] = W[142] * W[6774];
-    W[6811] = W[139] * W[6734];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_303(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6813] = W[135] * W[6690];
     W[6815] = W[130] * W[6642];
     W[6818] = W[319] * W[6817];
@@ -11241,26 +8441,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[6851] = W[140] * W[6749];
     W[6853] = W[136] * W[6708];
     W[6855] = W[131] * W[6663];
-    W[6857] = W[351] * W[6833];
-    W[6864] = W[351] * W[6845];
-    W[6639] = W[6634] + W[6638];
-    W[6665] = W[6662] + W[6664];
-    W[6687] = W[6682] + W[6686];
-    W[6710] = W[6707] + W[6709];
-    W[6731] = W[6726] + W[6730];
-    W[6751] = W[6748] + W[6750];
-    W[6771] = W[6766] + W[6770];
-    W[6788] = W[6785] + W[6787];
-    W[6807] = W[6802] + W[6806];
-    W[6821] = W[6818] + W[6820];
-    W[6836] = W[6834] - W[6835];
-    W[6848] = W[6846] - W[6847];
-    W[6858] = W[6802] + W[6857];
-    W[6865] = W[6818] + W[6864];
-    W[6644] = W[6639] + W[6643];
-    W[6668] = W[6665] + W[6667];
-    W[6692] = W[6687] + W[6691];
-    W[6713] = W[6710] + W[6712];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_305(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6736] = W[6731] + W[6735];
     W[6754] = W[6751] + W[6753];
     W[6776] = W[6771] + W[6775];
@@ -11281,26 +8471,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[6792] = W[3] * W[6791];
     W[6810] = W[6808] - W[6809];
     W[6824] = W[6822] - W[6823];
-    W[6840] = W[6838] - W[6839];
-    W[6852] = W[6850] - W[6851];
-    W[6860] = W[6726] + W[6859];
-    W[6867] = W[6748] + W[6866];
-    W[6654] = W[6649] + W[6653];
-    W[6674] = W[6671] + W[6673];
-    W[6702] = W[6697] + W[6701];
-    W[6719] = W[6716] + W[6718];
-    W[6742] = W[3] * W[6741];
-    W[6758] = W[3] * W[6757];
-    W[6779] = W[6777] - W[6778];
-    W[6794] = W[6792] - W[6793];
-    W[6812] = W[6810] - W[6811];
-    W[6826] = W[6824] - W[6825];
-    W[6842] = W[6840] - W[6841];
-    W[6854] = W[6852] - W[6853];
-    W[6861] = W[6682] + W[6860];
-    W[6868] = W[6707] + W[6867];
-    W[6659] = W[6654] + W[6658];
-    W[6677] = W[6674] + W[6676];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_307(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6703] = W[3] * W[6702];
     W[6720] = W[3] * W[6719];
     W[6744] = W[6742] - W[6743];
@@ -11321,26 +8501,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[6762] = W[6760] - W[6761];
     W[6783] = W[6781] - W[6782];
     W[6798] = W[6796] - W[6797];
-    W[6816] = W[6814] - W[6815];
-    W[6830] = W[6828] - W[6829];
-    W[6863] = W[148] * W[6862];
-    W[6870] = W[148] * W[6869];
-    X[476] = X[462] / 17.0;
-    X[477] = X[463] / 17.0;
-    X[478] = X[464] / 17.0;
-    X[479] = X[465] / 17.0;
-    X[480] = X[466] / 17.0;
-    X[481] = X[467] / 17.0;
-    X[482] = X[468] / 17.0;
-    X[483] = X[469] / 17.0;
-    X[484] = X[470] / 17.0;
-    X[485] = X[471] / 17.0;
-    X[486] = X[472] / 17.0;
-    X[487] = X[473] / 17.0;
-    X[488] = X[474] / 17.0;
-    X[489] = X[475] / 17.0;
-    X[490] = -W[6660] / W[120] / 17.0;
-    X[491] = -W[6678] / W[120] / 17.0;
+    return 0;
+}
+
+/* Lines 340 .. 351 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_309(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[492] = -W[6705] / W[121] / 17.0;
     X[493] = -W[6722] / W[121] / 17.0;
     X[494] = -W[6746] / W[122] / 17.0;
@@ -11353,9 +8523,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[501] = -W[6856] / W[125] / 17.0;
     X[502] = -W[6863] / W[126] / 17.0;
     X[503] = -W[6870] / W[126] / 17.0;
-    if (K == 17)
-        goto out;
-    /* order 17 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 17. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_310(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6887] = X[476] - X[478];
     W[6892] = X[477] - X[479];
     W[6896] = X[476] - X[480];
@@ -11376,26 +8553,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[6942] = X[479] - X[485];
     W[6945] = X[478] - X[486];
     W[6947] = X[479] - X[487];
-    W[6950] = X[478] - X[488];
-    W[6952] = X[479] - X[489];
-    W[6955] = X[480] - X[482];
-    W[6957] = X[481] - X[483];
-    W[6960] = X[480] - X[484];
-    W[6962] = X[481] - X[485];
-    W[6965] = X[480] - X[486];
-    W[6967] = X[481] - X[487];
-    W[6970] = X[480] - X[488];
-    W[6972] = X[481] - X[489];
-    W[6975] = X[482] - X[484];
-    W[6977] = X[483] - X[485];
-    W[6980] = X[482] - X[486];
-    W[6982] = X[483] - X[487];
-    W[6985] = X[482] - X[488];
-    W[6987] = X[483] - X[489];
-    W[6990] = X[484] - X[486];
-    W[6992] = X[485] - X[487];
-    W[6995] = X[484] - X[488];
-    W[6997] = X[485] - X[489];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 17. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_312(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7000] = X[486] - X[488];
     W[7002] = X[487] - X[489];
     W[6889] = (W[2] * W[6887] + W[407] * W[6482] + W[812] * W[6077] + W[1217] * W[5672] + W[1622] * W[5267]
@@ -11434,46 +8601,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2080] * W[4915] + W[2485] * W[4510] + W[2890] * W[4105] + W[3295] * W[3700]) * 2.0;
     W[6943] = (W[57] * W[6942] + W[462] * W[6537] + W[867] * W[6132] + W[1272] * W[5727] + W[1677] * W[5322]
             + W[2082] * W[4917] + W[2487] * W[4512] + W[2892] * W[4107] + W[3297] * W[3702]) * 2.0;
-    W[6946] = (W[60] * W[6945] + W[465] * W[6540] + W[870] * W[6135] + W[1275] * W[5730] + W[1680] * W[5325]
-            + W[2085] * W[4920] + W[2490] * W[4515] + W[2895] * W[4110] + W[3300] * W[3705]) * 2.0;
-    W[6948] = (W[62] * W[6947] + W[467] * W[6542] + W[872] * W[6137] + W[1277] * W[5732] + W[1682] * W[5327]
-            + W[2087] * W[4922] + W[2492] * W[4517] + W[2897] * W[4112] + W[3302] * W[3707]) * 2.0;
-    W[6951] = (W[65] * W[6950] + W[470] * W[6545] + W[875] * W[6140] + W[1280] * W[5735] + W[1685] * W[5330]
-            + W[2090] * W[4925] + W[2495] * W[4520] + W[2900] * W[4115] + W[3305] * W[3710]) * 2.0;
-    W[6953] = (W[67] * W[6952] + W[472] * W[6547] + W[877] * W[6142] + W[1282] * W[5737] + W[1687] * W[5332]
-            + W[2092] * W[4927] + W[2497] * W[4522] + W[2902] * W[4117] + W[3307] * W[3712]) * 2.0;
-    W[6956] = (W[70] * W[6955] + W[475] * W[6550] + W[880] * W[6145] + W[1285] * W[5740] + W[1690] * W[5335]
-            + W[2095] * W[4930] + W[2500] * W[4525] + W[2905] * W[4120] + W[3310] * W[3715]) * 2.0;
-    W[6958] = (W[72] * W[6957] + W[477] * W[6552] + W[882] * W[6147] + W[1287] * W[5742] + W[1692] * W[5337]
-            + W[2097] * W[4932] + W[2502] * W[4527] + W[2907] * W[4122] + W[3312] * W[3717]) * 2.0;
-    W[6961] = (W[75] * W[6960] + W[480] * W[6555] + W[885] * W[6150] + W[1290] * W[5745] + W[1695] * W[5340]
-            + W[2100] * W[4935] + W[2505] * W[4530] + W[2910] * W[4125] + W[3315] * W[3720]) * 2.0;
-    W[6963] = (W[77] * W[6962] + W[482] * W[6557] + W[887] * W[6152] + W[1292] * W[5747] + W[1697] * W[5342]
-            + W[2102] * W[4937] + W[2507] * W[4532] + W[2912] * W[4127] + W[3317] * W[3722]) * 2.0;
-    W[6966] = (W[80] * W[6965] + W[485] * W[6560] + W[890] * W[6155] + W[1295] * W[5750] + W[1700] * W[5345]
-            + W[2105] * W[4940] + W[2510] * W[4535] + W[2915] * W[4130] + W[3320] * W[3725]) * 2.0;
-    W[6968] = (W[82] * W[6967] + W[487] * W[6562] + W[892] * W[6157] + W[1297] * W[5752] + W[1702] * W[5347]
-            + W[2107] * W[4942] + W[2512] * W[4537] + W[2917] * W[4132] + W[3322] * W[3727]) * 2.0;
-    W[6971] = (W[85] * W[6970] + W[490] * W[6565] + W[895] * W[6160] + W[1300] * W[5755] + W[1705] * W[5350]
-            + W[2110] * W[4945] + W[2515] * W[4540] + W[2920] * W[4135] + W[3325] * W[3730]) * 2.0;
-    W[6973] = (W[87] * W[6972] + W[492] * W[6567] + W[897] * W[6162] + W[1302] * W[5757] + W[1707] * W[5352]
-            + W[2112] * W[4947] + W[2517] * W[4542] + W[2922] * W[4137] + W[3327] * W[3732]) * 2.0;
-    W[6976] = (W[90] * W[6975] + W[495] * W[6570] + W[900] * W[6165] + W[1305] * W[5760] + W[1710] * W[5355]
-            + W[2115] * W[4950] + W[2520] * W[4545] + W[2925] * W[4140] + W[3330] * W[3735]) * 2.0;
-    W[6978] = (W[92] * W[6977] + W[497] * W[6572] + W[902] * W[6167] + W[1307] * W[5762] + W[1712] * W[5357]
-            + W[2117] * W[4952] + W[2522] * W[4547] + W[2927] * W[4142] + W[3332] * W[3737]) * 2.0;
-    W[6981] = (W[95] * W[6980] + W[500] * W[6575] + W[905] * W[6170] + W[1310] * W[5765] + W[1715] * W[5360]
-            + W[2120] * W[4955] + W[2525] * W[4550] + W[2930] * W[4145] + W[3335] * W[3740]) * 2.0;
-    W[6983] = (W[97] * W[6982] + W[502] * W[6577] + W[907] * W[6172] + W[1312] * W[5767] + W[1717] * W[5362]
-            + W[2122] * W[4957] + W[2527] * W[4552] + W[2932] * W[4147] + W[3337] * W[3742]) * 2.0;
-    W[6986] = (W[100] * W[6985] + W[505] * W[6580] + W[910] * W[6175] + W[1315] * W[5770] + W[1720] * W[5365]
-            + W[2125] * W[4960] + W[2530] * W[4555] + W[2935] * W[4150] + W[3340] * W[3745]) * 2.0;
-    W[6988] = (W[102] * W[6987] + W[507] * W[6582] + W[912] * W[6177] + W[1317] * W[5772] + W[1722] * W[5367]
-            + W[2127] * W[4962] + W[2532] * W[4557] + W[2937] * W[4152] + W[3342] * W[3747]) * 2.0;
-    W[6991] = (W[105] * W[6990] + W[510] * W[6585] + W[915] * W[6180] + W[1320] * W[5775] + W[1725] * W[5370]
-            + W[2130] * W[4965] + W[2535] * W[4560] + W[2940] * W[4155] + W[3345] * W[3750]) * 2.0;
-    W[6993] = (W[107] * W[6992] + W[512] * W[6587] + W[917] * W[6182] + W[1322] * W[5777] + W[1727] * W[5372]
-            + W[2132] * W[4967] + W[2537] * W[4562] + W[2942] * W[4157] + W[3347] * W[3752]) * 2.0;
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 17. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_314(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[6996] = (W[110] * W[6995] + W[515] * W[6590] + W[920] * W[6185] + W[1325] * W[5780] + W[1730] * W[5375]
             + W[2135] * W[4970] + W[2540] * W[4565] + W[2945] * W[4160] + W[3350] * W[3755]) * 2.0;
     W[6998] = (W[112] * W[6997] + W[517] * W[6592] + W[922] * W[6187] + W[1327] * W[5782] + W[1732] * W[5377]
@@ -11498,86 +8635,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[6969] = W[6966] + W[6968];
     W[6974] = W[6971] + W[6973];
     W[6979] = W[6976] + W[6978];
-    W[6984] = W[6981] + W[6983];
-    W[6989] = W[6986] + W[6988];
-    W[6994] = W[6991] + W[6993];
-    W[6999] = W[6996] + W[6998];
-    W[7004] = W[7001] + W[7003];
-    W[7037] = (-25.5 * W[6929] * W[152] - 25.0 * W[6524] * W[557] - 24.5 * W[6119] * W[962] - 24.0 * W[5714] * W[1367]
-            - 23.5 * W[5309] * W[1772] - 23.0 * W[4904] * W[2177] - 22.5 * W[4499] * W[2582] - 22.0 * W[4094] * W[2987]
-            - 21.5 * W[3689] * W[3392] - 21.0 * W[3284] * W[3797] - 20.5 * W[2879] * W[4202] - 20.0 * W[2474] * W[4607]
-            - 19.5 * W[2069] * W[5012] - 19.0 * W[1664] * W[5417] - 18.5 * W[1259] * W[5822] - 18.0 * W[854] * W[6227]
-            - 17.5 * W[449] * W[6632]) / (17.0 * W[44]);
-    W[7041] = (-25.5 * W[6922] * W[156] - 25.0 * W[6517] * W[561] - 24.5 * W[6112] * W[966] - 24.0 * W[5707] * W[1371]
-            - 23.5 * W[5302] * W[1776] - 23.0 * W[4897] * W[2181] - 22.5 * W[4492] * W[2586] - 22.0 * W[4087] * W[2991]
-            - 21.5 * W[3682] * W[3396] - 21.0 * W[3277] * W[3801] - 20.5 * W[2872] * W[4206] - 20.0 * W[2467] * W[4611]
-            - 19.5 * W[2062] * W[5016] - 19.0 * W[1657] * W[5421] - 18.5 * W[1252] * W[5826] - 18.0 * W[847] * W[6231]
-            - 17.5 * W[442] * W[6636]) / (17.0 * W[37]);
-    W[7046] = (-25.5 * W[6915] * W[161] - 25.0 * W[6510] * W[566] - 24.5 * W[6105] * W[971] - 24.0 * W[5700] * W[1376]
-            - 23.5 * W[5295] * W[1781] - 23.0 * W[4890] * W[2186] - 22.5 * W[4485] * W[2591] - 22.0 * W[4080] * W[2996]
-            - 21.5 * W[3675] * W[3401] - 21.0 * W[3270] * W[3806] - 20.5 * W[2865] * W[4211] - 20.0 * W[2460] * W[4616]
-            - 19.5 * W[2055] * W[5021] - 19.0 * W[1650] * W[5426] - 18.5 * W[1245] * W[5831] - 18.0 * W[840] * W[6236]
-            - 17.5 * W[435] * W[6641]) / (17.0 * W[30]);
-    W[7051] = (-25.5 * W[6908] * W[166] - 25.0 * W[6503] * W[571] - 24.5 * W[6098] * W[976] - 24.0 * W[5693] * W[1381]
-            - 23.5 * W[5288] * W[1786] - 23.0 * W[4883] * W[2191] - 22.5 * W[4478] * W[2596] - 22.0 * W[4073] * W[3001]
-            - 21.5 * W[3668] * W[3406] - 21.0 * W[3263] * W[3811] - 20.5 * W[2858] * W[4216] - 20.0 * W[2453] * W[4621]
-            - 19.5 * W[2048] * W[5026] - 19.0 * W[1643] * W[5431] - 18.5 * W[1238] * W[5836] - 18.0 * W[833] * W[6241]
-            - 17.5 * W[428] * W[6646]) / (17.0 * W[23]);
-    W[7056] = (-25.5 * W[6901] * W[171] - 25.0 * W[6496] * W[576] - 24.5 * W[6091] * W[981] - 24.0 * W[5686] * W[1386]
-            - 23.5 * W[5281] * W[1791] - 23.0 * W[4876] * W[2196] - 22.5 * W[4471] * W[2601] - 22.0 * W[4066] * W[3006]
-            - 21.5 * W[3661] * W[3411] - 21.0 * W[3256] * W[3816] - 20.5 * W[2851] * W[4221] - 20.0 * W[2446] * W[4626]
-            - 19.5 * W[2041] * W[5031] - 19.0 * W[1636] * W[5436] - 18.5 * W[1231] * W[5841] - 18.0 * W[826] * W[6246]
-            - 17.5 * W[421] * W[6651]) / (17.0 * W[16]);
-    W[7061] = (-25.5 * W[6894] * W[176] - 25.0 * W[6489] * W[581] - 24.5 * W[6084] * W[986] - 24.0 * W[5679] * W[1391]
-            - 23.5 * W[5274] * W[1796] - 23.0 * W[4869] * W[2201] - 22.5 * W[4464] * W[2606] - 22.0 * W[4059] * W[3011]
-            - 21.5 * W[3654] * W[3416] - 21.0 * W[3249] * W[3821] - 20.5 * W[2844] * W[4226] - 20.0 * W[2439] * W[4631]
-            - 19.5 * W[2034] * W[5036] - 19.0 * W[1629] * W[5441] - 18.5 * W[1224] * W[5846] - 18.0 * W[819] * W[6251]
-            - 17.5 * W[414] * W[6656]) / (17.0 * W[9]);
-    W[7085] = (-25.5 * W[6954] * W[200] - 25.0 * W[6549] * W[605] - 24.5 * W[6144] * W[1010] - 24.0 * W[5739] * W[1415]
-            - 23.5 * W[5334] * W[1820] - 23.0 * W[4929] * W[2225] - 22.5 * W[4524] * W[2630] - 22.0 * W[4119] * W[3035]
-            - 21.5 * W[3714] * W[3440] - 21.0 * W[3309] * W[3845] - 20.5 * W[2904] * W[4250] - 20.0 * W[2499] * W[4655]
-            - 19.5 * W[2094] * W[5060] - 19.0 * W[1689] * W[5465] - 18.5 * W[1284] * W[5870] - 18.0 * W[879] * W[6275]
-            - 17.5 * W[474] * W[6680]) / (17.0 * W[69]);
-    W[7089] = (-25.5 * W[6949] * W[204] - 25.0 * W[6544] * W[609] - 24.5 * W[6139] * W[1014] - 24.0 * W[5734] * W[1419]
-            - 23.5 * W[5329] * W[1824] - 23.0 * W[4924] * W[2229] - 22.5 * W[4519] * W[2634] - 22.0 * W[4114] * W[3039]
-            - 21.5 * W[3709] * W[3444] - 21.0 * W[3304] * W[3849] - 20.5 * W[2899] * W[4254] - 20.0 * W[2494] * W[4659]
-            - 19.5 * W[2089] * W[5064] - 19.0 * W[1684] * W[5469] - 18.5 * W[1279] * W[5874] - 18.0 * W[874] * W[6279]
-            - 17.5 * W[469] * W[6684]) / (17.0 * W[64]);
-    W[7094] = (-25.5 * W[6944] * W[209] - 25.0 * W[6539] * W[614] - 24.5 * W[6134] * W[1019] - 24.0 * W[5729] * W[1424]
-            - 23.5 * W[5324] * W[1829] - 23.0 * W[4919] * W[2234] - 22.5 * W[4514] * W[2639] - 22.0 * W[4109] * W[3044]
-            - 21.5 * W[3704] * W[3449] - 21.0 * W[3299] * W[3854] - 20.5 * W[2894] * W[4259] - 20.0 * W[2489] * W[4664]
-            - 19.5 * W[2084] * W[5069] - 19.0 * W[1679] * W[5474] - 18.5 * W[1274] * W[5879] - 18.0 * W[869] * W[6284]
-            - 17.5 * W[464] * W[6689]) / (17.0 * W[59]);
-    W[7099] = (-25.5 * W[6939] * W[214] - 25.0 * W[6534] * W[619] - 24.5 * W[6129] * W[1024] - 24.0 * W[5724] * W[1429]
-            - 23.5 * W[5319] * W[1834] - 23.0 * W[4914] * W[2239] - 22.5 * W[4509] * W[2644] - 22.0 * W[4104] * W[3049]
-            - 21.5 * W[3699] * W[3454] - 21.0 * W[3294] * W[3859] - 20.5 * W[2889] * W[4264] - 20.0 * W[2484] * W[4669]
-            - 19.5 * W[2079] * W[5074] - 19.0 * W[1674] * W[5479] - 18.5 * W[1269] * W[5884] - 18.0 * W[864] * W[6289]
-            - 17.5 * W[459] * W[6694]) / (17.0 * W[54]);
-    W[7104] = (-25.5 * W[6934] * W[219] - 25.0 * W[6529] * W[624] - 24.5 * W[6124] * W[1029] - 24.0 * W[5719] * W[1434]
-            - 23.5 * W[5314] * W[1839] - 23.0 * W[4909] * W[2244] - 22.5 * W[4504] * W[2649] - 22.0 * W[4099] * W[3054]
-            - 21.5 * W[3694] * W[3459] - 21.0 * W[3289] * W[3864] - 20.5 * W[2884] * W[4269] - 20.0 * W[2479] * W[4674]
-            - 19.5 * W[2074] * W[5079] - 19.0 * W[1669] * W[5484] - 18.5 * W[1264] * W[5889] - 18.0 * W[859] * W[6294]
-            - 17.5 * W[454] * W[6699]) / (17.0 * W[49]);
-    W[7129] = (-25.5 * W[6974] * W[244] - 25.0 * W[6569] * W[649] - 24.5 * W[6164] * W[1054] - 24.0 * W[5759] * W[1459]
-            - 23.5 * W[5354] * W[1864] - 23.0 * W[4949] * W[2269] - 22.5 * W[4544] * W[2674] - 22.0 * W[4139] * W[3079]
-            - 21.5 * W[3734] * W[3484] - 21.0 * W[3329] * W[3889] - 20.5 * W[2924] * W[4294] - 20.0 * W[2519] * W[4699]
-            - 19.5 * W[2114] * W[5104] - 19.0 * W[1709] * W[5509] - 18.5 * W[1304] * W[5914] - 18.0 * W[899] * W[6319]
-            - 17.5 * W[494] * W[6724]) / (17.0 * W[89]);
-    W[7133] = (-25.5 * W[6969] * W[248] - 25.0 * W[6564] * W[653] - 24.5 * W[6159] * W[1058] - 24.0 * W[5754] * W[1463]
-            - 23.5 * W[5349] * W[1868] - 23.0 * W[4944] * W[2273] - 22.5 * W[4539] * W[2678] - 22.0 * W[4134] * W[3083]
-            - 21.5 * W[3729] * W[3488] - 21.0 * W[3324] * W[3893] - 20.5 * W[2919] * W[4298] - 20.0 * W[2514] * W[4703]
-            - 19.5 * W[2109] * W[5108] - 19.0 * W[1704] * W[5513] - 18.5 * W[1299] * W[5918] - 18.0 * W[894] * W[6323]
-            - 17.5 * W[489] * W[6728]) / (17.0 * W[84]);
-    W[7138] = (-25.5 * W[6964] * W[253] - 25.0 * W[6559] * W[658] - 24.5 * W[6154] * W[1063] - 24.0 * W[5749] * W[1468]
-            - 23.5 * W[5344] * W[1873] - 23.0 * W[4939] * W[2278] - 22.5 * W[4534] * W[2683] - 22.0 * W[4129] * W[3088]
-            - 21.5 * W[3724] * W[3493] - 21.0 * W[3319] * W[3898] - 20.5 * W[2914] * W[4303] - 20.0 * W[2509] * W[4708]
-            - 19.5 * W[2104] * W[5113] - 19.0 * W[1699] * W[5518] - 18.5 * W[1294] * W[5923] - 18.0 * W[889] * W[6328]
-            - 17.5 * W[484] * W[6733]) / (17.0 * W[79]);
-    W[7143] = (-25.5 * W[6959] * W[258] - 25.0 * W[6554] * W[663] - 24.5 * W[6149] * W[1068] - 24.0 * W[5744] * W[1473]
-            - 23.5 * W[5339] * W[1878] - 23.0 * W[4934] * W[2283] - 22.5 * W[4529] * W[2688] - 22.0 * W[4124] * W[3093]
-            - 21.5 * W[3719] * W[3498] - 21.0 * W[3314] * W[3903] - 20.5 * W[2909] * W[4308] - 20.0 * W[2504] * W[4713]
-            - 19.5 * W[2099] * W[5118] - 19.0 * W[1694] * W[5523] - 18.5 * W[1289] * W[5928] - 18.0 * W[884] * W[6333]
-            - 17.5 * W[479] * W[6738]) / (17.0 * W[74]);
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 17. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_316(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7169] = (-25.5 * W[6989] * W[284] - 25.0 * W[6584] * W[689] - 24.5 * W[6179] * W[1094] - 24.0 * W[5774] * W[1499]
             - 23.5 * W[5369] * W[1904] - 23.0 * W[4964] * W[2309] - 22.5 * W[4559] * W[2714] - 22.0 * W[4154] * W[3119]
             - 21.5 * W[3749] * W[3524] - 21.0 * W[3344] * W[3929] - 20.5 * W[2939] * W[4334] - 20.0 * W[2534] * W[4739]
@@ -11664,86 +8731,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2085] * W[5064] + W[2490] * W[4659] + W[2895] * W[4254] + W[3300] * W[3849] + W[3705] * W[3444]
             + W[4110] * W[3039] + W[4515] * W[2634] + W[4920] * W[2229] + W[5325] * W[1824] + W[5730] * W[1419]
             + W[6135] * W[1014] + W[6540] * W[609] + W[6945] * W[204];
-    W[7095] = W[55] * W[7094] + W[460] * W[6689] + W[865] * W[6284] + W[1270] * W[5879] + W[1675] * W[5474]
-            + W[2080] * W[5069] + W[2485] * W[4664] + W[2890] * W[4259] + W[3295] * W[3854] + W[3700] * W[3449]
-            + W[4105] * W[3044] + W[4510] * W[2639] + W[4915] * W[2234] + W[5320] * W[1829] + W[5725] * W[1424]
-            + W[6130] * W[1019] + W[6535] * W[614] + W[6940] * W[209];
-    W[7100] = W[50] * W[7099] + W[455] * W[6694] + W[860] * W[6289] + W[1265] * W[5884] + W[1670] * W[5479]
-            + W[2075] * W[5074] + W[2480] * W[4669] + W[2885] * W[4264] + W[3290] * W[3859] + W[3695] * W[3454]
-            + W[4100] * W[3049] + W[4505] * W[2644] + W[4910] * W[2239] + W[5315] * W[1834] + W[5720] * W[1429]
-            + W[6125] * W[1024] + W[6530] * W[619] + W[6935] * W[214];
-    W[7105] = W[45] * W[7104] + W[450] * W[6699] + W[855] * W[6294] + W[1260] * W[5889] + W[1665] * W[5484]
-            + W[2070] * W[5079] + W[2475] * W[4674] + W[2880] * W[4269] + W[3285] * W[3864] + W[3690] * W[3459]
-            + W[4095] * W[3054] + W[4500] * W[2649] + W[4905] * W[2244] + W[5310] * W[1839] + W[5715] * W[1434]
-            + W[6120] * W[1029] + W[6525] * W[624] + W[6930] * W[219];
-    W[7111] = W[67] * W[7085] + W[472] * W[6680] + W[877] * W[6275] + W[1282] * W[5870] + W[1687] * W[5465]
-            + W[2092] * W[5060] + W[2497] * W[4655] + W[2902] * W[4250] + W[3307] * W[3845] + W[3712] * W[3440]
-            + W[4117] * W[3035] + W[4522] * W[2630] + W[4927] * W[2225] + W[5332] * W[1820] + W[5737] * W[1415]
-            + W[6142] * W[1010] + W[6547] * W[605] + W[6952] * W[200];
-    W[7113] = W[62] * W[7089] + W[467] * W[6684] + W[872] * W[6279] + W[1277] * W[5874] + W[1682] * W[5469]
-            + W[2087] * W[5064] + W[2492] * W[4659] + W[2897] * W[4254] + W[3302] * W[3849] + W[3707] * W[3444]
-            + W[4112] * W[3039] + W[4517] * W[2634] + W[4922] * W[2229] + W[5327] * W[1824] + W[5732] * W[1419]
-            + W[6137] * W[1014] + W[6542] * W[609] + W[6947] * W[204];
-    W[7116] = W[57] * W[7094] + W[462] * W[6689] + W[867] * W[6284] + W[1272] * W[5879] + W[1677] * W[5474]
-            + W[2082] * W[5069] + W[2487] * W[4664] + W[2892] * W[4259] + W[3297] * W[3854] + W[3702] * W[3449]
-            + W[4107] * W[3044] + W[4512] * W[2639] + W[4917] * W[2234] + W[5322] * W[1829] + W[5727] * W[1424]
-            + W[6132] * W[1019] + W[6537] * W[614] + W[6942] * W[209];
-    W[7119] = W[52] * W[7099] + W[457] * W[6694] + W[862] * W[6289] + W[1267] * W[5884] + W[1672] * W[5479]
-            + W[2077] * W[5074] + W[2482] * W[4669] + W[2887] * W[4264] + W[3292] * W[3859] + W[3697] * W[3454]
-            + W[4102] * W[3049] + W[4507] * W[2644] + W[4912] * W[2239] + W[5317] * W[1834] + W[5722] * W[1429]
-            + W[6127] * W[1024] + W[6532] * W[619] + W[6937] * W[214];
-    W[7122] = W[47] * W[7104] + W[452] * W[6699] + W[857] * W[6294] + W[1262] * W[5889] + W[1667] * W[5484]
-            + W[2072] * W[5079] + W[2477] * W[4674] + W[2882] * W[4269] + W[3287] * W[3864] + W[3692] * W[3459]
-            + W[4097] * W[3054] + W[4502] * W[2649] + W[4907] * W[2244] + W[5312] * W[1839] + W[5717] * W[1434]
-            + W[6122] * W[1029] + W[6527] * W[624] + W[6932] * W[219];
-    W[7130] = W[85] * W[7129] + W[490] * W[6724] + W[895] * W[6319] + W[1300] * W[5914] + W[1705] * W[5509]
-            + W[2110] * W[5104] + W[2515] * W[4699] + W[2920] * W[4294] + W[3325] * W[3889] + W[3730] * W[3484]
-            + W[4135] * W[3079] + W[4540] * W[2674] + W[4945] * W[2269] + W[5350] * W[1864] + W[5755] * W[1459]
-            + W[6160] * W[1054] + W[6565] * W[649] + W[6970] * W[244];
-    W[7134] = W[80] * W[7133] + W[485] * W[6728] + W[890] * W[6323] + W[1295] * W[5918] + W[1700] * W[5513]
-            + W[2105] * W[5108] + W[2510] * W[4703] + W[2915] * W[4298] + W[3320] * W[3893] + W[3725] * W[3488]
-            + W[4130] * W[3083] + W[4535] * W[2678] + W[4940] * W[2273] + W[5345] * W[1868] + W[5750] * W[1463]
-            + W[6155] * W[1058] + W[6560] * W[653] + W[6965] * W[248];
-    W[7139] = W[75] * W[7138] + W[480] * W[6733] + W[885] * W[6328] + W[1290] * W[5923] + W[1695] * W[5518]
-            + W[2100] * W[5113] + W[2505] * W[4708] + W[2910] * W[4303] + W[3315] * W[3898] + W[3720] * W[3493]
-            + W[4125] * W[3088] + W[4530] * W[2683] + W[4935] * W[2278] + W[5340] * W[1873] + W[5745] * W[1468]
-            + W[6150] * W[1063] + W[6555] * W[658] + W[6960] * W[253];
-    W[7144] = W[70] * W[7143] + W[475] * W[6738] + W[880] * W[6333] + W[1285] * W[5928] + W[1690] * W[5523]
-            + W[2095] * W[5118] + W[2500] * W[4713] + W[2905] * W[4308] + W[3310] * W[3903] + W[3715] * W[3498]
-            + W[4120] * W[3093] + W[4525] * W[2688] + W[4930] * W[2283] + W[5335] * W[1878] + W[5740] * W[1473]
-            + W[6145] * W[1068] + W[6550] * W[663] + W[6955] * W[258];
-    W[7152] = W[87] * W[7129] + W[492] * W[6724] + W[897] * W[6319] + W[1302] * W[5914] + W[1707] * W[5509]
-            + W[2112] * W[5104] + W[2517] * W[4699] + W[2922] * W[4294] + W[3327] * W[3889] + W[3732] * W[3484]
-            + W[4137] * W[3079] + W[4542] * W[2674] + W[4947] * W[2269] + W[5352] * W[1864] + W[5757] * W[1459]
-            + W[6162] * W[1054] + W[6567] * W[649] + W[6972] * W[244];
-    W[7154] = W[82] * W[7133] + W[487] * W[6728] + W[892] * W[6323] + W[1297] * W[5918] + W[1702] * W[5513]
-            + W[2107] * W[5108] + W[2512] * W[4703] + W[2917] * W[4298] + W[3322] * W[3893] + W[3727] * W[3488]
-            + W[4132] * W[3083] + W[4537] * W[2678] + W[4942] * W[2273] + W[5347] * W[1868] + W[5752] * W[1463]
-            + W[6157] * W[1058] + W[6562] * W[653] + W[6967] * W[248];
-    W[7157] = W[77] * W[7138] + W[482] * W[6733] + W[887] * W[6328] + W[1292] * W[5923] + W[1697] * W[5518]
-            + W[2102] * W[5113] + W[2507] * W[4708] + W[2912] * W[4303] + W[3317] * W[3898] + W[3722] * W[3493]
-            + W[4127] * W[3088] + W[4532] * W[2683] + W[4937] * W[2278] + W[5342] * W[1873] + W[5747] * W[1468]
-            + W[6152] * W[1063] + W[6557] * W[658] + W[6962] * W[253];
-    W[7160] = W[72] * W[7143] + W[477] * W[6738] + W[882] * W[6333] + W[1287] * W[5928] + W[1692] * W[5523]
-            + W[2097] * W[5118] + W[2502] * W[4713] + W[2907] * W[4308] + W[3312] * W[3903] + W[3717] * W[3498]
-            + W[4122] * W[3093] + W[4527] * W[2688] + W[4932] * W[2283] + W[5337] * W[1878] + W[5742] * W[1473]
-            + W[6147] * W[1068] + W[6552] * W[663] + W[6957] * W[258];
-    W[7170] = W[100] * W[7169] + W[505] * W[6764] + W[910] * W[6359] + W[1315] * W[5954] + W[1720] * W[5549]
-            + W[2125] * W[5144] + W[2530] * W[4739] + W[2935] * W[4334] + W[3340] * W[3929] + W[3745] * W[3524]
-            + W[4150] * W[3119] + W[4555] * W[2714] + W[4960] * W[2309] + W[5365] * W[1904] + W[5770] * W[1499]
-            + W[6175] * W[1094] + W[6580] * W[689] + W[6985] * W[284];
-    W[7174] = W[95] * W[7173] + W[500] * W[6768] + W[905] * W[6363] + W[1310] * W[5958] + W[1715] * W[5553]
-            + W[2120] * W[5148] + W[2525] * W[4743] + W[2930] * W[4338] + W[3335] * W[3933] + W[3740] * W[3528]
-            + W[4145] * W[3123] + W[4550] * W[2718] + W[4955] * W[2313] + W[5360] * W[1908] + W[5765] * W[1503]
-            + W[6170] * W[1098] + W[6575] * W[693] + W[6980] * W[288];
-    W[7179] = W[90] * W[7178] + W[495] * W[6773] + W[900] * W[6368] + W[1305] * W[5963] + W[1710] * W[5558]
-            + W[2115] * W[5153] + W[2520] * W[4748] + W[2925] * W[4343] + W[3330] * W[3938] + W[3735] * W[3533]
-            + W[4140] * W[3128] + W[4545] * W[2723] + W[4950] * W[2318] + W[5355] * W[1913] + W[5760] * W[1508]
-            + W[6165] * W[1103] + W[6570] * W[698] + W[6975] * W[293];
-    W[7189] = W[102] * W[7169] + W[507] * W[6764] + W[912] * W[6359] + W[1317] * W[5954] + W[1722] * W[5549]
-            + W[2127] * W[5144] + W[2532] * W[4739] + W[2937] * W[4334] + W[3342] * W[3929] + W[3747] * W[3524]
-            + W[4152] * W[3119] + W[4557] * W[2714] + W[4962] * W[2309] + W[5367] * W[1904] + W[5772] * W[1499]
-            + W[6177] * W[1094] + W[6582] * W[689] + W[6987] * W[284];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 17. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_318(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7191] = W[97] * W[7173] + W[502] * W[6768] + W[907] * W[6363] + W[1312] * W[5958] + W[1717] * W[5553]
             + W[2122] * W[5148] + W[2527] * W[4743] + W[2932] * W[4338] + W[3337] * W[3933] + W[3742] * W[3528]
             + W[4147] * W[3123] + W[4552] * W[2718] + W[4957] * W[2313] + W[5362] * W[1908] + W[5767] * W[1503]
@@ -11788,6 +8785,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[7075] = W[165] * W[7074];
     W[7078] = W[170] * W[7077];
     W[7081] = W[175] * W[7080];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 17. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_319(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7087] = W[199] * W[7086];
     W[7091] = W[203] * W[7090];
     W[7096] = W[208] * W[7095];
@@ -11808,6 +8815,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[7150] = W[128] * W[7057];
     W[7153] = W[243] * W[7152];
     W[7155] = W[247] * W[7154];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 17. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_320(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7158] = W[252] * W[7157];
     W[7161] = W[257] * W[7160];
     W[7164] = W[133] * W[7122];
@@ -11828,26 +8845,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[7211] = W[323] * W[7210];
     W[7214] = W[142] * W[7179];
     W[7216] = W[139] * W[7139];
-    W[7218] = W[135] * W[7095];
-    W[7220] = W[130] * W[7047];
-    W[7223] = W[319] * W[7222];
-    W[7225] = W[323] * W[7224];
-    W[7228] = W[142] * W[7194];
-    W[7230] = W[139] * W[7157];
-    W[7232] = W[135] * W[7116];
-    W[7234] = W[130] * W[7071];
-    W[7239] = W[147] * W[7238];
-    W[7240] = W[145] * W[7210];
-    W[7242] = W[143] * W[7174];
-    W[7244] = W[140] * W[7134];
-    W[7246] = W[136] * W[7090];
-    W[7248] = W[131] * W[7042];
-    W[7251] = W[147] * W[7250];
-    W[7252] = W[145] * W[7224];
-    W[7254] = W[143] * W[7191];
-    W[7256] = W[140] * W[7154];
-    W[7258] = W[136] * W[7113];
-    W[7260] = W[131] * W[7068];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 17. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_322(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7262] = W[351] * W[7238];
     W[7269] = W[351] * W[7250];
     W[7044] = W[7039] + W[7043];
@@ -11868,26 +8875,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[7073] = W[7070] + W[7072];
     W[7097] = W[7092] + W[7096];
     W[7118] = W[7115] + W[7117];
-    W[7141] = W[7136] + W[7140];
-    W[7159] = W[7156] + W[7158];
-    W[7181] = W[7176] + W[7180];
-    W[7196] = W[7193] + W[7195];
-    W[7213] = W[3] * W[7212];
-    W[7227] = W[3] * W[7226];
-    W[7243] = W[7241] - W[7242];
-    W[7255] = W[7253] - W[7254];
-    W[7264] = W[7171] + W[7263];
-    W[7271] = W[7190] + W[7270];
-    W[7054] = W[7049] + W[7053];
-    W[7076] = W[7073] + W[7075];
-    W[7102] = W[7097] + W[7101];
-    W[7121] = W[7118] + W[7120];
-    W[7146] = W[7141] + W[7145];
-    W[7162] = W[7159] + W[7161];
-    W[7182] = W[3] * W[7181];
-    W[7197] = W[3] * W[7196];
-    W[7215] = W[7213] - W[7214];
-    W[7229] = W[7227] - W[7228];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 17. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_324(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7245] = W[7243] - W[7244];
     W[7257] = W[7255] - W[7256];
     W[7265] = W[7131] + W[7264];
@@ -11908,26 +8905,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[7273] = W[7112] + W[7272];
     W[7064] = W[7059] + W[7063];
     W[7082] = W[7079] + W[7081];
-    W[7108] = W[3] * W[7107];
-    W[7125] = W[3] * W[7124];
-    W[7149] = W[7147] - W[7148];
-    W[7165] = W[7163] - W[7164];
-    W[7186] = W[7184] - W[7185];
-    W[7201] = W[7199] - W[7200];
-    W[7219] = W[7217] - W[7218];
-    W[7233] = W[7231] - W[7232];
-    W[7249] = W[7247] - W[7248];
-    W[7261] = W[7259] - W[7260];
-    W[7267] = W[7039] + W[7266];
-    W[7274] = W[7067] + W[7273];
-    W[7065] = W[3] * W[7064];
-    W[7083] = W[3] * W[7082];
-    W[7110] = W[7108] - W[7109];
-    W[7127] = W[7125] - W[7126];
-    W[7151] = W[7149] - W[7150];
-    W[7167] = W[7165] - W[7166];
-    W[7188] = W[7186] - W[7187];
-    W[7203] = W[7201] - W[7202];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 17. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_326(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7221] = W[7219] - W[7220];
     W[7235] = W[7233] - W[7234];
     W[7268] = W[148] * W[7267];
@@ -11948,41 +8935,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[517] = X[503] / 18.0;
     X[518] = -W[7065] / W[120] / 18.0;
     X[519] = -W[7083] / W[120] / 18.0;
-    X[520] = -W[7110] / W[121] / 18.0;
-    X[521] = -W[7127] / W[121] / 18.0;
-    X[522] = -W[7151] / W[122] / 18.0;
-    X[523] = -W[7167] / W[122] / 18.0;
-    X[524] = -W[7188] / W[123] / 18.0;
-    X[525] = -W[7203] / W[123] / 18.0;
-    X[526] = -W[7221] / W[124] / 18.0;
-    X[527] = -W[7235] / W[124] / 18.0;
-    X[528] = -W[7249] / W[125] / 18.0;
-    X[529] = -W[7261] / W[125] / 18.0;
-    X[530] = -W[7268] / W[126] / 18.0;
-    X[531] = -W[7275] / W[126] / 18.0;
-    if (K == 18)
-        goto out;
-    /* order 18 */
-    W[7292] = X[504] - X[506];
-    W[7297] = X[505] - X[507];
-    W[7301] = X[504] - X[508];
-    W[7304] = X[505] - X[509];
-    W[7308] = X[504] - X[510];
-    W[7311] = X[505] - X[511];
-    W[7315] = X[504] - X[512];
-    W[7318] = X[505] - X[513];
-    W[7322] = X[504] - X[514];
-    W[7325] = X[505] - X[515];
-    W[7329] = X[504] - X[516];
-    W[7332] = X[505] - X[517];
-    W[7335] = X[506] - X[508];
-    W[7337] = X[507] - X[509];
-    W[7340] = X[506] - X[510];
-    W[7342] = X[507] - X[511];
-    W[7345] = X[506] - X[512];
-    W[7347] = X[507] - X[513];
-    W[7350] = X[506] - X[514];
-    W[7352] = X[507] - X[515];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 18. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_329(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7355] = X[506] - X[516];
     W[7357] = X[507] - X[517];
     W[7360] = X[508] - X[510];
@@ -12003,62 +8965,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[7397] = X[513] - X[515];
     W[7400] = X[512] - X[516];
     W[7402] = X[513] - X[517];
-    W[7405] = X[514] - X[516];
-    W[7407] = X[515] - X[517];
-    W[7294] = (W[2] * W[7292] + W[407] * W[6887] + W[812] * W[6482] + W[1217] * W[6077] + W[1622] * W[5672]
-            + W[2027] * W[5267] + W[2432] * W[4862] + W[2837] * W[4457] + W[3242] * W[4052]) * 2.0
-            + W[3647] * W[3647];
-    W[7298] = (W[7] * W[7297] + W[412] * W[6892] + W[817] * W[6487] + W[1222] * W[6082] + W[1627] * W[5677]
-            + W[2032] * W[5272] + W[2437] * W[4867] + W[2842] * W[4462] + W[3247] * W[4057]) * 2.0
-            + W[3652] * W[3652];
-    W[7302] = (W[11] * W[7301] + W[416] * W[6896] + W[821] * W[6491] + W[1226] * W[6086] + W[1631] * W[5681]
-            + W[2036] * W[5276] + W[2441] * W[4871] + W[2846] * W[4466] + W[3251] * W[4061]) * 2.0
-            + W[3656] * W[3656];
-    W[7305] = (W[14] * W[7304] + W[419] * W[6899] + W[824] * W[6494] + W[1229] * W[6089] + W[1634] * W[5684]
-            + W[2039] * W[5279] + W[2444] * W[4874] + W[2849] * W[4469] + W[3254] * W[4064]) * 2.0
-            + W[3659] * W[3659];
-    W[7309] = (W[18] * W[7308] + W[423] * W[6903] + W[828] * W[6498] + W[1233] * W[6093] + W[1638] * W[5688]
-            + W[2043] * W[5283] + W[2448] * W[4878] + W[2853] * W[4473] + W[3258] * W[4068]) * 2.0
-            + W[3663] * W[3663];
-    W[7312] = (W[21] * W[7311] + W[426] * W[6906] + W[831] * W[6501] + W[1236] * W[6096] + W[1641] * W[5691]
-            + W[2046] * W[5286] + W[2451] * W[4881] + W[2856] * W[4476] + W[3261] * W[4071]) * 2.0
-            + W[3666] * W[3666];
-    W[7316] = (W[25] * W[7315] + W[430] * W[6910] + W[835] * W[6505] + W[1240] * W[6100] + W[1645] * W[5695]
-            + W[2050] * W[5290] + W[2455] * W[4885] + W[2860] * W[4480] + W[3265] * W[4075]) * 2.0
-            + W[3670] * W[3670];
-    W[7319] = (W[28] * W[7318] + W[433] * W[6913] + W[838] * W[6508] + W[1243] * W[6103] + W[1648] * W[5698]
-            + W[2053] * W[5293] + W[2458] * W[4888] + W[2863] * W[4483] + W[3268] * W[4078]) * 2.0
-            + W[3673] * W[3673];
-    W[7323] = (W[32] * W[7322] + W[437] * W[6917] + W[842] * W[6512] + W[1247] * W[6107] + W[1652] * W[5702]
-            + W[2057] * W[5297] + W[2462] * W[4892] + W[2867] * W[4487] + W[3272] * W[4082]) * 2.0
-            + W[3677] * W[3677];
-    W[7326] = (W[35] * W[7325] + W[440] * W[6920] + W[845] * W[6515] + W[1250] * W[6110] + W[1655] * W[5705]
-            + W[2060] * W[5300] + W[2465] * W[4895] + W[2870] * W[4490] + W[3275] * W[4085]) * 2.0
-            + W[3680] * W[3680];
-    W[7330] = (W[39] * W[7329] + W[444] * W[6924] + W[849] * W[6519] + W[1254] * W[6114] + W[1659] * W[5709]
-            + W[2064] * W[5304] + W[2469] * W[4899] + W[2874] * W[4494] + W[3279] * W[4089]) * 2.0
-            + W[3684] * W[3684];
-    W[7333] = (W[42] * W[7332] + W[447] * W[6927] + W[852] * W[6522] + W[1257] * W[6117] + W[1662] * W[5712]
-            + W[2067] * W[5307] + W[2472] * W[4902] + W[2877] * W[4497] + W[3282] * W[4092]) * 2.0
-            + W[3687] * W[3687];
-    W[7336] = (W[45] * W[7335] + W[450] * W[6930] + W[855] * W[6525] + W[1260] * W[6120] + W[1665] * W[5715]
-            + W[2070] * W[5310] + W[2475] * W[4905] + W[2880] * W[4500] + W[3285] * W[4095]) * 2.0
-            + W[3690] * W[3690];
-    W[7338] = (W[47] * W[7337] + W[452] * W[6932] + W[857] * W[6527] + W[1262] * W[6122] + W[1667] * W[5717]
-            + W[2072] * W[5312] + W[2477] * W[4907] + W[2882] * W[4502] + W[3287] * W[4097]) * 2.0
-            + W[3692] * W[3692];
-    W[7341] = (W[50] * W[7340] + W[455] * W[6935] + W[860] * W[6530] + W[1265] * W[6125] + W[1670] * W[5720]
-            + W[2075] * W[5315] + W[2480] * W[4910] + W[2885] * W[4505] + W[3290] * W[4100]) * 2.0
-            + W[3695] * W[3695];
-    W[7343] = (W[52] * W[7342] + W[457] * W[6937] + W[862] * W[6532] + W[1267] * W[6127] + W[1672] * W[5722]
-            + W[2077] * W[5317] + W[2482] * W[4912] + W[2887] * W[4507] + W[3292] * W[4102]) * 2.0
-            + W[3697] * W[3697];
-    W[7346] = (W[55] * W[7345] + W[460] * W[6940] + W[865] * W[6535] + W[1270] * W[6130] + W[1675] * W[5725]
-            + W[2080] * W[5320] + W[2485] * W[4915] + W[2890] * W[4510] + W[3295] * W[4105]) * 2.0
-            + W[3700] * W[3700];
-    W[7348] = (W[57] * W[7347] + W[462] * W[6942] + W[867] * W[6537] + W[1272] * W[6132] + W[1677] * W[5727]
-            + W[2082] * W[5322] + W[2487] * W[4917] + W[2892] * W[4512] + W[3297] * W[4107]) * 2.0
-            + W[3702] * W[3702];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 18. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_331(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7351] = (W[60] * W[7350] + W[465] * W[6945] + W[870] * W[6540] + W[1275] * W[6135] + W[1680] * W[5730]
             + W[2085] * W[5325] + W[2490] * W[4920] + W[2895] * W[4515] + W[3300] * W[4110]) * 2.0
             + W[3705] * W[3705];
@@ -12119,34 +9035,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[7398] = (W[107] * W[7397] + W[512] * W[6992] + W[917] * W[6587] + W[1322] * W[6182] + W[1727] * W[5777]
             + W[2132] * W[5372] + W[2537] * W[4967] + W[2942] * W[4562] + W[3347] * W[4157]) * 2.0
             + W[3752] * W[3752];
-    W[7401] = (W[110] * W[7400] + W[515] * W[6995] + W[920] * W[6590] + W[1325] * W[6185] + W[1730] * W[5780]
-            + W[2135] * W[5375] + W[2540] * W[4970] + W[2945] * W[4565] + W[3350] * W[4160]) * 2.0
-            + W[3755] * W[3755];
-    W[7403] = (W[112] * W[7402] + W[517] * W[6997] + W[922] * W[6592] + W[1327] * W[6187] + W[1732] * W[5782]
-            + W[2137] * W[5377] + W[2542] * W[4972] + W[2947] * W[4567] + W[3352] * W[4162]) * 2.0
-            + W[3757] * W[3757];
-    W[7406] = (W[115] * W[7405] + W[520] * W[7000] + W[925] * W[6595] + W[1330] * W[6190] + W[1735] * W[5785]
-            + W[2140] * W[5380] + W[2545] * W[4975] + W[2950] * W[4570] + W[3355] * W[4165]) * 2.0
-            + W[3760] * W[3760];
-    W[7408] = (W[117] * W[7407] + W[522] * W[7002] + W[927] * W[6597] + W[1332] * W[6192] + W[1737] * W[5787]
-            + W[2142] * W[5382] + W[2547] * W[4977] + W[2952] * W[4572] + W[3357] * W[4167]) * 2.0
-            + W[3762] * W[3762];
-    W[7299] = W[7294] + W[7298];
-    W[7306] = W[7302] + W[7305];
-    W[7313] = W[7309] + W[7312];
-    W[7320] = W[7316] + W[7319];
-    W[7327] = W[7323] + W[7326];
-    W[7334] = W[7330] + W[7333];
-    W[7339] = W[7336] + W[7338];
-    W[7344] = W[7341] + W[7343];
-    W[7349] = W[7346] + W[7348];
-    W[7354] = W[7351] + W[7353];
-    W[7359] = W[7356] + W[7358];
-    W[7364] = W[7361] + W[7363];
-    W[7369] = W[7366] + W[7368];
-    W[7374] = W[7371] + W[7373];
-    W[7379] = W[7376] + W[7378];
-    W[7384] = W[7381] + W[7383];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 18. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_333(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7389] = W[7386] + W[7388];
     W[7394] = W[7391] + W[7393];
     W[7399] = W[7396] + W[7398];
@@ -12227,92 +9125,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             - 23.0 * W[4124] * W[3498] - 22.5 * W[3719] * W[3903] - 22.0 * W[3314] * W[4308] - 21.5 * W[2909] * W[4713]
             - 21.0 * W[2504] * W[5118] - 20.5 * W[2099] * W[5523] - 20.0 * W[1694] * W[5928] - 19.5 * W[1289] * W[6333]
             - 19.0 * W[884] * W[6738] - 18.5 * W[479] * W[7143]) / (18.0 * W[74]);
-    W[7574] = (-27.0 * W[7394] * W[284] - 26.5 * W[6989] * W[689] - 26.0 * W[6584] * W[1094] - 25.5 * W[6179] * W[1499]
-            - 25.0 * W[5774] * W[1904] - 24.5 * W[5369] * W[2309] - 24.0 * W[4964] * W[2714] - 23.5 * W[4559] * W[3119]
-            - 23.0 * W[4154] * W[3524] - 22.5 * W[3749] * W[3929] - 22.0 * W[3344] * W[4334] - 21.5 * W[2939] * W[4739]
-            - 21.0 * W[2534] * W[5144] - 20.5 * W[2129] * W[5549] - 20.0 * W[1724] * W[5954] - 19.5 * W[1319] * W[6359]
-            - 19.0 * W[914] * W[6764] - 18.5 * W[509] * W[7169]) / (18.0 * W[104]);
-    W[7578] = (-27.0 * W[7389] * W[288] - 26.5 * W[6984] * W[693] - 26.0 * W[6579] * W[1098] - 25.5 * W[6174] * W[1503]
-            - 25.0 * W[5769] * W[1908] - 24.5 * W[5364] * W[2313] - 24.0 * W[4959] * W[2718] - 23.5 * W[4554] * W[3123]
-            - 23.0 * W[4149] * W[3528] - 22.5 * W[3744] * W[3933] - 22.0 * W[3339] * W[4338] - 21.5 * W[2934] * W[4743]
-            - 21.0 * W[2529] * W[5148] - 20.5 * W[2124] * W[5553] - 20.0 * W[1719] * W[5958] - 19.5 * W[1314] * W[6363]
-            - 19.0 * W[909] * W[6768] - 18.5 * W[504] * W[7173]) / (18.0 * W[99]);
-    W[7583] = (-27.0 * W[7384] * W[293] - 26.5 * W[6979] * W[698] - 26.0 * W[6574] * W[1103] - 25.5 * W[6169] * W[1508]
-            - 25.0 * W[5764] * W[1913] - 24.5 * W[5359] * W[2318] - 24.0 * W[4954] * W[2723] - 23.5 * W[4549] * W[3128]
-            - 23.0 * W[4144] * W[3533] - 22.5 * W[3739] * W[3938] - 22.0 * W[3334] * W[4343] - 21.5 * W[2929] * W[4748]
-            - 21.0 * W[2524] * W[5153] - 20.5 * W[2119] * W[5558] - 20.0 * W[1714] * W[5963] - 19.5 * W[1309] * W[6368]
-            - 19.0 * W[904] * W[6773] - 18.5 * W[499] * W[7178]) / (18.0 * W[94]);
-    W[7610] = (-27.0 * W[7404] * W[320] - 26.5 * W[6999] * W[725] - 26.0 * W[6594] * W[1130] - 25.5 * W[6189] * W[1535]
-            - 25.0 * W[5784] * W[1940] - 24.5 * W[5379] * W[2345] - 24.0 * W[4974] * W[2750] - 23.5 * W[4569] * W[3155]
-            - 23.0 * W[4164] * W[3560] - 22.5 * W[3759] * W[3965] - 22.0 * W[3354] * W[4370] - 21.5 * W[2949] * W[4775]
-            - 21.0 * W[2544] * W[5180] - 20.5 * W[2139] * W[5585] - 20.0 * W[1734] * W[5990] - 19.5 * W[1329] * W[6395]
-            - 19.0 * W[924] * W[6800] - 18.5 * W[519] * W[7205]) / (18.0 * W[114]);
-    W[7614] = (-27.0 * W[7399] * W[324] - 26.5 * W[6994] * W[729] - 26.0 * W[6589] * W[1134] - 25.5 * W[6184] * W[1539]
-            - 25.0 * W[5779] * W[1944] - 24.5 * W[5374] * W[2349] - 24.0 * W[4969] * W[2754] - 23.5 * W[4564] * W[3159]
-            - 23.0 * W[4159] * W[3564] - 22.5 * W[3754] * W[3969] - 22.0 * W[3349] * W[4374] - 21.5 * W[2944] * W[4779]
-            - 21.0 * W[2539] * W[5184] - 20.5 * W[2134] * W[5589] - 20.0 * W[1729] * W[5994] - 19.5 * W[1324] * W[6399]
-            - 19.0 * W[919] * W[6804] - 18.5 * W[514] * W[7209]) / (18.0 * W[109]);
-    W[7642] = (-27.0 * W[7409] * W[352] - 26.5 * W[7004] * W[757] - 26.0 * W[6599] * W[1162] - 25.5 * W[6194] * W[1567]
-            - 25.0 * W[5789] * W[1972] - 24.5 * W[5384] * W[2377] - 24.0 * W[4979] * W[2782] - 23.5 * W[4574] * W[3187]
-            - 23.0 * W[4169] * W[3592] - 22.5 * W[3764] * W[3997] - 22.0 * W[3359] * W[4402] - 21.5 * W[2954] * W[4807]
-            - 21.0 * W[2549] * W[5212] - 20.5 * W[2144] * W[5617] - 20.0 * W[1739] * W[6022] - 19.5 * W[1334] * W[6427]
-            - 19.0 * W[929] * W[6832] - 18.5 * W[524] * W[7237]) / (18.0 * W[119]);
-    W[7443] = W[39] * W[7442] + W[444] * W[7037] + W[849] * W[6632] + W[1254] * W[6227] + W[1659] * W[5822]
-            + W[2064] * W[5417] + W[2469] * W[5012] + W[2874] * W[4607] + W[3279] * W[4202] + W[3684] * W[3797]
-            + W[4089] * W[3392] + W[4494] * W[2987] + W[4899] * W[2582] + W[5304] * W[2177] + W[5709] * W[1772]
-            + W[6114] * W[1367] + W[6519] * W[962] + W[6924] * W[557] + W[7329] * W[152];
-    W[7447] = W[32] * W[7446] + W[437] * W[7041] + W[842] * W[6636] + W[1247] * W[6231] + W[1652] * W[5826]
-            + W[2057] * W[5421] + W[2462] * W[5016] + W[2867] * W[4611] + W[3272] * W[4206] + W[3677] * W[3801]
-            + W[4082] * W[3396] + W[4487] * W[2991] + W[4892] * W[2586] + W[5297] * W[2181] + W[5702] * W[1776]
-            + W[6107] * W[1371] + W[6512] * W[966] + W[6917] * W[561] + W[7322] * W[156];
-    W[7452] = W[25] * W[7451] + W[430] * W[7046] + W[835] * W[6641] + W[1240] * W[6236] + W[1645] * W[5831]
-            + W[2050] * W[5426] + W[2455] * W[5021] + W[2860] * W[4616] + W[3265] * W[4211] + W[3670] * W[3806]
-            + W[4075] * W[3401] + W[4480] * W[2996] + W[4885] * W[2591] + W[5290] * W[2186] + W[5695] * W[1781]
-            + W[6100] * W[1376] + W[6505] * W[971] + W[6910] * W[566] + W[7315] * W[161];
-    W[7457] = W[18] * W[7456] + W[423] * W[7051] + W[828] * W[6646] + W[1233] * W[6241] + W[1638] * W[5836]
-            + W[2043] * W[5431] + W[2448] * W[5026] + W[2853] * W[4621] + W[3258] * W[4216] + W[3663] * W[3811]
-            + W[4068] * W[3406] + W[4473] * W[3001] + W[4878] * W[2596] + W[5283] * W[2191] + W[5688] * W[1786]
-            + W[6093] * W[1381] + W[6498] * W[976] + W[6903] * W[571] + W[7308] * W[166];
-    W[7462] = W[11] * W[7461] + W[416] * W[7056] + W[821] * W[6651] + W[1226] * W[6246] + W[1631] * W[5841]
-            + W[2036] * W[5436] + W[2441] * W[5031] + W[2846] * W[4626] + W[3251] * W[4221] + W[3656] * W[3816]
-            + W[4061] * W[3411] + W[4466] * W[3006] + W[4871] * W[2601] + W[5276] * W[2196] + W[5681] * W[1791]
-            + W[6086] * W[1386] + W[6491] * W[981] + W[6896] * W[576] + W[7301] * W[171];
-    W[7467] = W[2] * W[7466] + W[407] * W[7061] + W[812] * W[6656] + W[1217] * W[6251] + W[1622] * W[5846]
-            + W[2027] * W[5441] + W[2432] * W[5036] + W[2837] * W[4631] + W[3242] * W[4226] + W[3647] * W[3821]
-            + W[4052] * W[3416] + W[4457] * W[3011] + W[4862] * W[2606] + W[5267] * W[2201] + W[5672] * W[1796]
-            + W[6077] * W[1391] + W[6482] * W[986] + W[6887] * W[581] + W[7292] * W[176];
-    W[7471] = W[42] * W[7442] + W[447] * W[7037] + W[852] * W[6632] + W[1257] * W[6227] + W[1662] * W[5822]
-            + W[2067] * W[5417] + W[2472] * W[5012] + W[2877] * W[4607] + W[3282] * W[4202] + W[3687] * W[3797]
-            + W[4092] * W[3392] + W[4497] * W[2987] + W[4902] * W[2582] + W[5307] * W[2177] + W[5712] * W[1772]
-            + W[6117] * W[1367] + W[6522] * W[962] + W[6927] * W[557] + W[7332] * W[152];
-    W[7473] = W[35] * W[7446] + W[440] * W[7041] + W[845] * W[6636] + W[1250] * W[6231] + W[1655] * W[5826]
-            + W[2060] * W[5421] + W[2465] * W[5016] + W[2870] * W[4611] + W[3275] * W[4206] + W[3680] * W[3801]
-            + W[4085] * W[3396] + W[4490] * W[2991] + W[4895] * W[2586] + W[5300] * W[2181] + W[5705] * W[1776]
-            + W[6110] * W[1371] + W[6515] * W[966] + W[6920] * W[561] + W[7325] * W[156];
-    W[7476] = W[28] * W[7451] + W[433] * W[7046] + W[838] * W[6641] + W[1243] * W[6236] + W[1648] * W[5831]
-            + W[2053] * W[5426] + W[2458] * W[5021] + W[2863] * W[4616] + W[3268] * W[4211] + W[3673] * W[3806]
-            + W[4078] * W[3401] + W[4483] * W[2996] + W[4888] * W[2591] + W[5293] * W[2186] + W[5698] * W[1781]
-            + W[6103] * W[1376] + W[6508] * W[971] + W[6913] * W[566] + W[7318] * W[161];
-    W[7479] = W[21] * W[7456] + W[426] * W[7051] + W[831] * W[6646] + W[1236] * W[6241] + W[1641] * W[5836]
-            + W[2046] * W[5431] + W[2451] * W[5026] + W[2856] * W[4621] + W[3261] * W[4216] + W[3666] * W[3811]
-            + W[4071] * W[3406] + W[4476] * W[3001] + W[4881] * W[2596] + W[5286] * W[2191] + W[5691] * W[1786]
-            + W[6096] * W[1381] + W[6501] * W[976] + W[6906] * W[571] + W[7311] * W[166];
-    W[7482] = W[14] * W[7461] + W[419] * W[7056] + W[824] * W[6651] + W[1229] * W[6246] + W[1634] * W[5841]
-            + W[2039] * W[5436] + W[2444] * W[5031] + W[2849] * W[4626] + W[3254] * W[4221] + W[3659] * W[3816]
-            + W[4064] * W[3411] + W[4469] * W[3006] + W[4874] * W[2601] + W[5279] * W[2196] + W[5684] * W[1791]
-            + W[6089] * W[1386] + W[6494] * W[981] + W[6899] * W[576] + W[7304] * W[171];
-    W[7485] = W[7] * W[7466] + W[412] * W[7061] + W[817] * W[6656] + W[1222] * W[6251] + W[1627] * W[5846]
-            + W[2032] * W[5441] + W[2437] * W[5036] + W[2842] * W[4631] + W[3247] * W[4226] + W[3652] * W[3821]
-            + W[4057] * W[3416] + W[4462] * W[3011] + W[4867] * W[2606] + W[5272] * W[2201] + W[5677] * W[1796]
-            + W[6082] * W[1391] + W[6487] * W[986] + W[6892] * W[581] + W[7297] * W[176];
-    W[7491] = W[65] * W[7490] + W[470] * W[7085] + W[875] * W[6680] + W[1280] * W[6275] + W[1685] * W[5870]
-            + W[2090] * W[5465] + W[2495] * W[5060] + W[2900] * W[4655] + W[3305] * W[4250] + W[3710] * W[3845]
-            + W[4115] * W[3440] + W[4520] * W[3035] + W[4925] * W[2630] + W[5330] * W[2225] + W[5735] * W[1820]
-            + W[6140] * W[1415] + W[6545] * W[1010] + W[6950] * W[605] + W[7355] * W[200];
-    W[7495] = W[60] * W[7494] + W[465] * W[7089] + W[870] * W[6684] + W[1275] * W[6279] + W[1680] * W[5874]
-            + W[2085] * W[5469] + W[2490] * W[5064] + W[2895] * W[4659] + W[3300] * W[4254] + W[3705] * W[3849]
-            + W[4110] * W[3444] + W[4515] * W[3039] + W[4920] * W[2634] + W[5325] * W[2229] + W[5730] * W[1824]
-            + W[6135] * W[1419] + W[6540] * W[1014] + W[6945] * W[609] + W[7350] * W[204];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 18. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_335(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7500] = W[55] * W[7499] + W[460] * W[7094] + W[865] * W[6689] + W[1270] * W[6284] + W[1675] * W[5879]
             + W[2080] * W[5474] + W[2485] * W[5069] + W[2890] * W[4664] + W[3295] * W[4259] + W[3700] * W[3854]
             + W[4105] * W[3449] + W[4510] * W[3044] + W[4915] * W[2639] + W[5320] * W[2234] + W[5725] * W[1829]
@@ -12393,90 +9215,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2127] * W[5549] + W[2532] * W[5144] + W[2937] * W[4739] + W[3342] * W[4334] + W[3747] * W[3929]
             + W[4152] * W[3524] + W[4557] * W[3119] + W[4962] * W[2714] + W[5367] * W[2309] + W[5772] * W[1904]
             + W[6177] * W[1499] + W[6582] * W[1094] + W[6987] * W[689] + W[7392] * W[284];
-    W[7596] = W[97] * W[7578] + W[502] * W[7173] + W[907] * W[6768] + W[1312] * W[6363] + W[1717] * W[5958]
-            + W[2122] * W[5553] + W[2527] * W[5148] + W[2932] * W[4743] + W[3337] * W[4338] + W[3742] * W[3933]
-            + W[4147] * W[3528] + W[4552] * W[3123] + W[4957] * W[2718] + W[5362] * W[2313] + W[5767] * W[1908]
-            + W[6172] * W[1503] + W[6577] * W[1098] + W[6982] * W[693] + W[7387] * W[288];
-    W[7599] = W[92] * W[7583] + W[497] * W[7178] + W[902] * W[6773] + W[1307] * W[6368] + W[1712] * W[5963]
-            + W[2117] * W[5558] + W[2522] * W[5153] + W[2927] * W[4748] + W[3332] * W[4343] + W[3737] * W[3938]
-            + W[4142] * W[3533] + W[4547] * W[3128] + W[4952] * W[2723] + W[5357] * W[2318] + W[5762] * W[1913]
-            + W[6167] * W[1508] + W[6572] * W[1103] + W[6977] * W[698] + W[7382] * W[293];
-    W[7611] = W[110] * W[7610] + W[515] * W[7205] + W[920] * W[6800] + W[1325] * W[6395] + W[1730] * W[5990]
-            + W[2135] * W[5585] + W[2540] * W[5180] + W[2945] * W[4775] + W[3350] * W[4370] + W[3755] * W[3965]
-            + W[4160] * W[3560] + W[4565] * W[3155] + W[4970] * W[2750] + W[5375] * W[2345] + W[5780] * W[1940]
-            + W[6185] * W[1535] + W[6590] * W[1130] + W[6995] * W[725] + W[7400] * W[320];
-    W[7615] = W[105] * W[7614] + W[510] * W[7209] + W[915] * W[6804] + W[1320] * W[6399] + W[1725] * W[5994]
-            + W[2130] * W[5589] + W[2535] * W[5184] + W[2940] * W[4779] + W[3345] * W[4374] + W[3750] * W[3969]
-            + W[4155] * W[3564] + W[4560] * W[3159] + W[4965] * W[2754] + W[5370] * W[2349] + W[5775] * W[1944]
-            + W[6180] * W[1539] + W[6585] * W[1134] + W[6990] * W[729] + W[7395] * W[324];
-    W[7627] = W[112] * W[7610] + W[517] * W[7205] + W[922] * W[6800] + W[1327] * W[6395] + W[1732] * W[5990]
-            + W[2137] * W[5585] + W[2542] * W[5180] + W[2947] * W[4775] + W[3352] * W[4370] + W[3757] * W[3965]
-            + W[4162] * W[3560] + W[4567] * W[3155] + W[4972] * W[2750] + W[5377] * W[2345] + W[5782] * W[1940]
-            + W[6187] * W[1535] + W[6592] * W[1130] + W[6997] * W[725] + W[7402] * W[320];
-    W[7629] = W[107] * W[7614] + W[512] * W[7209] + W[917] * W[6804] + W[1322] * W[6399] + W[1727] * W[5994]
-            + W[2132] * W[5589] + W[2537] * W[5184] + W[2942] * W[4779] + W[3347] * W[4374] + W[3752] * W[3969]
-            + W[4157] * W[3564] + W[4562] * W[3159] + W[4967] * W[2754] + W[5372] * W[2349] + W[5777] * W[1944]
-            + W[6182] * W[1539] + W[6587] * W[1134] + W[6992] * W[729] + W[7397] * W[324];
-    W[7643] = W[115] * W[7642] + W[520] * W[7237] + W[925] * W[6832] + W[1330] * W[6427] + W[1735] * W[6022]
-            + W[2140] * W[5617] + W[2545] * W[5212] + W[2950] * W[4807] + W[3355] * W[4402] + W[3760] * W[3997]
-            + W[4165] * W[3592] + W[4570] * W[3187] + W[4975] * W[2782] + W[5380] * W[2377] + W[5785] * W[1972]
-            + W[6190] * W[1567] + W[6595] * W[1162] + W[7000] * W[757] + W[7405] * W[352];
-    W[7655] = W[117] * W[7642] + W[522] * W[7237] + W[927] * W[6832] + W[1332] * W[6427] + W[1737] * W[6022]
-            + W[2142] * W[5617] + W[2547] * W[5212] + W[2952] * W[4807] + W[3357] * W[4402] + W[3762] * W[3997]
-            + W[4167] * W[3592] + W[4572] * W[3187] + W[4977] * W[2782] + W[5382] * W[2377] + W[5787] * W[1972]
-            + W[6192] * W[1567] + W[6597] * W[1162] + W[7002] * W[757] + W[7407] * W[352];
-    W[7444] = W[151] * W[7443];
-    W[7448] = W[155] * W[7447];
-    W[7453] = W[160] * W[7452];
-    W[7458] = W[165] * W[7457];
-    W[7463] = W[170] * W[7462];
-    W[7468] = W[175] * W[7467];
-    W[7472] = W[151] * W[7471];
-    W[7474] = W[155] * W[7473];
-    W[7477] = W[160] * W[7476];
-    W[7480] = W[165] * W[7479];
-    W[7483] = W[170] * W[7482];
-    W[7486] = W[175] * W[7485];
-    W[7492] = W[199] * W[7491];
-    W[7496] = W[203] * W[7495];
-    W[7501] = W[208] * W[7500];
-    W[7506] = W[213] * W[7505];
-    W[7511] = W[218] * W[7510];
-    W[7514] = W[127] * W[7467];
-    W[7517] = W[199] * W[7516];
-    W[7519] = W[203] * W[7518];
-    W[7522] = W[208] * W[7521];
-    W[7525] = W[213] * W[7524];
-    W[7528] = W[218] * W[7527];
-    W[7531] = W[127] * W[7485];
-    W[7536] = W[243] * W[7535];
-    W[7540] = W[247] * W[7539];
-    W[7545] = W[252] * W[7544];
-    W[7550] = W[257] * W[7549];
-    W[7553] = W[133] * W[7510];
-    W[7555] = W[128] * W[7462];
-    W[7558] = W[243] * W[7557];
-    W[7560] = W[247] * W[7559];
-    W[7563] = W[252] * W[7562];
-    W[7566] = W[257] * W[7565];
-    W[7569] = W[133] * W[7527];
-    W[7571] = W[128] * W[7482];
-    W[7576] = W[283] * W[7575];
-    W[7580] = W[287] * W[7579];
-    W[7585] = W[292] * W[7584];
-    W[7588] = W[138] * W[7549];
-    W[7590] = W[134] * W[7505];
-    W[7592] = W[129] * W[7457];
-    W[7595] = W[283] * W[7594];
-    W[7597] = W[287] * W[7596];
-    W[7600] = W[292] * W[7599];
-    W[7603] = W[138] * W[7565];
-    W[7605] = W[134] * W[7524];
-    W[7607] = W[129] * W[7479];
-    W[7612] = W[319] * W[7611];
-    W[7616] = W[323] * W[7615];
-    W[7619] = W[142] * W[7584];
-    W[7621] = W[139] * W[7544];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 18. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_339(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7623] = W[135] * W[7500];
     W[7625] = W[130] * W[7452];
     W[7628] = W[319] * W[7627];
@@ -12497,26 +9245,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[7661] = W[140] * W[7559];
     W[7663] = W[136] * W[7518];
     W[7665] = W[131] * W[7473];
-    W[7667] = W[351] * W[7643];
-    W[7674] = W[351] * W[7655];
-    W[7449] = W[7444] + W[7448];
-    W[7475] = W[7472] + W[7474];
-    W[7497] = W[7492] + W[7496];
-    W[7520] = W[7517] + W[7519];
-    W[7541] = W[7536] + W[7540];
-    W[7561] = W[7558] + W[7560];
-    W[7581] = W[7576] + W[7580];
-    W[7598] = W[7595] + W[7597];
-    W[7617] = W[7612] + W[7616];
-    W[7631] = W[7628] + W[7630];
-    W[7646] = W[7644] - W[7645];
-    W[7658] = W[7656] - W[7657];
-    W[7668] = W[7612] + W[7667];
-    W[7675] = W[7628] + W[7674];
-    W[7454] = W[7449] + W[7453];
-    W[7478] = W[7475] + W[7477];
-    W[7502] = W[7497] + W[7501];
-    W[7523] = W[7520] + W[7522];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 18. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_341(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7546] = W[7541] + W[7545];
     W[7564] = W[7561] + W[7563];
     W[7586] = W[7581] + W[7585];
@@ -12537,26 +9275,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[7602] = W[3] * W[7601];
     W[7620] = W[7618] - W[7619];
     W[7634] = W[7632] - W[7633];
-    W[7650] = W[7648] - W[7649];
-    W[7662] = W[7660] - W[7661];
-    W[7670] = W[7536] + W[7669];
-    W[7677] = W[7558] + W[7676];
-    W[7464] = W[7459] + W[7463];
-    W[7484] = W[7481] + W[7483];
-    W[7512] = W[7507] + W[7511];
-    W[7529] = W[7526] + W[7528];
-    W[7552] = W[3] * W[7551];
-    W[7568] = W[3] * W[7567];
-    W[7589] = W[7587] - W[7588];
-    W[7604] = W[7602] - W[7603];
-    W[7622] = W[7620] - W[7621];
-    W[7636] = W[7634] - W[7635];
-    W[7652] = W[7650] - W[7651];
-    W[7664] = W[7662] - W[7663];
-    W[7671] = W[7492] + W[7670];
-    W[7678] = W[7517] + W[7677];
-    W[7469] = W[7464] + W[7468];
-    W[7487] = W[7484] + W[7486];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 18. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_343(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7513] = W[3] * W[7512];
     W[7530] = W[3] * W[7529];
     W[7554] = W[7552] - W[7553];
@@ -12577,26 +9305,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[7572] = W[7570] - W[7571];
     W[7593] = W[7591] - W[7592];
     W[7608] = W[7606] - W[7607];
-    W[7626] = W[7624] - W[7625];
-    W[7640] = W[7638] - W[7639];
-    W[7673] = W[148] * W[7672];
-    W[7680] = W[148] * W[7679];
-    X[532] = X[518] / 19.0;
-    X[533] = X[519] / 19.0;
-    X[534] = X[520] / 19.0;
-    X[535] = X[521] / 19.0;
-    X[536] = X[522] / 19.0;
-    X[537] = X[523] / 19.0;
-    X[538] = X[524] / 19.0;
-    X[539] = X[525] / 19.0;
-    X[540] = X[526] / 19.0;
-    X[541] = X[527] / 19.0;
-    X[542] = X[528] / 19.0;
-    X[543] = X[529] / 19.0;
-    X[544] = X[530] / 19.0;
-    X[545] = X[531] / 19.0;
-    X[546] = -W[7470] / W[120] / 19.0;
-    X[547] = -W[7488] / W[120] / 19.0;
+    return 0;
+}
+
+/* Lines 340 .. 351 of taylor_run's order 18. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_345(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[548] = -W[7515] / W[121] / 19.0;
     X[549] = -W[7532] / W[121] / 19.0;
     X[550] = -W[7556] / W[122] / 19.0;
@@ -12609,9 +9327,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[557] = -W[7666] / W[125] / 19.0;
     X[558] = -W[7673] / W[126] / 19.0;
     X[559] = -W[7680] / W[126] / 19.0;
-    if (K == 19)
-        goto out;
-    /* order 19 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_346(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7697] = X[532] - X[534];
     W[7702] = X[533] - X[535];
     W[7706] = X[532] - X[536];
@@ -12632,26 +9357,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[7752] = X[535] - X[541];
     W[7755] = X[534] - X[542];
     W[7757] = X[535] - X[543];
-    W[7760] = X[534] - X[544];
-    W[7762] = X[535] - X[545];
-    W[7765] = X[536] - X[538];
-    W[7767] = X[537] - X[539];
-    W[7770] = X[536] - X[540];
-    W[7772] = X[537] - X[541];
-    W[7775] = X[536] - X[542];
-    W[7777] = X[537] - X[543];
-    W[7780] = X[536] - X[544];
-    W[7782] = X[537] - X[545];
-    W[7785] = X[538] - X[540];
-    W[7787] = X[539] - X[541];
-    W[7790] = X[538] - X[542];
-    W[7792] = X[539] - X[543];
-    W[7795] = X[538] - X[544];
-    W[7797] = X[539] - X[545];
-    W[7800] = X[540] - X[542];
-    W[7802] = X[541] - X[543];
-    W[7805] = X[540] - X[544];
-    W[7807] = X[541] - X[545];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_348(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7810] = X[542] - X[544];
     W[7812] = X[543] - X[545];
     W[7699] = (W[2] * W[7697] + W[407] * W[7292] + W[812] * W[6887] + W[1217] * W[6482] + W[1622] * W[6077]
@@ -12690,46 +9405,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2080] * W[5725] + W[2485] * W[5320] + W[2890] * W[4915] + W[3295] * W[4510] + W[3700] * W[4105]) * 2.0;
     W[7753] = (W[57] * W[7752] + W[462] * W[7347] + W[867] * W[6942] + W[1272] * W[6537] + W[1677] * W[6132]
             + W[2082] * W[5727] + W[2487] * W[5322] + W[2892] * W[4917] + W[3297] * W[4512] + W[3702] * W[4107]) * 2.0;
-    W[7756] = (W[60] * W[7755] + W[465] * W[7350] + W[870] * W[6945] + W[1275] * W[6540] + W[1680] * W[6135]
-            + W[2085] * W[5730] + W[2490] * W[5325] + W[2895] * W[4920] + W[3300] * W[4515] + W[3705] * W[4110]) * 2.0;
-    W[7758] = (W[62] * W[7757] + W[467] * W[7352] + W[872] * W[6947] + W[1277] * W[6542] + W[1682] * W[6137]
-            + W[2087] * W[5732] + W[2492] * W[5327] + W[2897] * W[4922] + W[3302] * W[4517] + W[3707] * W[4112]) * 2.0;
-    W[7761] = (W[65] * W[7760] + W[470] * W[7355] + W[875] * W[6950] + W[1280] * W[6545] + W[1685] * W[6140]
-            + W[2090] * W[5735] + W[2495] * W[5330] + W[2900] * W[4925] + W[3305] * W[4520] + W[3710] * W[4115]) * 2.0;
-    W[7763] = (W[67] * W[7762] + W[472] * W[7357] + W[877] * W[6952] + W[1282] * W[6547] + W[1687] * W[6142]
-            + W[2092] * W[5737] + W[2497] * W[5332] + W[2902] * W[4927] + W[3307] * W[4522] + W[3712] * W[4117]) * 2.0;
-    W[7766] = (W[70] * W[7765] + W[475] * W[7360] + W[880] * W[6955] + W[1285] * W[6550] + W[1690] * W[6145]
-            + W[2095] * W[5740] + W[2500] * W[5335] + W[2905] * W[4930] + W[3310] * W[4525] + W[3715] * W[4120]) * 2.0;
-    W[7768] = (W[72] * W[7767] + W[477] * W[7362] + W[882] * W[6957] + W[1287] * W[6552] + W[1692] * W[6147]
-            + W[2097] * W[5742] + W[2502] * W[5337] + W[2907] * W[4932] + W[3312] * W[4527] + W[3717] * W[4122]) * 2.0;
-    W[7771] = (W[75] * W[7770] + W[480] * W[7365] + W[885] * W[6960] + W[1290] * W[6555] + W[1695] * W[6150]
-            + W[2100] * W[5745] + W[2505] * W[5340] + W[2910] * W[4935] + W[3315] * W[4530] + W[3720] * W[4125]) * 2.0;
-    W[7773] = (W[77] * W[7772] + W[482] * W[7367] + W[887] * W[6962] + W[1292] * W[6557] + W[1697] * W[6152]
-            + W[2102] * W[5747] + W[2507] * W[5342] + W[2912] * W[4937] + W[3317] * W[4532] + W[3722] * W[4127]) * 2.0;
-    W[7776] = (W[80] * W[7775] + W[485] * W[7370] + W[890] * W[6965] + W[1295] * W[6560] + W[1700] * W[6155]
-            + W[2105] * W[5750] + W[2510] * W[5345] + W[2915] * W[4940] + W[3320] * W[4535] + W[3725] * W[4130]) * 2.0;
-    W[7778] = (W[82] * W[7777] + W[487] * W[7372] + W[892] * W[6967] + W[1297] * W[6562] + W[1702] * W[6157]
-            + W[2107] * W[5752] + W[2512] * W[5347] + W[2917] * W[4942] + W[3322] * W[4537] + W[3727] * W[4132]) * 2.0;
-    W[7781] = (W[85] * W[7780] + W[490] * W[7375] + W[895] * W[6970] + W[1300] * W[6565] + W[1705] * W[6160]
-            + W[2110] * W[5755] + W[2515] * W[5350] + W[2920] * W[4945] + W[3325] * W[4540] + W[3730] * W[4135]) * 2.0;
-    W[7783] = (W[87] * W[7782] + W[492] * W[7377] + W[897] * W[6972] + W[1302] * W[6567] + W[1707] * W[6162]
-            + W[2112] * W[5757] + W[2517] * W[5352] + W[2922] * W[4947] + W[3327] * W[4542] + W[3732] * W[4137]) * 2.0;
-    W[7786] = (W[90] * W[7785] + W[495] * W[7380] + W[900] * W[6975] + W[1305] * W[6570] + W[1710] * W[6165]
-            + W[2115] * W[5760] + W[2520] * W[5355] + W[2925] * W[4950] + W[3330] * W[4545] + W[3735] * W[4140]) * 2.0;
-    W[7788] = (W[92] * W[7787] + W[497] * W[7382] + W[902] * W[6977] + W[1307] * W[6572] + W[1712] * W[6167]
-            + W[2117] * W[5762] + W[2522] * W[5357] + W[2927] * W[4952] + W[3332] * W[4547] + W[3737] * W[4142]) * 2.0;
-    W[7791] = (W[95] * W[7790] + W[500] * W[7385] + W[905] * W[6980] + W[1310] * W[6575] + W[1715] * W[6170]
-            + W[2120] * W[5765] + W[2525] * W[5360] + W[2930] * W[4955] + W[3335] * W[4550] + W[3740] * W[4145]) * 2.0;
-    W[7793] = (W[97] * W[7792] + W[502] * W[7387] + W[907] * W[6982] + W[1312] * W[6577] + W[1717] * W[6172]
-            + W[2122] * W[5767] + W[2527] * W[5362] + W[2932] * W[4957] + W[3337] * W[4552] + W[3742] * W[4147]) * 2.0;
-    W[7796] = (W[100] * W[7795] + W[505] * W[7390] + W[910] * W[6985] + W[1315] * W[6580] + W[1720] * W[6175]
-            + W[2125] * W[5770] + W[2530] * W[5365] + W[2935] * W[4960] + W[3340] * W[4555] + W[3745] * W[4150]) * 2.0;
-    W[7798] = (W[102] * W[7797] + W[507] * W[7392] + W[912] * W[6987] + W[1317] * W[6582] + W[1722] * W[6177]
-            + W[2127] * W[5772] + W[2532] * W[5367] + W[2937] * W[4962] + W[3342] * W[4557] + W[3747] * W[4152]) * 2.0;
-    W[7801] = (W[105] * W[7800] + W[510] * W[7395] + W[915] * W[6990] + W[1320] * W[6585] + W[1725] * W[6180]
-            + W[2130] * W[5775] + W[2535] * W[5370] + W[2940] * W[4965] + W[3345] * W[4560] + W[3750] * W[4155]) * 2.0;
-    W[7803] = (W[107] * W[7802] + W[512] * W[7397] + W[917] * W[6992] + W[1322] * W[6587] + W[1727] * W[6182]
-            + W[2132] * W[5777] + W[2537] * W[5372] + W[2942] * W[4967] + W[3347] * W[4562] + W[3752] * W[4157]) * 2.0;
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_350(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7806] = (W[110] * W[7805] + W[515] * W[7400] + W[920] * W[6995] + W[1325] * W[6590] + W[1730] * W[6185]
             + W[2135] * W[5780] + W[2540] * W[5375] + W[2945] * W[4970] + W[3350] * W[4565] + W[3755] * W[4160]) * 2.0;
     W[7808] = (W[112] * W[7807] + W[517] * W[7402] + W[922] * W[6997] + W[1327] * W[6592] + W[1732] * W[6187]
@@ -12754,86 +9439,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[7779] = W[7776] + W[7778];
     W[7784] = W[7781] + W[7783];
     W[7789] = W[7786] + W[7788];
-    W[7794] = W[7791] + W[7793];
-    W[7799] = W[7796] + W[7798];
-    W[7804] = W[7801] + W[7803];
-    W[7809] = W[7806] + W[7808];
-    W[7814] = W[7811] + W[7813];
-    W[7847] = (-28.5 * W[7739] * W[152] - 28.0 * W[7334] * W[557] - 27.5 * W[6929] * W[962] - 27.0 * W[6524] * W[1367]
-            - 26.5 * W[6119] * W[1772] - 26.0 * W[5714] * W[2177] - 25.5 * W[5309] * W[2582] - 25.0 * W[4904] * W[2987]
-            - 24.5 * W[4499] * W[3392] - 24.0 * W[4094] * W[3797] - 23.5 * W[3689] * W[4202] - 23.0 * W[3284] * W[4607]
-            - 22.5 * W[2879] * W[5012] - 22.0 * W[2474] * W[5417] - 21.5 * W[2069] * W[5822] - 21.0 * W[1664] * W[6227]
-            - 20.5 * W[1259] * W[6632] - 20.0 * W[854] * W[7037] - 19.5 * W[449] * W[7442]) / (19.0 * W[44]);
-    W[7851] = (-28.5 * W[7732] * W[156] - 28.0 * W[7327] * W[561] - 27.5 * W[6922] * W[966] - 27.0 * W[6517] * W[1371]
-            - 26.5 * W[6112] * W[1776] - 26.0 * W[5707] * W[2181] - 25.5 * W[5302] * W[2586] - 25.0 * W[4897] * W[2991]
-            - 24.5 * W[4492] * W[3396] - 24.0 * W[4087] * W[3801] - 23.5 * W[3682] * W[4206] - 23.0 * W[3277] * W[4611]
-            - 22.5 * W[2872] * W[5016] - 22.0 * W[2467] * W[5421] - 21.5 * W[2062] * W[5826] - 21.0 * W[1657] * W[6231]
-            - 20.5 * W[1252] * W[6636] - 20.0 * W[847] * W[7041] - 19.5 * W[442] * W[7446]) / (19.0 * W[37]);
-    W[7856] = (-28.5 * W[7725] * W[161] - 28.0 * W[7320] * W[566] - 27.5 * W[6915] * W[971] - 27.0 * W[6510] * W[1376]
-            - 26.5 * W[6105] * W[1781] - 26.0 * W[5700] * W[2186] - 25.5 * W[5295] * W[2591] - 25.0 * W[4890] * W[2996]
-            - 24.5 * W[4485] * W[3401] - 24.0 * W[4080] * W[3806] - 23.5 * W[3675] * W[4211] - 23.0 * W[3270] * W[4616]
-            - 22.5 * W[2865] * W[5021] - 22.0 * W[2460] * W[5426] - 21.5 * W[2055] * W[5831] - 21.0 * W[1650] * W[6236]
-            - 20.5 * W[1245] * W[6641] - 20.0 * W[840] * W[7046] - 19.5 * W[435] * W[7451]) / (19.0 * W[30]);
-    W[7861] = (-28.5 * W[7718] * W[166] - 28.0 * W[7313] * W[571] - 27.5 * W[6908] * W[976] - 27.0 * W[6503] * W[1381]
-            - 26.5 * W[6098] * W[1786] - 26.0 * W[5693] * W[2191] - 25.5 * W[5288] * W[2596] - 25.0 * W[4883] * W[3001]
-            - 24.5 * W[4478] * W[3406] - 24.0 * W[4073] * W[3811] - 23.5 * W[3668] * W[4216] - 23.0 * W[3263] * W[4621]
-            - 22.5 * W[2858] * W[5026] - 22.0 * W[2453] * W[5431] - 21.5 * W[2048] * W[5836] - 21.0 * W[1643] * W[6241]
-            - 20.5 * W[1238] * W[6646] - 20.0 * W[833] * W[7051] - 19.5 * W[428] * W[7456]) / (19.0 * W[23]);
-    W[7866] = (-28.5 * W[7711] * W[171] - 28.0 * W[7306] * W[576] - 27.5 * W[6901] * W[981] - 27.0 * W[6496] * W[1386]
-            - 26.5 * W[6091] * W[1791] - 26.0 * W[5686] * W[2196] - 25.5 * W[5281] * W[2601] - 25.0 * W[4876] * W[3006]
-            - 24.5 * W[4471] * W[3411] - 24.0 * W[4066] * W[3816] - 23.5 * W[3661] * W[4221] - 23.0 * W[3256] * W[4626]
-            - 22.5 * W[2851] * W[5031] - 22.0 * W[2446] * W[5436] - 21.5 * W[2041] * W[5841] - 21.0 * W[1636] * W[6246]
-            - 20.5 * W[1231] * W[6651] - 20.0 * W[826] * W[7056] - 19.5 * W[421] * W[7461]) / (19.0 * W[16]);
-    W[7871] = (-28.5 * W[7704] * W[176] - 28.0 * W[7299] * W[581] - 27.5 * W[6894] * W[986] - 27.0 * W[6489] * W[1391]
-            - 26.5 * W[6084] * W[1796] - 26.0 * W[5679] * W[2201] - 25.5 * W[5274] * W[2606] - 25.0 * W[4869] * W[3011]
-            - 24.5 * W[4464] * W[3416] - 24.0 * W[4059] * W[3821] - 23.5 * W[3654] * W[4226] - 23.0 * W[3249] * W[4631]
-            - 22.5 * W[2844] * W[5036] - 22.0 * W[2439] * W[5441] - 21.5 * W[2034] * W[5846] - 21.0 * W[1629] * W[6251]
-            - 20.5 * W[1224] * W[6656] - 20.0 * W[819] * W[7061] - 19.5 * W[414] * W[7466]) / (19.0 * W[9]);
-    W[7895] = (-28.5 * W[7764] * W[200] - 28.0 * W[7359] * W[605] - 27.5 * W[6954] * W[1010] - 27.0 * W[6549] * W[1415]
-            - 26.5 * W[6144] * W[1820] - 26.0 * W[5739] * W[2225] - 25.5 * W[5334] * W[2630] - 25.0 * W[4929] * W[3035]
-            - 24.5 * W[4524] * W[3440] - 24.0 * W[4119] * W[3845] - 23.5 * W[3714] * W[4250] - 23.0 * W[3309] * W[4655]
-            - 22.5 * W[2904] * W[5060] - 22.0 * W[2499] * W[5465] - 21.5 * W[2094] * W[5870] - 21.0 * W[1689] * W[6275]
-            - 20.5 * W[1284] * W[6680] - 20.0 * W[879] * W[7085] - 19.5 * W[474] * W[7490]) / (19.0 * W[69]);
-    W[7899] = (-28.5 * W[7759] * W[204] - 28.0 * W[7354] * W[609] - 27.5 * W[6949] * W[1014] - 27.0 * W[6544] * W[1419]
-            - 26.5 * W[6139] * W[1824] - 26.0 * W[5734] * W[2229] - 25.5 * W[5329] * W[2634] - 25.0 * W[4924] * W[3039]
-            - 24.5 * W[4519] * W[3444] - 24.0 * W[4114] * W[3849] - 23.5 * W[3709] * W[4254] - 23.0 * W[3304] * W[4659]
-            - 22.5 * W[2899] * W[5064] - 22.0 * W[2494] * W[5469] - 21.5 * W[2089] * W[5874] - 21.0 * W[1684] * W[6279]
-            - 20.5 * W[1279] * W[6684] - 20.0 * W[874] * W[7089] - 19.5 * W[469] * W[7494]) / (19.0 * W[64]);
-    W[7904] = (-28.5 * W[7754] * W[209] - 28.0 * W[7349] * W[614] - 27.5 * W[6944] * W[1019] - 27.0 * W[6539] * W[1424]
-            - 26.5 * W[6134] * W[1829] - 26.0 * W[5729] * W[2234] - 25.5 * W[5324] * W[2639] - 25.0 * W[4919] * W[3044]
-            - 24.5 * W[4514] * W[3449] - 24.0 * W[4109] * W[3854] - 23.5 * W[3704] * W[4259] - 23.0 * W[3299] * W[4664]
-            - 22.5 * W[2894] * W[5069] - 22.0 * W[2489] * W[5474] - 21.5 * W[2084] * W[5879] - 21.0 * W[1679] * W[6284]
-            - 20.5 * W[1274] * W[6689] - 20.0 * W[869] * W[7094] - 19.5 * W[464] * W[7499]) / (19.0 * W[59]);
-    W[7909] = (-28.5 * W[7749] * W[214] - 28.0 * W[7344] * W[619] - 27.5 * W[6939] * W[1024] - 27.0 * W[6534] * W[1429]
-            - 26.5 * W[6129] * W[1834] - 26.0 * W[5724] * W[2239] - 25.5 * W[5319] * W[2644] - 25.0 * W[4914] * W[3049]
-            - 24.5 * W[4509] * W[3454] - 24.0 * W[4104] * W[3859] - 23.5 * W[3699] * W[4264] - 23.0 * W[3294] * W[4669]
-            - 22.5 * W[2889] * W[5074] - 22.0 * W[2484] * W[5479] - 21.5 * W[2079] * W[5884] - 21.0 * W[1674] * W[6289]
-            - 20.5 * W[1269] * W[6694] - 20.0 * W[864] * W[7099] - 19.5 * W[459] * W[7504]) / (19.0 * W[54]);
-    W[7914] = (-28.5 * W[7744] * W[219] - 28.0 * W[7339] * W[624] - 27.5 * W[6934] * W[1029] - 27.0 * W[6529] * W[1434]
-            - 26.5 * W[6124] * W[1839] - 26.0 * W[5719] * W[2244] - 25.5 * W[5314] * W[2649] - 25.0 * W[4909] * W[3054]
-            - 24.5 * W[4504] * W[3459] - 24.0 * W[4099] * W[3864] - 23.5 * W[3694] * W[4269] - 23.0 * W[3289] * W[4674]
-            - 22.5 * W[2884] * W[5079] - 22.0 * W[2479] * W[5484] - 21.5 * W[2074] * W[5889] - 21.0 * W[1669] * W[6294]
-            - 20.5 * W[1264] * W[6699] - 20.0 * W[859] * W[7104] - 19.5 * W[454] * W[7509]) / (19.0 * W[49]);
-    W[7939] = (-28.5 * W[7784] * W[244] - 28.0 * W[7379] * W[649] - 27.5 * W[6974] * W[1054] - 27.0 * W[6569] * W[1459]
-            - 26.5 * W[6164] * W[1864] - 26.0 * W[5759] * W[2269] - 25.5 * W[5354] * W[2674] - 25.0 * W[4949] * W[3079]
-            - 24.5 * W[4544] * W[3484] - 24.0 * W[4139] * W[3889] - 23.5 * W[3734] * W[4294] - 23.0 * W[3329] * W[4699]
-            - 22.5 * W[2924] * W[5104] - 22.0 * W[2519] * W[5509] - 21.5 * W[2114] * W[5914] - 21.0 * W[1709] * W[6319]
-            - 20.5 * W[1304] * W[6724] - 20.0 * W[899] * W[7129] - 19.5 * W[494] * W[7534]) / (19.0 * W[89]);
-    W[7943] = (-28.5 * W[7779] * W[248] - 28.0 * W[7374] * W[653] - 27.5 * W[6969] * W[1058] - 27.0 * W[6564] * W[1463]
-            - 26.5 * W[6159] * W[1868] - 26.0 * W[5754] * W[2273] - 25.5 * W[5349] * W[2678] - 25.0 * W[4944] * W[3083]
-            - 24.5 * W[4539] * W[3488] - 24.0 * W[4134] * W[3893] - 23.5 * W[3729] * W[4298] - 23.0 * W[3324] * W[4703]
-            - 22.5 * W[2919] * W[5108] - 22.0 * W[2514] * W[5513] - 21.5 * W[2109] * W[5918] - 21.0 * W[1704] * W[6323]
-            - 20.5 * W[1299] * W[6728] - 20.0 * W[894] * W[7133] - 19.5 * W[489] * W[7538]) / (19.0 * W[84]);
-    W[7948] = (-28.5 * W[7774] * W[253] - 28.0 * W[7369] * W[658] - 27.5 * W[6964] * W[1063] - 27.0 * W[6559] * W[1468]
-            - 26.5 * W[6154] * W[1873] - 26.0 * W[5749] * W[2278] - 25.5 * W[5344] * W[2683] - 25.0 * W[4939] * W[3088]
-            - 24.5 * W[4534] * W[3493] - 24.0 * W[4129] * W[3898] - 23.5 * W[3724] * W[4303] - 23.0 * W[3319] * W[4708]
-            - 22.5 * W[2914] * W[5113] - 22.0 * W[2509] * W[5518] - 21.5 * W[2104] * W[5923] - 21.0 * W[1699] * W[6328]
-            - 20.5 * W[1294] * W[6733] - 20.0 * W[889] * W[7138] - 19.5 * W[484] * W[7543]) / (19.0 * W[79]);
-    W[7953] = (-28.5 * W[7769] * W[258] - 28.0 * W[7364] * W[663] - 27.5 * W[6959] * W[1068] - 27.0 * W[6554] * W[1473]
-            - 26.5 * W[6149] * W[1878] - 26.0 * W[5744] * W[2283] - 25.5 * W[5339] * W[2688] - 25.0 * W[4934] * W[3093]
-            - 24.5 * W[4529] * W[3498] - 24.0 * W[4124] * W[3903] - 23.5 * W[3719] * W[4308] - 23.0 * W[3314] * W[4713]
-            - 22.5 * W[2909] * W[5118] - 22.0 * W[2504] * W[5523] - 21.5 * W[2099] * W[5928] - 21.0 * W[1694] * W[6333]
-            - 20.5 * W[1289] * W[6738] - 20.0 * W[884] * W[7143] - 19.5 * W[479] * W[7548]) / (19.0 * W[74]);
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_352(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7979] = (-28.5 * W[7799] * W[284] - 28.0 * W[7394] * W[689] - 27.5 * W[6989] * W[1094] - 27.0 * W[6584] * W[1499]
             - 26.5 * W[6179] * W[1904] - 26.0 * W[5774] * W[2309] - 25.5 * W[5369] * W[2714] - 25.0 * W[4964] * W[3119]
             - 24.5 * W[4559] * W[3524] - 24.0 * W[4154] * W[3929] - 23.5 * W[3749] * W[4334] - 23.0 * W[3344] * W[4739]
@@ -12920,86 +9535,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2085] * W[5874] + W[2490] * W[5469] + W[2895] * W[5064] + W[3300] * W[4659] + W[3705] * W[4254]
             + W[4110] * W[3849] + W[4515] * W[3444] + W[4920] * W[3039] + W[5325] * W[2634] + W[5730] * W[2229]
             + W[6135] * W[1824] + W[6540] * W[1419] + W[6945] * W[1014] + W[7350] * W[609] + W[7755] * W[204];
-    W[7905] = W[55] * W[7904] + W[460] * W[7499] + W[865] * W[7094] + W[1270] * W[6689] + W[1675] * W[6284]
-            + W[2080] * W[5879] + W[2485] * W[5474] + W[2890] * W[5069] + W[3295] * W[4664] + W[3700] * W[4259]
-            + W[4105] * W[3854] + W[4510] * W[3449] + W[4915] * W[3044] + W[5320] * W[2639] + W[5725] * W[2234]
-            + W[6130] * W[1829] + W[6535] * W[1424] + W[6940] * W[1019] + W[7345] * W[614] + W[7750] * W[209];
-    W[7910] = W[50] * W[7909] + W[455] * W[7504] + W[860] * W[7099] + W[1265] * W[6694] + W[1670] * W[6289]
-            + W[2075] * W[5884] + W[2480] * W[5479] + W[2885] * W[5074] + W[3290] * W[4669] + W[3695] * W[4264]
-            + W[4100] * W[3859] + W[4505] * W[3454] + W[4910] * W[3049] + W[5315] * W[2644] + W[5720] * W[2239]
-            + W[6125] * W[1834] + W[6530] * W[1429] + W[6935] * W[1024] + W[7340] * W[619] + W[7745] * W[214];
-    W[7915] = W[45] * W[7914] + W[450] * W[7509] + W[855] * W[7104] + W[1260] * W[6699] + W[1665] * W[6294]
-            + W[2070] * W[5889] + W[2475] * W[5484] + W[2880] * W[5079] + W[3285] * W[4674] + W[3690] * W[4269]
-            + W[4095] * W[3864] + W[4500] * W[3459] + W[4905] * W[3054] + W[5310] * W[2649] + W[5715] * W[2244]
-            + W[6120] * W[1839] + W[6525] * W[1434] + W[6930] * W[1029] + W[7335] * W[624] + W[7740] * W[219];
-    W[7921] = W[67] * W[7895] + W[472] * W[7490] + W[877] * W[7085] + W[1282] * W[6680] + W[1687] * W[6275]
-            + W[2092] * W[5870] + W[2497] * W[5465] + W[2902] * W[5060] + W[3307] * W[4655] + W[3712] * W[4250]
-            + W[4117] * W[3845] + W[4522] * W[3440] + W[4927] * W[3035] + W[5332] * W[2630] + W[5737] * W[2225]
-            + W[6142] * W[1820] + W[6547] * W[1415] + W[6952] * W[1010] + W[7357] * W[605] + W[7762] * W[200];
-    W[7923] = W[62] * W[7899] + W[467] * W[7494] + W[872] * W[7089] + W[1277] * W[6684] + W[1682] * W[6279]
-            + W[2087] * W[5874] + W[2492] * W[5469] + W[2897] * W[5064] + W[3302] * W[4659] + W[3707] * W[4254]
-            + W[4112] * W[3849] + W[4517] * W[3444] + W[4922] * W[3039] + W[5327] * W[2634] + W[5732] * W[2229]
-            + W[6137] * W[1824] + W[6542] * W[1419] + W[6947] * W[1014] + W[7352] * W[609] + W[7757] * W[204];
-    W[7926] = W[57] * W[7904] + W[462] * W[7499] + W[867] * W[7094] + W[1272] * W[6689] + W[1677] * W[6284]
-            + W[2082] * W[5879] + W[2487] * W[5474] + W[2892] * W[5069] + W[3297] * W[4664] + W[3702] * W[4259]
-            + W[4107] * W[3854] + W[4512] * W[3449] + W[4917] * W[3044] + W[5322] * W[2639] + W[5727] * W[2234]
-            + W[6132] * W[1829] + W[6537] * W[1424] + W[6942] * W[1019] + W[7347] * W[614] + W[7752] * W[209];
-    W[7929] = W[52] * W[7909] + W[457] * W[7504] + W[862] * W[7099] + W[1267] * W[6694] + W[1672] * W[6289]
-            + W[2077] * W[5884] + W[2482] * W[5479] + W[2887] * W[5074] + W[3292] * W[4669] + W[3697] * W[4264]
-            + W[4102] * W[3859] + W[4507] * W[3454] + W[4912] * W[3049] + W[5317] * W[2644] + W[5722] * W[2239]
-            + W[6127] * W[1834] + W[6532] * W[1429] + W[6937] * W[1024] + W[7342] * W[619] + W[7747] * W[214];
-    W[7932] = W[47] * W[7914] + W[452] * W[7509] + W[857] * W[7104] + W[1262] * W[6699] + W[1667] * W[6294]
-            + W[2072] * W[5889] + W[2477] * W[5484] + W[2882] * W[5079] + W[3287] * W[4674] + W[3692] * W[4269]
-            + W[4097] * W[3864] + W[4502] * W[3459] + W[4907] * W[3054] + W[5312] * W[2649] + W[5717] * W[2244]
-            + W[6122] * W[1839] + W[6527] * W[1434] + W[6932] * W[1029] + W[7337] * W[624] + W[7742] * W[219];
-    W[7940] = W[85] * W[7939] + W[490] * W[7534] + W[895] * W[7129] + W[1300] * W[6724] + W[1705] * W[6319]
-            + W[2110] * W[5914] + W[2515] * W[5509] + W[2920] * W[5104] + W[3325] * W[4699] + W[3730] * W[4294]
-            + W[4135] * W[3889] + W[4540] * W[3484] + W[4945] * W[3079] + W[5350] * W[2674] + W[5755] * W[2269]
-            + W[6160] * W[1864] + W[6565] * W[1459] + W[6970] * W[1054] + W[7375] * W[649] + W[7780] * W[244];
-    W[7944] = W[80] * W[7943] + W[485] * W[7538] + W[890] * W[7133] + W[1295] * W[6728] + W[1700] * W[6323]
-            + W[2105] * W[5918] + W[2510] * W[5513] + W[2915] * W[5108] + W[3320] * W[4703] + W[3725] * W[4298]
-            + W[4130] * W[3893] + W[4535] * W[3488] + W[4940] * W[3083] + W[5345] * W[2678] + W[5750] * W[2273]
-            + W[6155] * W[1868] + W[6560] * W[1463] + W[6965] * W[1058] + W[7370] * W[653] + W[7775] * W[248];
-    W[7949] = W[75] * W[7948] + W[480] * W[7543] + W[885] * W[7138] + W[1290] * W[6733] + W[1695] * W[6328]
-            + W[2100] * W[5923] + W[2505] * W[5518] + W[2910] * W[5113] + W[3315] * W[4708] + W[3720] * W[4303]
-            + W[4125] * W[3898] + W[4530] * W[3493] + W[4935] * W[3088] + W[5340] * W[2683] + W[5745] * W[2278]
-            + W[6150] * W[1873] + W[6555] * W[1468] + W[6960] * W[1063] + W[7365] * W[658] + W[7770] * W[253];
-    W[7954] = W[70] * W[7953] + W[475] * W[7548] + W[880] * W[7143] + W[1285] * W[6738] + W[1690] * W[6333]
-            + W[2095] * W[5928] + W[2500] * W[5523] + W[2905] * W[5118] + W[3310] * W[4713] + W[3715] * W[4308]
-            + W[4120] * W[3903] + W[4525] * W[3498] + W[4930] * W[3093] + W[5335] * W[2688] + W[5740] * W[2283]
-            + W[6145] * W[1878] + W[6550] * W[1473] + W[6955] * W[1068] + W[7360] * W[663] + W[7765] * W[258];
-    W[7962] = W[87] * W[7939] + W[492] * W[7534] + W[897] * W[7129] + W[1302] * W[6724] + W[1707] * W[6319]
-            + W[2112] * W[5914] + W[2517] * W[5509] + W[2922] * W[5104] + W[3327] * W[4699] + W[3732] * W[4294]
-            + W[4137] * W[3889] + W[4542] * W[3484] + W[4947] * W[3079] + W[5352] * W[2674] + W[5757] * W[2269]
-            + W[6162] * W[1864] + W[6567] * W[1459] + W[6972] * W[1054] + W[7377] * W[649] + W[7782] * W[244];
-    W[7964] = W[82] * W[7943] + W[487] * W[7538] + W[892] * W[7133] + W[1297] * W[6728] + W[1702] * W[6323]
-            + W[2107] * W[5918] + W[2512] * W[5513] + W[2917] * W[5108] + W[3322] * W[4703] + W[3727] * W[4298]
-            + W[4132] * W[3893] + W[4537] * W[3488] + W[4942] * W[3083] + W[5347] * W[2678] + W[5752] * W[2273]
-            + W[6157] * W[1868] + W[6562] * W[1463] + W[6967] * W[1058] + W[7372] * W[653] + W[7777] * W[248];
-    W[7967] = W[77] * W[7948] + W[482] * W[7543] + W[887] * W[7138] + W[1292] * W[6733] + W[1697] * W[6328]
-            + W[2102] * W[5923] + W[2507] * W[5518] + W[2912] * W[5113] + W[3317] * W[4708] + W[3722] * W[4303]
-            + W[4127] * W[3898] + W[4532] * W[3493] + W[4937] * W[3088] + W[5342] * W[2683] + W[5747] * W[2278]
-            + W[6152] * W[1873] + W[6557] * W[1468] + W[6962] * W[1063] + W[7367] * W[658] + W[7772] * W[253];
-    W[7970] = W[72] * W[7953] + W[477] * W[7548] + W[882] * W[7143] + W[1287] * W[6738] + W[1692] * W[6333]
-            + W[2097] * W[5928] + W[2502] * W[5523] + W[2907] * W[5118] + W[3312] * W[4713] + W[3717] * W[4308]
-            + W[4122] * W[3903] + W[4527] * W[3498] + W[4932] * W[3093] + W[5337] * W[2688] + W[5742] * W[2283]
-            + W[6147] * W[1878] + W[6552] * W[1473] + W[6957] * W[1068] + W[7362] * W[663] + W[7767] * W[258];
-    W[7980] = W[100] * W[7979] + W[505] * W[7574] + W[910] * W[7169] + W[1315] * W[6764] + W[1720] * W[6359]
-            + W[2125] * W[5954] + W[2530] * W[5549] + W[2935] * W[5144] + W[3340] * W[4739] + W[3745] * W[4334]
-            + W[4150] * W[3929] + W[4555] * W[3524] + W[4960] * W[3119] + W[5365] * W[2714] + W[5770] * W[2309]
-            + W[6175] * W[1904] + W[6580] * W[1499] + W[6985] * W[1094] + W[7390] * W[689] + W[7795] * W[284];
-    W[7984] = W[95] * W[7983] + W[500] * W[7578] + W[905] * W[7173] + W[1310] * W[6768] + W[1715] * W[6363]
-            + W[2120] * W[5958] + W[2525] * W[5553] + W[2930] * W[5148] + W[3335] * W[4743] + W[3740] * W[4338]
-            + W[4145] * W[3933] + W[4550] * W[3528] + W[4955] * W[3123] + W[5360] * W[2718] + W[5765] * W[2313]
-            + W[6170] * W[1908] + W[6575] * W[1503] + W[6980] * W[1098] + W[7385] * W[693] + W[7790] * W[288];
-    W[7989] = W[90] * W[7988] + W[495] * W[7583] + W[900] * W[7178] + W[1305] * W[6773] + W[1710] * W[6368]
-            + W[2115] * W[5963] + W[2520] * W[5558] + W[2925] * W[5153] + W[3330] * W[4748] + W[3735] * W[4343]
-            + W[4140] * W[3938] + W[4545] * W[3533] + W[4950] * W[3128] + W[5355] * W[2723] + W[5760] * W[2318]
-            + W[6165] * W[1913] + W[6570] * W[1508] + W[6975] * W[1103] + W[7380] * W[698] + W[7785] * W[293];
-    W[7999] = W[102] * W[7979] + W[507] * W[7574] + W[912] * W[7169] + W[1317] * W[6764] + W[1722] * W[6359]
-            + W[2127] * W[5954] + W[2532] * W[5549] + W[2937] * W[5144] + W[3342] * W[4739] + W[3747] * W[4334]
-            + W[4152] * W[3929] + W[4557] * W[3524] + W[4962] * W[3119] + W[5367] * W[2714] + W[5772] * W[2309]
-            + W[6177] * W[1904] + W[6582] * W[1499] + W[6987] * W[1094] + W[7392] * W[689] + W[7797] * W[284];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_354(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[8001] = W[97] * W[7983] + W[502] * W[7578] + W[907] * W[7173] + W[1312] * W[6768] + W[1717] * W[6363]
             + W[2122] * W[5958] + W[2527] * W[5553] + W[2932] * W[5148] + W[3337] * W[4743] + W[3742] * W[4338]
             + W[4147] * W[3933] + W[4552] * W[3528] + W[4957] * W[3123] + W[5362] * W[2718] + W[5767] * W[2313]
@@ -13044,6 +9589,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[7885] = W[165] * W[7884];
     W[7888] = W[170] * W[7887];
     W[7891] = W[175] * W[7890];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_355(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7897] = W[199] * W[7896];
     W[7901] = W[203] * W[7900];
     W[7906] = W[208] * W[7905];
@@ -13064,6 +9619,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[7960] = W[128] * W[7867];
     W[7963] = W[243] * W[7962];
     W[7965] = W[247] * W[7964];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_356(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[7968] = W[252] * W[7967];
     W[7971] = W[257] * W[7970];
     W[7974] = W[133] * W[7932];
@@ -13084,26 +9649,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[8021] = W[323] * W[8020];
     W[8024] = W[142] * W[7989];
     W[8026] = W[139] * W[7949];
-    W[8028] = W[135] * W[7905];
-    W[8030] = W[130] * W[7857];
-    W[8033] = W[319] * W[8032];
-    W[8035] = W[323] * W[8034];
-    W[8038] = W[142] * W[8004];
-    W[8040] = W[139] * W[7967];
-    W[8042] = W[135] * W[7926];
-    W[8044] = W[130] * W[7881];
-    W[8049] = W[147] * W[8048];
-    W[8050] = W[145] * W[8020];
-    W[8052] = W[143] * W[7984];
-    W[8054] = W[140] * W[7944];
-    W[8056] = W[136] * W[7900];
-    W[8058] = W[131] * W[7852];
-    W[8061] = W[147] * W[8060];
-    W[8062] = W[145] * W[8034];
-    W[8064] = W[143] * W[8001];
-    W[8066] = W[140] * W[7964];
-    W[8068] = W[136] * W[7923];
-    W[8070] = W[131] * W[7878];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_358(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[8072] = W[351] * W[8048];
     W[8079] = W[351] * W[8060];
     W[7854] = W[7849] + W[7853];
@@ -13124,26 +9679,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[7883] = W[7880] + W[7882];
     W[7907] = W[7902] + W[7906];
     W[7928] = W[7925] + W[7927];
-    W[7951] = W[7946] + W[7950];
-    W[7969] = W[7966] + W[7968];
-    W[7991] = W[7986] + W[7990];
-    W[8006] = W[8003] + W[8005];
-    W[8023] = W[3] * W[8022];
-    W[8037] = W[3] * W[8036];
-    W[8053] = W[8051] - W[8052];
-    W[8065] = W[8063] - W[8064];
-    W[8074] = W[7981] + W[8073];
-    W[8081] = W[8000] + W[8080];
-    W[7864] = W[7859] + W[7863];
-    W[7886] = W[7883] + W[7885];
-    W[7912] = W[7907] + W[7911];
-    W[7931] = W[7928] + W[7930];
-    W[7956] = W[7951] + W[7955];
-    W[7972] = W[7969] + W[7971];
-    W[7992] = W[3] * W[7991];
-    W[8007] = W[3] * W[8006];
-    W[8025] = W[8023] - W[8024];
-    W[8039] = W[8037] - W[8038];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_360(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[8055] = W[8053] - W[8054];
     W[8067] = W[8065] - W[8066];
     W[8075] = W[7941] + W[8074];
@@ -13164,26 +9709,16 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[8083] = W[7922] + W[8082];
     W[7874] = W[7869] + W[7873];
     W[7892] = W[7889] + W[7891];
-    W[7918] = W[3] * W[7917];
-    W[7935] = W[3] * W[7934];
-    W[7959] = W[7957] - W[7958];
-    W[7975] = W[7973] - W[7974];
-    W[7996] = W[7994] - W[7995];
-    W[8011] = W[8009] - W[8010];
-    W[8029] = W[8027] - W[8028];
-    W[8043] = W[8041] - W[8042];
-    W[8059] = W[8057] - W[8058];
-    W[8071] = W[8069] - W[8070];
-    W[8077] = W[7849] + W[8076];
-    W[8084] = W[7877] + W[8083];
-    W[7875] = W[3] * W[7874];
-    W[7893] = W[3] * W[7892];
-    W[7920] = W[7918] - W[7919];
-    W[7937] = W[7935] - W[7936];
-    W[7961] = W[7959] - W[7960];
-    W[7977] = W[7975] - W[7976];
-    W[7998] = W[7996] - W[7997];
-    W[8013] = W[8011] - W[8012];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+pleiades_taylor_run_362(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[8031] = W[8029] - W[8030];
     W[8045] = W[8043] - W[8044];
     W[8078] = W[148] * W[8077];
@@ -13204,18 +9739,1650 @@ pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[573] = X[559] / 20.0;
     X[574] = -W[7875] / W[120] / 20.0;
     X[575] = -W[7893] / W[120] / 20.0;
-    X[576] = -W[7920] / W[121] / 20.0;
-    X[577] = -W[7937] / W[121] / 20.0;
-    X[578] = -W[7961] / W[122] / 20.0;
-    X[579] = -W[7977] / W[122] / 20.0;
-    X[580] = -W[7998] / W[123] / 20.0;
-    X[581] = -W[8013] / W[123] / 20.0;
-    X[582] = -W[8031] / W[124] / 20.0;
-    X[583] = -W[8045] / W[124] / 20.0;
-    X[584] = -W[8059] / W[125] / 20.0;
-    X[585] = -W[8071] / W[125] / 20.0;
-    X[586] = -W[8078] / W[126] / 20.0;
-    X[587] = -W[8085] / W[126] / 20.0;
+    return 0;
+}
+
+EOMC_PART int
+pleiades_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_3(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_4(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_5(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_7(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_8(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_9(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_10(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_11(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_12(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_13(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_14(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_15(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_16(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_17(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_18(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_19(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_20(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_21(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_22(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_23(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_24(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_25(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_26(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_27(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_28(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_29(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_30(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_31(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_32(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_33(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_34(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_35(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_37(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_39(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_41(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_43(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_45(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_47(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_49(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_51(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_53(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_55(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_56(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_59(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_61(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_63(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_65(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_67(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_69(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_71(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_73(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_75(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_76(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_78(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_80(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_82(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_84(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_86(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_88(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_90(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_92(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_95(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_97(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_99(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_101(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_103(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_105(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_107(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_109(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_111(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_112(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_114(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_116(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_118(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_120(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_122(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_124(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_126(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_128(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_131(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_133(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_135(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_137(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_139(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_141(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_143(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_145(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_147(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_149(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_151(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_153(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_155(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_157(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_159(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_161(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_163(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_165(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_167(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_169(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_171(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_173(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_176(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_178(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_180(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_182(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_184(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_186(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_188(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_190(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_192(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_193(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_195(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_197(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_199(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_201(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_203(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_205(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_207(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_209(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_212(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_214(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_216(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_218(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_220(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_222(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_224(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_226(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_228(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_229(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_231(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_233(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_235(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_237(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_238(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_240(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_242(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_244(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_246(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_247(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_249(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_251(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_253(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_255(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_256(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_258(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_260(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_262(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_264(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_265(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_267(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_269(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_271(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_273(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_274(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_276(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_278(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_280(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_282(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_283(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_285(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_287(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_288(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_291(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_292(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_294(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_296(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_298(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_300(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_301(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_302(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_304(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_306(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_308(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_311(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_313(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_315(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_317(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_321(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_323(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_325(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_327(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_328(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_330(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_332(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_334(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_336(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_337(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_338(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_340(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_342(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_344(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_347(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_349(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_351(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_353(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_357(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_359(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_361(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+pleiades_taylor_run_363(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+static int
+pleiades_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *T, eomc_real *X, eomc_tay_solve solve, void *ctx)
+{
+    const int S = K + 1;
+    (void)solve, (void)ctx;
+    if (K > 20) {
+        static const int state[28] = {0, 5, 1, 6, 10, 13, 17, 20, 24, 27, 31, 34, 38, 41, 391, 392,
+            393, 394, 395, 396, 397, 398, 399, 400, 401, 402, 403, 404};
+        for (int i = 0; i < 28; i++)
+            T[state[i] * S] = X[i];
+        for (int k = 0; k < K; k++) {
+            pleiades_taylor(k, K, t0, p, u, T);
+            eomc_tay_integ(T, T + 391 * S, k);
+            eomc_tay_integ(T + 5 * S, T + 392 * S, k);
+            eomc_tay_integ(T + 1 * S, T + 393 * S, k);
+            eomc_tay_integ(T + 6 * S, T + 394 * S, k);
+            eomc_tay_integ(T + 10 * S, T + 395 * S, k);
+            eomc_tay_integ(T + 13 * S, T + 396 * S, k);
+            eomc_tay_integ(T + 17 * S, T + 397 * S, k);
+            eomc_tay_integ(T + 20 * S, T + 398 * S, k);
+            eomc_tay_integ(T + 24 * S, T + 399 * S, k);
+            eomc_tay_integ(T + 27 * S, T + 400 * S, k);
+            eomc_tay_integ(T + 31 * S, T + 401 * S, k);
+            eomc_tay_integ(T + 34 * S, T + 402 * S, k);
+            eomc_tay_integ(T + 38 * S, T + 403 * S, k);
+            eomc_tay_integ(T + 41 * S, T + 404 * S, k);
+            eomc_tay_accel(T + 391 * S, T + 180 * S, T + 120 * S, k);
+            eomc_tay_accel(T + 392 * S, T + 198 * S, T + 120 * S, k);
+            eomc_tay_accel(T + 393 * S, T + 225 * S, T + 121 * S, k);
+            eomc_tay_accel(T + 394 * S, T + 242 * S, T + 121 * S, k);
+            eomc_tay_accel(T + 395 * S, T + 266 * S, T + 122 * S, k);
+            eomc_tay_accel(T + 396 * S, T + 282 * S, T + 122 * S, k);
+            eomc_tay_accel(T + 397 * S, T + 303 * S, T + 123 * S, k);
+            eomc_tay_accel(T + 398 * S, T + 318 * S, T + 123 * S, k);
+            eomc_tay_accel(T + 399 * S, T + 336 * S, T + 124 * S, k);
+            eomc_tay_accel(T + 400 * S, T + 350 * S, T + 124 * S, k);
+            eomc_tay_accel(T + 401 * S, T + 364 * S, T + 125 * S, k);
+            eomc_tay_accel(T + 402 * S, T + 376 * S, T + 125 * S, k);
+            eomc_tay_accel(T + 403 * S, T + 383 * S, T + 126 * S, k);
+            eomc_tay_accel(T + 404 * S, T + 390 * S, T + 126 * S, k);
+        }
+        for (int j = 1; j <= K; j++)
+            for (int i = 0; i < 28; i++)
+                X[j * 28 + i] = T[state[i] * S + j];
+        return 0;
+    }
+    eomc_real W[8505]; /* slot s's coefficient j at W[j * 405 + s], but the
+                   * state's: X[j * 28 + i], q's then v's */
+    /* order 0 */
+    if (pleiades_taylor_run_1(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_2(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_3(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_4(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_5(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_6(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_7(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_8(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_9(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_10(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_11(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_12(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_13(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_14(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_15(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_16(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_17(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_18(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_19(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_20(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_21(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 1)
+        goto out;
+    /* order 1 */
+    if (pleiades_taylor_run_22(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_23(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_24(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_25(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_26(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_27(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_28(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_29(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_30(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_31(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_32(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_33(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_34(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_35(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_36(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_37(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_38(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_39(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 2)
+        goto out;
+    /* order 2 */
+    if (pleiades_taylor_run_40(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_41(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_42(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_43(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_44(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_45(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_46(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_47(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_48(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_49(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_50(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_51(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_52(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_53(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_54(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_55(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_56(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_57(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 3)
+        goto out;
+    /* order 3 */
+    if (pleiades_taylor_run_58(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_59(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_60(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_61(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_62(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_63(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_64(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_65(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_66(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_67(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_68(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_69(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_70(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_71(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_72(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_73(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_74(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_75(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 4)
+        goto out;
+    /* order 4 */
+    if (pleiades_taylor_run_76(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_77(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_78(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_79(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_80(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_81(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_82(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_83(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_84(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_85(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_86(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_87(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_88(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_89(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_90(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_91(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_92(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_93(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 5)
+        goto out;
+    /* order 5 */
+    if (pleiades_taylor_run_94(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_95(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_96(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_97(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_98(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_99(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_100(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_101(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_102(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_103(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_104(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_105(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_106(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_107(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_108(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_109(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_110(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_111(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 6)
+        goto out;
+    /* order 6 */
+    if (pleiades_taylor_run_112(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_113(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_114(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_115(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_116(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_117(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_118(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_119(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_120(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_121(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_122(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_123(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_124(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_125(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_126(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_127(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_128(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_129(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 7)
+        goto out;
+    /* order 7 */
+    if (pleiades_taylor_run_130(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_131(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_132(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_133(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_134(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_135(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_136(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_137(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_138(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_139(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_140(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_141(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_142(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_143(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_144(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_145(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_146(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_147(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 8)
+        goto out;
+    /* order 8 */
+    if (pleiades_taylor_run_148(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_149(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_150(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_151(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_152(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_153(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_154(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_155(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_156(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_157(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_158(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_159(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_160(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_161(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_162(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_163(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_164(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_165(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 9)
+        goto out;
+    /* order 9 */
+    if (pleiades_taylor_run_166(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_167(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_168(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_169(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_170(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_171(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_172(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_173(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_174(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_175(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_176(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_177(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_178(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_179(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_180(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_181(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_182(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_183(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 10)
+        goto out;
+    /* order 10 */
+    if (pleiades_taylor_run_184(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_185(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_186(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_187(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_188(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_189(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_190(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_191(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_192(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_193(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_194(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_195(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_196(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_197(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_198(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_199(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_200(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_201(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 11)
+        goto out;
+    /* order 11 */
+    if (pleiades_taylor_run_202(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_203(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_204(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_205(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_206(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_207(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_208(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_209(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_210(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_211(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_212(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_213(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_214(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_215(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_216(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_217(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_218(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_219(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 12)
+        goto out;
+    /* order 12 */
+    if (pleiades_taylor_run_220(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_221(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_222(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_223(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_224(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_225(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_226(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_227(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_228(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_229(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_230(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_231(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_232(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_233(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_234(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_235(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_236(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_237(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 13)
+        goto out;
+    /* order 13 */
+    if (pleiades_taylor_run_238(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_239(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_240(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_241(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_242(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_243(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_244(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_245(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_246(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_247(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_248(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_249(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_250(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_251(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_252(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_253(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_254(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_255(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 14)
+        goto out;
+    /* order 14 */
+    if (pleiades_taylor_run_256(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_257(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_258(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_259(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_260(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_261(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_262(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_263(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_264(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_265(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_266(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_267(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_268(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_269(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_270(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_271(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_272(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_273(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 15)
+        goto out;
+    /* order 15 */
+    if (pleiades_taylor_run_274(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_275(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_276(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_277(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_278(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_279(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_280(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_281(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_282(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_283(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_284(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_285(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_286(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_287(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_288(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_289(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_290(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_291(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 16)
+        goto out;
+    /* order 16 */
+    if (pleiades_taylor_run_292(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_293(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_294(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_295(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_296(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_297(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_298(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_299(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_300(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_301(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_302(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_303(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_304(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_305(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_306(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_307(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_308(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_309(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 17)
+        goto out;
+    /* order 17 */
+    if (pleiades_taylor_run_310(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_311(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_312(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_313(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_314(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_315(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_316(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_317(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_318(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_319(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_320(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_321(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_322(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_323(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_324(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_325(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_326(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_327(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 18)
+        goto out;
+    /* order 18 */
+    if (pleiades_taylor_run_328(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_329(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_330(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_331(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_332(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_333(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_334(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_335(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_336(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_337(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_338(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_339(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_340(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_341(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_342(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_343(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_344(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_345(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 19)
+        goto out;
+    /* order 19 */
+    if (pleiades_taylor_run_346(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_347(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_348(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_349(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_350(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_351(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_352(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_353(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_354(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_355(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_356(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_357(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_358(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_359(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_360(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_361(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_362(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (pleiades_taylor_run_363(t0, p, u, W, X, solve, ctx))
+        return -1;
 out:
     T[120 * S] = W[120]; /* M's diagonal, entry 0 */
     T[121 * S] = W[121]; /* M's diagonal, entry 2 */
@@ -13341,3 +11508,7406 @@ const eomc_model_ext pleiades_model_ext = {
 };
 #endif /* EOMC_EXTENDED */
 #endif /* EOMC_UNIT 3 */
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 4
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define pleiades_taylor_run_1 pleiades_taylor_run_1_ext
+#define pleiades_taylor_run_2 pleiades_taylor_run_2_ext
+#define pleiades_taylor_run_3 pleiades_taylor_run_3_ext
+#define pleiades_taylor_run_4 pleiades_taylor_run_4_ext
+#define pleiades_taylor_run_5 pleiades_taylor_run_5_ext
+#define pleiades_taylor_run_6 pleiades_taylor_run_6_ext
+#define pleiades_taylor_run_7 pleiades_taylor_run_7_ext
+#define pleiades_taylor_run_8 pleiades_taylor_run_8_ext
+#define pleiades_taylor_run_9 pleiades_taylor_run_9_ext
+#define pleiades_taylor_run_10 pleiades_taylor_run_10_ext
+#define pleiades_taylor_run_11 pleiades_taylor_run_11_ext
+#define pleiades_taylor_run_12 pleiades_taylor_run_12_ext
+#define pleiades_taylor_run_13 pleiades_taylor_run_13_ext
+#define pleiades_taylor_run_14 pleiades_taylor_run_14_ext
+#define pleiades_taylor_run_15 pleiades_taylor_run_15_ext
+#define pleiades_taylor_run_16 pleiades_taylor_run_16_ext
+#define pleiades_taylor_run_17 pleiades_taylor_run_17_ext
+#define pleiades_taylor_run_18 pleiades_taylor_run_18_ext
+#define pleiades_taylor_run_19 pleiades_taylor_run_19_ext
+#define pleiades_taylor_run_20 pleiades_taylor_run_20_ext
+#define pleiades_taylor_run_21 pleiades_taylor_run_21_ext
+#define pleiades_taylor_run_22 pleiades_taylor_run_22_ext
+#define pleiades_taylor_run_23 pleiades_taylor_run_23_ext
+#define pleiades_taylor_run_24 pleiades_taylor_run_24_ext
+#define pleiades_taylor_run_25 pleiades_taylor_run_25_ext
+#define pleiades_taylor_run_26 pleiades_taylor_run_26_ext
+#define pleiades_taylor_run_27 pleiades_taylor_run_27_ext
+#define pleiades_taylor_run_28 pleiades_taylor_run_28_ext
+#define pleiades_taylor_run_29 pleiades_taylor_run_29_ext
+#define pleiades_taylor_run_30 pleiades_taylor_run_30_ext
+#define pleiades_taylor_run_31 pleiades_taylor_run_31_ext
+#define pleiades_taylor_run_32 pleiades_taylor_run_32_ext
+#define pleiades_taylor_run_33 pleiades_taylor_run_33_ext
+#define pleiades_taylor_run_34 pleiades_taylor_run_34_ext
+#define pleiades_taylor_run_35 pleiades_taylor_run_35_ext
+#define pleiades_taylor_run_37 pleiades_taylor_run_37_ext
+#define pleiades_taylor_run_39 pleiades_taylor_run_39_ext
+#define pleiades_taylor_run_41 pleiades_taylor_run_41_ext
+#define pleiades_taylor_run_43 pleiades_taylor_run_43_ext
+#define pleiades_taylor_run_45 pleiades_taylor_run_45_ext
+#define pleiades_taylor_run_47 pleiades_taylor_run_47_ext
+#define pleiades_taylor_run_49 pleiades_taylor_run_49_ext
+#define pleiades_taylor_run_51 pleiades_taylor_run_51_ext
+#define pleiades_taylor_run_53 pleiades_taylor_run_53_ext
+#define pleiades_taylor_run_55 pleiades_taylor_run_55_ext
+#define pleiades_taylor_run_56 pleiades_taylor_run_56_ext
+#define pleiades_taylor_run_59 pleiades_taylor_run_59_ext
+#define pleiades_taylor_run_61 pleiades_taylor_run_61_ext
+#define pleiades_taylor_run_63 pleiades_taylor_run_63_ext
+#define pleiades_taylor_run_65 pleiades_taylor_run_65_ext
+#define pleiades_taylor_run_67 pleiades_taylor_run_67_ext
+#define pleiades_taylor_run_69 pleiades_taylor_run_69_ext
+#define pleiades_taylor_run_71 pleiades_taylor_run_71_ext
+#define pleiades_taylor_run_73 pleiades_taylor_run_73_ext
+#define pleiades_taylor_run_75 pleiades_taylor_run_75_ext
+#define pleiades_taylor_run_76 pleiades_taylor_run_76_ext
+#define pleiades_taylor_run_78 pleiades_taylor_run_78_ext
+#define pleiades_taylor_run_80 pleiades_taylor_run_80_ext
+#define pleiades_taylor_run_82 pleiades_taylor_run_82_ext
+#define pleiades_taylor_run_84 pleiades_taylor_run_84_ext
+#define pleiades_taylor_run_86 pleiades_taylor_run_86_ext
+#define pleiades_taylor_run_88 pleiades_taylor_run_88_ext
+#define pleiades_taylor_run_90 pleiades_taylor_run_90_ext
+#define pleiades_taylor_run_92 pleiades_taylor_run_92_ext
+#define pleiades_taylor_run_95 pleiades_taylor_run_95_ext
+#define pleiades_taylor_run_97 pleiades_taylor_run_97_ext
+#define pleiades_taylor_run_99 pleiades_taylor_run_99_ext
+#define pleiades_taylor_run_101 pleiades_taylor_run_101_ext
+#define pleiades_taylor_run_103 pleiades_taylor_run_103_ext
+#define pleiades_taylor_run_105 pleiades_taylor_run_105_ext
+#define pleiades_taylor_run_107 pleiades_taylor_run_107_ext
+#define pleiades_taylor_run_109 pleiades_taylor_run_109_ext
+#define pleiades_taylor_run_111 pleiades_taylor_run_111_ext
+#define pleiades_taylor_run_112 pleiades_taylor_run_112_ext
+#define pleiades_taylor_run_114 pleiades_taylor_run_114_ext
+#define pleiades_taylor_run_116 pleiades_taylor_run_116_ext
+#define pleiades_taylor_run_118 pleiades_taylor_run_118_ext
+#define pleiades_taylor_run_120 pleiades_taylor_run_120_ext
+#define pleiades_taylor_run_122 pleiades_taylor_run_122_ext
+#define pleiades_taylor_run_124 pleiades_taylor_run_124_ext
+#define pleiades_taylor_run_126 pleiades_taylor_run_126_ext
+#define pleiades_taylor_run_128 pleiades_taylor_run_128_ext
+#define pleiades_taylor_run_131 pleiades_taylor_run_131_ext
+#define pleiades_taylor_run_133 pleiades_taylor_run_133_ext
+#define pleiades_taylor_run_135 pleiades_taylor_run_135_ext
+#define pleiades_taylor_run_137 pleiades_taylor_run_137_ext
+#define pleiades_taylor_run_139 pleiades_taylor_run_139_ext
+#define pleiades_taylor_run_141 pleiades_taylor_run_141_ext
+#define pleiades_taylor_run_143 pleiades_taylor_run_143_ext
+#define pleiades_taylor_run_145 pleiades_taylor_run_145_ext
+#define pleiades_taylor_run_147 pleiades_taylor_run_147_ext
+#define pleiades_taylor_run_149 pleiades_taylor_run_149_ext
+#define pleiades_taylor_run_151 pleiades_taylor_run_151_ext
+#define pleiades_taylor_run_153 pleiades_taylor_run_153_ext
+#define pleiades_taylor_run_155 pleiades_taylor_run_155_ext
+#define pleiades_taylor_run_157 pleiades_taylor_run_157_ext
+#define pleiades_taylor_run_159 pleiades_taylor_run_159_ext
+#define pleiades_taylor_run_161 pleiades_taylor_run_161_ext
+#define pleiades_taylor_run_163 pleiades_taylor_run_163_ext
+#define pleiades_taylor_run_165 pleiades_taylor_run_165_ext
+#define pleiades_taylor_run_167 pleiades_taylor_run_167_ext
+#define pleiades_taylor_run_169 pleiades_taylor_run_169_ext
+#define pleiades_taylor_run_171 pleiades_taylor_run_171_ext
+#define pleiades_taylor_run_173 pleiades_taylor_run_173_ext
+#define pleiades_taylor_run_176 pleiades_taylor_run_176_ext
+#define pleiades_taylor_run_178 pleiades_taylor_run_178_ext
+#define pleiades_taylor_run_180 pleiades_taylor_run_180_ext
+#define pleiades_taylor_run_182 pleiades_taylor_run_182_ext
+#define pleiades_taylor_run_184 pleiades_taylor_run_184_ext
+#define pleiades_taylor_run_186 pleiades_taylor_run_186_ext
+#define pleiades_taylor_run_188 pleiades_taylor_run_188_ext
+#define pleiades_taylor_run_190 pleiades_taylor_run_190_ext
+#define pleiades_taylor_run_192 pleiades_taylor_run_192_ext
+#define pleiades_taylor_run_193 pleiades_taylor_run_193_ext
+#define pleiades_taylor_run_195 pleiades_taylor_run_195_ext
+#define pleiades_taylor_run_197 pleiades_taylor_run_197_ext
+#define pleiades_taylor_run_199 pleiades_taylor_run_199_ext
+#define pleiades_taylor_run_201 pleiades_taylor_run_201_ext
+#define pleiades_taylor_run_203 pleiades_taylor_run_203_ext
+#define pleiades_taylor_run_205 pleiades_taylor_run_205_ext
+#define pleiades_taylor_run_207 pleiades_taylor_run_207_ext
+#define pleiades_taylor_run_209 pleiades_taylor_run_209_ext
+#define pleiades_taylor_run_212 pleiades_taylor_run_212_ext
+#define pleiades_taylor_run_214 pleiades_taylor_run_214_ext
+#define pleiades_taylor_run_216 pleiades_taylor_run_216_ext
+#define pleiades_taylor_run_218 pleiades_taylor_run_218_ext
+#define pleiades_taylor_run_220 pleiades_taylor_run_220_ext
+#define pleiades_taylor_run_222 pleiades_taylor_run_222_ext
+#define pleiades_taylor_run_224 pleiades_taylor_run_224_ext
+#define pleiades_taylor_run_226 pleiades_taylor_run_226_ext
+#define pleiades_taylor_run_228 pleiades_taylor_run_228_ext
+#define pleiades_taylor_run_229 pleiades_taylor_run_229_ext
+#define pleiades_taylor_run_231 pleiades_taylor_run_231_ext
+#define pleiades_taylor_run_233 pleiades_taylor_run_233_ext
+#define pleiades_taylor_run_235 pleiades_taylor_run_235_ext
+#define pleiades_taylor_run_237 pleiades_taylor_run_237_ext
+#define pleiades_taylor_run_238 pleiades_taylor_run_238_ext
+#define pleiades_taylor_run_240 pleiades_taylor_run_240_ext
+#define pleiades_taylor_run_242 pleiades_taylor_run_242_ext
+#define pleiades_taylor_run_244 pleiades_taylor_run_244_ext
+#define pleiades_taylor_run_246 pleiades_taylor_run_246_ext
+#define pleiades_taylor_run_247 pleiades_taylor_run_247_ext
+#define pleiades_taylor_run_249 pleiades_taylor_run_249_ext
+#define pleiades_taylor_run_251 pleiades_taylor_run_251_ext
+#define pleiades_taylor_run_253 pleiades_taylor_run_253_ext
+#define pleiades_taylor_run_255 pleiades_taylor_run_255_ext
+#define pleiades_taylor_run_256 pleiades_taylor_run_256_ext
+#define pleiades_taylor_run_258 pleiades_taylor_run_258_ext
+#define pleiades_taylor_run_260 pleiades_taylor_run_260_ext
+#define pleiades_taylor_run_262 pleiades_taylor_run_262_ext
+#define pleiades_taylor_run_264 pleiades_taylor_run_264_ext
+#define pleiades_taylor_run_265 pleiades_taylor_run_265_ext
+#define pleiades_taylor_run_267 pleiades_taylor_run_267_ext
+#define pleiades_taylor_run_269 pleiades_taylor_run_269_ext
+#define pleiades_taylor_run_271 pleiades_taylor_run_271_ext
+#define pleiades_taylor_run_273 pleiades_taylor_run_273_ext
+#define pleiades_taylor_run_274 pleiades_taylor_run_274_ext
+#define pleiades_taylor_run_276 pleiades_taylor_run_276_ext
+#define pleiades_taylor_run_278 pleiades_taylor_run_278_ext
+#define pleiades_taylor_run_280 pleiades_taylor_run_280_ext
+#define pleiades_taylor_run_282 pleiades_taylor_run_282_ext
+#define pleiades_taylor_run_283 pleiades_taylor_run_283_ext
+#define pleiades_taylor_run_285 pleiades_taylor_run_285_ext
+#define pleiades_taylor_run_287 pleiades_taylor_run_287_ext
+#define pleiades_taylor_run_288 pleiades_taylor_run_288_ext
+#define pleiades_taylor_run_291 pleiades_taylor_run_291_ext
+#define pleiades_taylor_run_292 pleiades_taylor_run_292_ext
+#define pleiades_taylor_run_294 pleiades_taylor_run_294_ext
+#define pleiades_taylor_run_296 pleiades_taylor_run_296_ext
+#define pleiades_taylor_run_298 pleiades_taylor_run_298_ext
+#define pleiades_taylor_run_300 pleiades_taylor_run_300_ext
+#define pleiades_taylor_run_301 pleiades_taylor_run_301_ext
+#define pleiades_taylor_run_302 pleiades_taylor_run_302_ext
+#define pleiades_taylor_run_304 pleiades_taylor_run_304_ext
+#define pleiades_taylor_run_306 pleiades_taylor_run_306_ext
+#define pleiades_taylor_run_308 pleiades_taylor_run_308_ext
+#define pleiades_taylor_run_311 pleiades_taylor_run_311_ext
+#define pleiades_taylor_run_313 pleiades_taylor_run_313_ext
+#define pleiades_taylor_run_315 pleiades_taylor_run_315_ext
+#define pleiades_taylor_run_317 pleiades_taylor_run_317_ext
+#define pleiades_taylor_run_321 pleiades_taylor_run_321_ext
+#define pleiades_taylor_run_323 pleiades_taylor_run_323_ext
+#define pleiades_taylor_run_325 pleiades_taylor_run_325_ext
+#define pleiades_taylor_run_327 pleiades_taylor_run_327_ext
+#define pleiades_taylor_run_328 pleiades_taylor_run_328_ext
+#define pleiades_taylor_run_330 pleiades_taylor_run_330_ext
+#define pleiades_taylor_run_332 pleiades_taylor_run_332_ext
+#define pleiades_taylor_run_334 pleiades_taylor_run_334_ext
+#define pleiades_taylor_run_336 pleiades_taylor_run_336_ext
+#define pleiades_taylor_run_337 pleiades_taylor_run_337_ext
+#define pleiades_taylor_run_338 pleiades_taylor_run_338_ext
+#define pleiades_taylor_run_340 pleiades_taylor_run_340_ext
+#define pleiades_taylor_run_342 pleiades_taylor_run_342_ext
+#define pleiades_taylor_run_344 pleiades_taylor_run_344_ext
+#define pleiades_taylor_run_347 pleiades_taylor_run_347_ext
+#define pleiades_taylor_run_349 pleiades_taylor_run_349_ext
+#define pleiades_taylor_run_351 pleiades_taylor_run_351_ext
+#define pleiades_taylor_run_353 pleiades_taylor_run_353_ext
+#define pleiades_taylor_run_357 pleiades_taylor_run_357_ext
+#define pleiades_taylor_run_359 pleiades_taylor_run_359_ext
+#define pleiades_taylor_run_361 pleiades_taylor_run_361_ext
+#define pleiades_taylor_run_363 pleiades_taylor_run_363_ext
+#endif
+#ifndef EOMC_EXTENDED
+/* Lines 0 .. 19 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2] = X[0] - X[2];
+    W[3] = 2.0;
+    W[7] = X[1] - X[3];
+    W[11] = X[0] - X[4];
+    W[14] = X[1] - X[5];
+    W[18] = X[0] - X[6];
+    W[21] = X[1] - X[7];
+    W[25] = X[0] - X[8];
+    W[28] = X[1] - X[9];
+    W[32] = X[0] - X[10];
+    W[35] = X[1] - X[11];
+    W[39] = X[0] - X[12];
+    W[42] = X[1] - X[13];
+    W[45] = X[2] - X[4];
+    W[47] = X[3] - X[5];
+    W[50] = X[2] - X[6];
+    W[52] = X[3] - X[7];
+    W[55] = X[2] - X[8];
+    W[57] = X[3] - X[9];
+    W[60] = X[2] - X[10];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[62] = X[3] - X[11];
+    W[65] = X[2] - X[12];
+    W[67] = X[3] - X[13];
+    W[70] = X[4] - X[6];
+    W[72] = X[5] - X[7];
+    W[75] = X[4] - X[8];
+    W[77] = X[5] - X[9];
+    W[80] = X[4] - X[10];
+    W[82] = X[5] - X[11];
+    W[85] = X[4] - X[12];
+    W[87] = X[5] - X[13];
+    W[90] = X[6] - X[8];
+    W[92] = X[7] - X[9];
+    W[95] = X[6] - X[10];
+    W[97] = X[7] - X[11];
+    W[100] = X[6] - X[12];
+    W[102] = X[7] - X[13];
+    W[105] = X[8] - X[10];
+    W[107] = X[9] - X[11];
+    W[110] = X[8] - X[12];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_3(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[112] = X[9] - X[13];
+    W[115] = X[10] - X[12];
+    W[117] = X[11] - X[13];
+    W[120] = p[0];
+    W[121] = p[1];
+    W[122] = p[2];
+    W[123] = p[3];
+    W[124] = p[4];
+    W[125] = p[5];
+    W[126] = p[6];
+    W[127] = p[7];
+    W[128] = p[8];
+    W[129] = p[9];
+    W[130] = p[10];
+    W[131] = p[11];
+    W[132] = p[12];
+    W[133] = p[13];
+    W[134] = p[14];
+    W[135] = p[15];
+    W[136] = p[16];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_4(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[137] = p[17];
+    W[138] = p[18];
+    W[139] = p[19];
+    W[140] = p[20];
+    W[141] = p[21];
+    W[142] = p[22];
+    W[143] = p[23];
+    W[144] = p[24];
+    W[145] = p[25];
+    W[146] = p[26];
+    W[147] = p[27];
+    W[148] = -2.0;
+    W[149] = -1.5;
+    W[150] = 0.5;
+    W[4] = W[2] * W[2];
+    W[8] = W[7] * W[7];
+    W[12] = W[11] * W[11];
+    W[15] = W[14] * W[14];
+    W[19] = W[18] * W[18];
+    W[22] = W[21] * W[21];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_5(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[26] = W[25] * W[25];
+    W[29] = W[28] * W[28];
+    W[33] = W[32] * W[32];
+    W[36] = W[35] * W[35];
+    W[40] = W[39] * W[39];
+    W[43] = W[42] * W[42];
+    W[46] = W[45] * W[45];
+    W[48] = W[47] * W[47];
+    W[51] = W[50] * W[50];
+    W[53] = W[52] * W[52];
+    W[56] = W[55] * W[55];
+    W[58] = W[57] * W[57];
+    W[61] = W[60] * W[60];
+    W[63] = W[62] * W[62];
+    W[66] = W[65] * W[65];
+    W[68] = W[67] * W[67];
+    W[71] = W[70] * W[70];
+    W[73] = W[72] * W[72];
+    W[76] = W[75] * W[75];
+    W[78] = W[77] * W[77];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[81] = W[80] * W[80];
+    W[83] = W[82] * W[82];
+    W[86] = W[85] * W[85];
+    W[88] = W[87] * W[87];
+    W[91] = W[90] * W[90];
+    W[93] = W[92] * W[92];
+    W[96] = W[95] * W[95];
+    W[98] = W[97] * W[97];
+    W[101] = W[100] * W[100];
+    W[103] = W[102] * W[102];
+    W[106] = W[105] * W[105];
+    W[108] = W[107] * W[107];
+    W[111] = W[110] * W[110];
+    W[113] = W[112] * W[112];
+    W[116] = W[115] * W[115];
+    W[118] = W[117] * W[117];
+    W[151] = W[150] * W[132];
+    W[155] = W[150] * W[131];
+    W[160] = W[150] * W[130];
+    W[165] = W[150] * W[129];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_7(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[170] = W[150] * W[128];
+    W[175] = W[150] * W[127];
+    W[199] = W[150] * W[137];
+    W[203] = W[150] * W[136];
+    W[208] = W[150] * W[135];
+    W[213] = W[150] * W[134];
+    W[218] = W[150] * W[133];
+    W[243] = W[150] * W[141];
+    W[247] = W[150] * W[140];
+    W[252] = W[150] * W[139];
+    W[257] = W[150] * W[138];
+    W[283] = W[150] * W[144];
+    W[287] = W[150] * W[143];
+    W[292] = W[150] * W[142];
+    W[319] = W[150] * W[146];
+    W[323] = W[150] * W[145];
+    W[351] = W[150] * W[147];
+    W[9] = W[4] + W[8];
+    W[16] = W[12] + W[15];
+    W[23] = W[19] + W[22];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_8(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[30] = W[26] + W[29];
+    W[37] = W[33] + W[36];
+    W[44] = W[40] + W[43];
+    W[49] = W[46] + W[48];
+    W[54] = W[51] + W[53];
+    W[59] = W[56] + W[58];
+    W[64] = W[61] + W[63];
+    W[69] = W[66] + W[68];
+    W[74] = W[71] + W[73];
+    W[79] = W[76] + W[78];
+    W[84] = W[81] + W[83];
+    W[89] = W[86] + W[88];
+    W[94] = W[91] + W[93];
+    W[99] = W[96] + W[98];
+    W[104] = W[101] + W[103];
+    W[109] = W[106] + W[108];
+    W[114] = W[111] + W[113];
+    W[119] = W[116] + W[118];
+    W[152] = pow(W[44], W[149]);
+    W[156] = pow(W[37], W[149]);
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_9(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[161] = pow(W[30], W[149]);
+    W[166] = pow(W[23], W[149]);
+    W[171] = pow(W[16], W[149]);
+    W[176] = pow(W[9], W[149]);
+    W[200] = pow(W[69], W[149]);
+    W[204] = pow(W[64], W[149]);
+    W[209] = pow(W[59], W[149]);
+    W[214] = pow(W[54], W[149]);
+    W[219] = pow(W[49], W[149]);
+    W[244] = pow(W[89], W[149]);
+    W[248] = pow(W[84], W[149]);
+    W[253] = pow(W[79], W[149]);
+    W[258] = pow(W[74], W[149]);
+    W[284] = pow(W[104], W[149]);
+    W[288] = pow(W[99], W[149]);
+    W[293] = pow(W[94], W[149]);
+    W[320] = pow(W[114], W[149]);
+    W[324] = pow(W[109], W[149]);
+    W[352] = pow(W[119], W[149]);
+    W[153] = W[39] * W[152];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_10(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[157] = W[32] * W[156];
+    W[162] = W[25] * W[161];
+    W[167] = W[18] * W[166];
+    W[172] = W[11] * W[171];
+    W[177] = W[2] * W[176];
+    W[181] = W[42] * W[152];
+    W[183] = W[35] * W[156];
+    W[186] = W[28] * W[161];
+    W[189] = W[21] * W[166];
+    W[192] = W[14] * W[171];
+    W[195] = W[7] * W[176];
+    W[201] = W[65] * W[200];
+    W[205] = W[60] * W[204];
+    W[210] = W[55] * W[209];
+    W[215] = W[50] * W[214];
+    W[220] = W[45] * W[219];
+    W[226] = W[67] * W[200];
+    W[228] = W[62] * W[204];
+    W[231] = W[57] * W[209];
+    W[234] = W[52] * W[214];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_11(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[237] = W[47] * W[219];
+    W[245] = W[85] * W[244];
+    W[249] = W[80] * W[248];
+    W[254] = W[75] * W[253];
+    W[259] = W[70] * W[258];
+    W[267] = W[87] * W[244];
+    W[269] = W[82] * W[248];
+    W[272] = W[77] * W[253];
+    W[275] = W[72] * W[258];
+    W[285] = W[100] * W[284];
+    W[289] = W[95] * W[288];
+    W[294] = W[90] * W[293];
+    W[304] = W[102] * W[284];
+    W[306] = W[97] * W[288];
+    W[309] = W[92] * W[293];
+    W[321] = W[110] * W[320];
+    W[325] = W[105] * W[324];
+    W[337] = W[112] * W[320];
+    W[339] = W[107] * W[324];
+    W[353] = W[115] * W[352];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_12(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[365] = W[117] * W[352];
+    W[154] = W[151] * W[153];
+    W[158] = W[155] * W[157];
+    W[163] = W[160] * W[162];
+    W[168] = W[165] * W[167];
+    W[173] = W[170] * W[172];
+    W[178] = W[175] * W[177];
+    W[182] = W[151] * W[181];
+    W[184] = W[155] * W[183];
+    W[187] = W[160] * W[186];
+    W[190] = W[165] * W[189];
+    W[193] = W[170] * W[192];
+    W[196] = W[175] * W[195];
+    W[202] = W[199] * W[201];
+    W[206] = W[203] * W[205];
+    W[211] = W[208] * W[210];
+    W[216] = W[213] * W[215];
+    W[221] = W[218] * W[220];
+    W[224] = W[127] * W[177];
+    W[227] = W[199] * W[226];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_13(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[229] = W[203] * W[228];
+    W[232] = W[208] * W[231];
+    W[235] = W[213] * W[234];
+    W[238] = W[218] * W[237];
+    W[241] = W[127] * W[195];
+    W[246] = W[243] * W[245];
+    W[250] = W[247] * W[249];
+    W[255] = W[252] * W[254];
+    W[260] = W[257] * W[259];
+    W[263] = W[133] * W[220];
+    W[265] = W[128] * W[172];
+    W[268] = W[243] * W[267];
+    W[270] = W[247] * W[269];
+    W[273] = W[252] * W[272];
+    W[276] = W[257] * W[275];
+    W[279] = W[133] * W[237];
+    W[281] = W[128] * W[192];
+    W[286] = W[283] * W[285];
+    W[290] = W[287] * W[289];
+    W[295] = W[292] * W[294];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_14(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[298] = W[138] * W[259];
+    W[300] = W[134] * W[215];
+    W[302] = W[129] * W[167];
+    W[305] = W[283] * W[304];
+    W[307] = W[287] * W[306];
+    W[310] = W[292] * W[309];
+    W[313] = W[138] * W[275];
+    W[315] = W[134] * W[234];
+    W[317] = W[129] * W[189];
+    W[322] = W[319] * W[321];
+    W[326] = W[323] * W[325];
+    W[329] = W[142] * W[294];
+    W[331] = W[139] * W[254];
+    W[333] = W[135] * W[210];
+    W[335] = W[130] * W[162];
+    W[338] = W[319] * W[337];
+    W[340] = W[323] * W[339];
+    W[343] = W[142] * W[309];
+    W[345] = W[139] * W[272];
+    W[347] = W[135] * W[231];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_15(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[349] = W[130] * W[186];
+    W[354] = W[147] * W[353];
+    W[355] = W[145] * W[325];
+    W[357] = W[143] * W[289];
+    W[359] = W[140] * W[249];
+    W[361] = W[136] * W[205];
+    W[363] = W[131] * W[157];
+    W[366] = W[147] * W[365];
+    W[367] = W[145] * W[339];
+    W[369] = W[143] * W[306];
+    W[371] = W[140] * W[269];
+    W[373] = W[136] * W[228];
+    W[375] = W[131] * W[183];
+    W[377] = W[351] * W[353];
+    W[384] = W[351] * W[365];
+    W[159] = W[154] + W[158];
+    W[185] = W[182] + W[184];
+    W[207] = W[202] + W[206];
+    W[230] = W[227] + W[229];
+    W[251] = W[246] + W[250];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_16(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[271] = W[268] + W[270];
+    W[291] = W[286] + W[290];
+    W[308] = W[305] + W[307];
+    W[327] = W[322] + W[326];
+    W[341] = W[338] + W[340];
+    W[356] = W[354] - W[355];
+    W[368] = W[366] - W[367];
+    W[378] = W[322] + W[377];
+    W[385] = W[338] + W[384];
+    W[164] = W[159] + W[163];
+    W[188] = W[185] + W[187];
+    W[212] = W[207] + W[211];
+    W[233] = W[230] + W[232];
+    W[256] = W[251] + W[255];
+    W[274] = W[271] + W[273];
+    W[296] = W[291] + W[295];
+    W[311] = W[308] + W[310];
+    W[328] = W[3] * W[327];
+    W[342] = W[3] * W[341];
+    W[358] = W[356] - W[357];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_17(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[370] = W[368] - W[369];
+    W[379] = W[286] + W[378];
+    W[386] = W[305] + W[385];
+    W[169] = W[164] + W[168];
+    W[191] = W[188] + W[190];
+    W[217] = W[212] + W[216];
+    W[236] = W[233] + W[235];
+    W[261] = W[256] + W[260];
+    W[277] = W[274] + W[276];
+    W[297] = W[3] * W[296];
+    W[312] = W[3] * W[311];
+    W[330] = W[328] - W[329];
+    W[344] = W[342] - W[343];
+    W[360] = W[358] - W[359];
+    W[372] = W[370] - W[371];
+    W[380] = W[246] + W[379];
+    W[387] = W[268] + W[386];
+    W[174] = W[169] + W[173];
+    W[194] = W[191] + W[193];
+    W[222] = W[217] + W[221];
+    return 0;
+}
+
+/* Lines 340 .. 359 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_18(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[239] = W[236] + W[238];
+    W[262] = W[3] * W[261];
+    W[278] = W[3] * W[277];
+    W[299] = W[297] - W[298];
+    W[314] = W[312] - W[313];
+    W[332] = W[330] - W[331];
+    W[346] = W[344] - W[345];
+    W[362] = W[360] - W[361];
+    W[374] = W[372] - W[373];
+    W[381] = W[202] + W[380];
+    W[388] = W[227] + W[387];
+    W[179] = W[174] + W[178];
+    W[197] = W[194] + W[196];
+    W[223] = W[3] * W[222];
+    W[240] = W[3] * W[239];
+    W[264] = W[262] - W[263];
+    W[280] = W[278] - W[279];
+    W[301] = W[299] - W[300];
+    W[316] = W[314] - W[315];
+    W[334] = W[332] - W[333];
+    return 0;
+}
+
+/* Lines 360 .. 379 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_19(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[348] = W[346] - W[347];
+    W[364] = W[362] - W[363];
+    W[376] = W[374] - W[375];
+    W[382] = W[154] + W[381];
+    W[389] = W[182] + W[388];
+    W[180] = W[3] * W[179];
+    W[198] = W[3] * W[197];
+    W[225] = W[223] - W[224];
+    W[242] = W[240] - W[241];
+    W[266] = W[264] - W[265];
+    W[282] = W[280] - W[281];
+    W[303] = W[301] - W[302];
+    W[318] = W[316] - W[317];
+    W[336] = W[334] - W[335];
+    W[350] = W[348] - W[349];
+    W[383] = W[148] * W[382];
+    W[390] = W[148] * W[389];
+    X[28] = X[14];
+    X[29] = X[15];
+    X[30] = X[16];
+    return 0;
+}
+
+/* Lines 380 .. 399 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_20(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[31] = X[17];
+    X[32] = X[18];
+    X[33] = X[19];
+    X[34] = X[20];
+    X[35] = X[21];
+    X[36] = X[22];
+    X[37] = X[23];
+    X[38] = X[24];
+    X[39] = X[25];
+    X[40] = X[26];
+    X[41] = X[27];
+    X[42] = -W[180] / W[120];
+    X[43] = -W[198] / W[120];
+    X[44] = -W[225] / W[121];
+    X[45] = -W[242] / W[121];
+    X[46] = -W[266] / W[122];
+    X[47] = -W[282] / W[122];
+    X[48] = -W[303] / W[123];
+    X[49] = -W[318] / W[123];
+    X[50] = -W[336] / W[124];
+    return 0;
+}
+
+/* Lines 400 .. 404 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_21(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[51] = -W[350] / W[124];
+    X[52] = -W[364] / W[125];
+    X[53] = -W[376] / W[125];
+    X[54] = -W[383] / W[126];
+    X[55] = -W[390] / W[126];
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_22(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[407] = X[28] - X[30];
+    W[412] = X[29] - X[31];
+    W[416] = X[28] - X[32];
+    W[419] = X[29] - X[33];
+    W[423] = X[28] - X[34];
+    W[426] = X[29] - X[35];
+    W[430] = X[28] - X[36];
+    W[433] = X[29] - X[37];
+    W[437] = X[28] - X[38];
+    W[440] = X[29] - X[39];
+    W[444] = X[28] - X[40];
+    W[447] = X[29] - X[41];
+    W[450] = X[30] - X[32];
+    W[452] = X[31] - X[33];
+    W[455] = X[30] - X[34];
+    W[457] = X[31] - X[35];
+    W[460] = X[30] - X[36];
+    W[462] = X[31] - X[37];
+    W[465] = X[30] - X[38];
+    W[467] = X[31] - X[39];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_23(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[470] = X[30] - X[40];
+    W[472] = X[31] - X[41];
+    W[475] = X[32] - X[34];
+    W[477] = X[33] - X[35];
+    W[480] = X[32] - X[36];
+    W[482] = X[33] - X[37];
+    W[485] = X[32] - X[38];
+    W[487] = X[33] - X[39];
+    W[490] = X[32] - X[40];
+    W[492] = X[33] - X[41];
+    W[495] = X[34] - X[36];
+    W[497] = X[35] - X[37];
+    W[500] = X[34] - X[38];
+    W[502] = X[35] - X[39];
+    W[505] = X[34] - X[40];
+    W[507] = X[35] - X[41];
+    W[510] = X[36] - X[38];
+    W[512] = X[37] - X[39];
+    W[515] = X[36] - X[40];
+    W[517] = X[37] - X[41];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_24(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[520] = X[38] - X[40];
+    W[522] = X[39] - X[41];
+    W[409] = W[2] * W[407] * 2.0;
+    W[413] = W[7] * W[412] * 2.0;
+    W[417] = W[11] * W[416] * 2.0;
+    W[420] = W[14] * W[419] * 2.0;
+    W[424] = W[18] * W[423] * 2.0;
+    W[427] = W[21] * W[426] * 2.0;
+    W[431] = W[25] * W[430] * 2.0;
+    W[434] = W[28] * W[433] * 2.0;
+    W[438] = W[32] * W[437] * 2.0;
+    W[441] = W[35] * W[440] * 2.0;
+    W[445] = W[39] * W[444] * 2.0;
+    W[448] = W[42] * W[447] * 2.0;
+    W[451] = W[45] * W[450] * 2.0;
+    W[453] = W[47] * W[452] * 2.0;
+    W[456] = W[50] * W[455] * 2.0;
+    W[458] = W[52] * W[457] * 2.0;
+    W[461] = W[55] * W[460] * 2.0;
+    W[463] = W[57] * W[462] * 2.0;
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_25(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[466] = W[60] * W[465] * 2.0;
+    W[468] = W[62] * W[467] * 2.0;
+    W[471] = W[65] * W[470] * 2.0;
+    W[473] = W[67] * W[472] * 2.0;
+    W[476] = W[70] * W[475] * 2.0;
+    W[478] = W[72] * W[477] * 2.0;
+    W[481] = W[75] * W[480] * 2.0;
+    W[483] = W[77] * W[482] * 2.0;
+    W[486] = W[80] * W[485] * 2.0;
+    W[488] = W[82] * W[487] * 2.0;
+    W[491] = W[85] * W[490] * 2.0;
+    W[493] = W[87] * W[492] * 2.0;
+    W[496] = W[90] * W[495] * 2.0;
+    W[498] = W[92] * W[497] * 2.0;
+    W[501] = W[95] * W[500] * 2.0;
+    W[503] = W[97] * W[502] * 2.0;
+    W[506] = W[100] * W[505] * 2.0;
+    W[508] = W[102] * W[507] * 2.0;
+    W[511] = W[105] * W[510] * 2.0;
+    W[513] = W[107] * W[512] * 2.0;
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_26(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[516] = W[110] * W[515] * 2.0;
+    W[518] = W[112] * W[517] * 2.0;
+    W[521] = W[115] * W[520] * 2.0;
+    W[523] = W[117] * W[522] * 2.0;
+    W[414] = W[409] + W[413];
+    W[421] = W[417] + W[420];
+    W[428] = W[424] + W[427];
+    W[435] = W[431] + W[434];
+    W[442] = W[438] + W[441];
+    W[449] = W[445] + W[448];
+    W[454] = W[451] + W[453];
+    W[459] = W[456] + W[458];
+    W[464] = W[461] + W[463];
+    W[469] = W[466] + W[468];
+    W[474] = W[471] + W[473];
+    W[479] = W[476] + W[478];
+    W[484] = W[481] + W[483];
+    W[489] = W[486] + W[488];
+    W[494] = W[491] + W[493];
+    W[499] = W[496] + W[498];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_27(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[504] = W[501] + W[503];
+    W[509] = W[506] + W[508];
+    W[514] = W[511] + W[513];
+    W[519] = W[516] + W[518];
+    W[524] = W[521] + W[523];
+    W[557] = -1.5 * W[449] * W[152] / W[44];
+    W[561] = -1.5 * W[442] * W[156] / W[37];
+    W[566] = -1.5 * W[435] * W[161] / W[30];
+    W[571] = -1.5 * W[428] * W[166] / W[23];
+    W[576] = -1.5 * W[421] * W[171] / W[16];
+    W[581] = -1.5 * W[414] * W[176] / W[9];
+    W[605] = -1.5 * W[474] * W[200] / W[69];
+    W[609] = -1.5 * W[469] * W[204] / W[64];
+    W[614] = -1.5 * W[464] * W[209] / W[59];
+    W[619] = -1.5 * W[459] * W[214] / W[54];
+    W[624] = -1.5 * W[454] * W[219] / W[49];
+    W[649] = -1.5 * W[494] * W[244] / W[89];
+    W[653] = -1.5 * W[489] * W[248] / W[84];
+    W[658] = -1.5 * W[484] * W[253] / W[79];
+    W[663] = -1.5 * W[479] * W[258] / W[74];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_28(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[689] = -1.5 * W[509] * W[284] / W[104];
+    W[693] = -1.5 * W[504] * W[288] / W[99];
+    W[698] = -1.5 * W[499] * W[293] / W[94];
+    W[725] = -1.5 * W[519] * W[320] / W[114];
+    W[729] = -1.5 * W[514] * W[324] / W[109];
+    W[757] = -1.5 * W[524] * W[352] / W[119];
+    W[558] = W[39] * W[557] + W[444] * W[152];
+    W[562] = W[32] * W[561] + W[437] * W[156];
+    W[567] = W[25] * W[566] + W[430] * W[161];
+    W[572] = W[18] * W[571] + W[423] * W[166];
+    W[577] = W[11] * W[576] + W[416] * W[171];
+    W[582] = W[2] * W[581] + W[407] * W[176];
+    W[586] = W[42] * W[557] + W[447] * W[152];
+    W[588] = W[35] * W[561] + W[440] * W[156];
+    W[591] = W[28] * W[566] + W[433] * W[161];
+    W[594] = W[21] * W[571] + W[426] * W[166];
+    W[597] = W[14] * W[576] + W[419] * W[171];
+    W[600] = W[7] * W[581] + W[412] * W[176];
+    W[606] = W[65] * W[605] + W[470] * W[200];
+    W[610] = W[60] * W[609] + W[465] * W[204];
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_29(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[615] = W[55] * W[614] + W[460] * W[209];
+    W[620] = W[50] * W[619] + W[455] * W[214];
+    W[625] = W[45] * W[624] + W[450] * W[219];
+    W[631] = W[67] * W[605] + W[472] * W[200];
+    W[633] = W[62] * W[609] + W[467] * W[204];
+    W[636] = W[57] * W[614] + W[462] * W[209];
+    W[639] = W[52] * W[619] + W[457] * W[214];
+    W[642] = W[47] * W[624] + W[452] * W[219];
+    W[650] = W[85] * W[649] + W[490] * W[244];
+    W[654] = W[80] * W[653] + W[485] * W[248];
+    W[659] = W[75] * W[658] + W[480] * W[253];
+    W[664] = W[70] * W[663] + W[475] * W[258];
+    W[672] = W[87] * W[649] + W[492] * W[244];
+    W[674] = W[82] * W[653] + W[487] * W[248];
+    W[677] = W[77] * W[658] + W[482] * W[253];
+    W[680] = W[72] * W[663] + W[477] * W[258];
+    W[690] = W[100] * W[689] + W[505] * W[284];
+    W[694] = W[95] * W[693] + W[500] * W[288];
+    W[699] = W[90] * W[698] + W[495] * W[293];
+    W[709] = W[102] * W[689] + W[507] * W[284];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_30(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[711] = W[97] * W[693] + W[502] * W[288];
+    W[714] = W[92] * W[698] + W[497] * W[293];
+    W[726] = W[110] * W[725] + W[515] * W[320];
+    W[730] = W[105] * W[729] + W[510] * W[324];
+    W[742] = W[112] * W[725] + W[517] * W[320];
+    W[744] = W[107] * W[729] + W[512] * W[324];
+    W[758] = W[115] * W[757] + W[520] * W[352];
+    W[770] = W[117] * W[757] + W[522] * W[352];
+    W[559] = W[151] * W[558];
+    W[563] = W[155] * W[562];
+    W[568] = W[160] * W[567];
+    W[573] = W[165] * W[572];
+    W[578] = W[170] * W[577];
+    W[583] = W[175] * W[582];
+    W[587] = W[151] * W[586];
+    W[589] = W[155] * W[588];
+    W[592] = W[160] * W[591];
+    W[595] = W[165] * W[594];
+    W[598] = W[170] * W[597];
+    W[601] = W[175] * W[600];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_31(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[607] = W[199] * W[606];
+    W[611] = W[203] * W[610];
+    W[616] = W[208] * W[615];
+    W[621] = W[213] * W[620];
+    W[626] = W[218] * W[625];
+    W[629] = W[127] * W[582];
+    W[632] = W[199] * W[631];
+    W[634] = W[203] * W[633];
+    W[637] = W[208] * W[636];
+    W[640] = W[213] * W[639];
+    W[643] = W[218] * W[642];
+    W[646] = W[127] * W[600];
+    W[651] = W[243] * W[650];
+    W[655] = W[247] * W[654];
+    W[660] = W[252] * W[659];
+    W[665] = W[257] * W[664];
+    W[668] = W[133] * W[625];
+    W[670] = W[128] * W[577];
+    W[673] = W[243] * W[672];
+    W[675] = W[247] * W[674];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_32(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[678] = W[252] * W[677];
+    W[681] = W[257] * W[680];
+    W[684] = W[133] * W[642];
+    W[686] = W[128] * W[597];
+    W[691] = W[283] * W[690];
+    W[695] = W[287] * W[694];
+    W[700] = W[292] * W[699];
+    W[703] = W[138] * W[664];
+    W[705] = W[134] * W[620];
+    W[707] = W[129] * W[572];
+    W[710] = W[283] * W[709];
+    W[712] = W[287] * W[711];
+    W[715] = W[292] * W[714];
+    W[718] = W[138] * W[680];
+    W[720] = W[134] * W[639];
+    W[722] = W[129] * W[594];
+    W[727] = W[319] * W[726];
+    W[731] = W[323] * W[730];
+    W[734] = W[142] * W[699];
+    W[736] = W[139] * W[659];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_33(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[738] = W[135] * W[615];
+    W[740] = W[130] * W[567];
+    W[743] = W[319] * W[742];
+    W[745] = W[323] * W[744];
+    W[748] = W[142] * W[714];
+    W[750] = W[139] * W[677];
+    W[752] = W[135] * W[636];
+    W[754] = W[130] * W[591];
+    W[759] = W[147] * W[758];
+    W[760] = W[145] * W[730];
+    W[762] = W[143] * W[694];
+    W[764] = W[140] * W[654];
+    W[766] = W[136] * W[610];
+    W[768] = W[131] * W[562];
+    W[771] = W[147] * W[770];
+    W[772] = W[145] * W[744];
+    W[774] = W[143] * W[711];
+    W[776] = W[140] * W[674];
+    W[778] = W[136] * W[633];
+    W[780] = W[131] * W[588];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_34(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[782] = W[351] * W[758];
+    W[789] = W[351] * W[770];
+    W[564] = W[559] + W[563];
+    W[590] = W[587] + W[589];
+    W[612] = W[607] + W[611];
+    W[635] = W[632] + W[634];
+    W[656] = W[651] + W[655];
+    W[676] = W[673] + W[675];
+    W[696] = W[691] + W[695];
+    W[713] = W[710] + W[712];
+    W[732] = W[727] + W[731];
+    W[746] = W[743] + W[745];
+    W[761] = W[759] - W[760];
+    W[773] = W[771] - W[772];
+    W[783] = W[727] + W[782];
+    W[790] = W[743] + W[789];
+    W[569] = W[564] + W[568];
+    W[593] = W[590] + W[592];
+    W[617] = W[612] + W[616];
+    W[638] = W[635] + W[637];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_35(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[661] = W[656] + W[660];
+    W[679] = W[676] + W[678];
+    W[701] = W[696] + W[700];
+    W[716] = W[713] + W[715];
+    W[733] = W[3] * W[732];
+    W[747] = W[3] * W[746];
+    W[763] = W[761] - W[762];
+    W[775] = W[773] - W[774];
+    W[784] = W[691] + W[783];
+    W[791] = W[710] + W[790];
+    W[574] = W[569] + W[573];
+    W[596] = W[593] + W[595];
+    W[622] = W[617] + W[621];
+    W[641] = W[638] + W[640];
+    W[666] = W[661] + W[665];
+    W[682] = W[679] + W[681];
+    W[702] = W[3] * W[701];
+    W[717] = W[3] * W[716];
+    W[735] = W[733] - W[734];
+    W[749] = W[747] - W[748];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_37(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[628] = W[3] * W[627];
+    W[645] = W[3] * W[644];
+    W[669] = W[667] - W[668];
+    W[685] = W[683] - W[684];
+    W[706] = W[704] - W[705];
+    W[721] = W[719] - W[720];
+    W[739] = W[737] - W[738];
+    W[753] = W[751] - W[752];
+    W[769] = W[767] - W[768];
+    W[781] = W[779] - W[780];
+    W[787] = W[559] + W[786];
+    W[794] = W[587] + W[793];
+    W[585] = W[3] * W[584];
+    W[603] = W[3] * W[602];
+    W[630] = W[628] - W[629];
+    W[647] = W[645] - W[646];
+    W[671] = W[669] - W[670];
+    W[687] = W[685] - W[686];
+    W[708] = W[706] - W[707];
+    W[723] = W[721] - W[722];
+    return 0;
+}
+
+/* Lines 340 .. 351 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_39(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[72] = -W[630] / W[121] / 2.0;
+    X[73] = -W[647] / W[121] / 2.0;
+    X[74] = -W[671] / W[122] / 2.0;
+    X[75] = -W[687] / W[122] / 2.0;
+    X[76] = -W[708] / W[123] / 2.0;
+    X[77] = -W[723] / W[123] / 2.0;
+    X[78] = -W[741] / W[124] / 2.0;
+    X[79] = -W[755] / W[124] / 2.0;
+    X[80] = -W[769] / W[125] / 2.0;
+    X[81] = -W[781] / W[125] / 2.0;
+    X[82] = -W[788] / W[126] / 2.0;
+    X[83] = -W[795] / W[126] / 2.0;
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_41(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[875] = X[58] - X[68];
+    W[877] = X[59] - X[69];
+    W[880] = X[60] - X[62];
+    W[882] = X[61] - X[63];
+    W[885] = X[60] - X[64];
+    W[887] = X[61] - X[65];
+    W[890] = X[60] - X[66];
+    W[892] = X[61] - X[67];
+    W[895] = X[60] - X[68];
+    W[897] = X[61] - X[69];
+    W[900] = X[62] - X[64];
+    W[902] = X[63] - X[65];
+    W[905] = X[62] - X[66];
+    W[907] = X[63] - X[67];
+    W[910] = X[62] - X[68];
+    W[912] = X[63] - X[69];
+    W[915] = X[64] - X[66];
+    W[917] = X[65] - X[67];
+    W[920] = X[64] - X[68];
+    W[922] = X[65] - X[69];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_43(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[871] = W[60] * W[870] * 2.0 + W[465] * W[465];
+    W[873] = W[62] * W[872] * 2.0 + W[467] * W[467];
+    W[876] = W[65] * W[875] * 2.0 + W[470] * W[470];
+    W[878] = W[67] * W[877] * 2.0 + W[472] * W[472];
+    W[881] = W[70] * W[880] * 2.0 + W[475] * W[475];
+    W[883] = W[72] * W[882] * 2.0 + W[477] * W[477];
+    W[886] = W[75] * W[885] * 2.0 + W[480] * W[480];
+    W[888] = W[77] * W[887] * 2.0 + W[482] * W[482];
+    W[891] = W[80] * W[890] * 2.0 + W[485] * W[485];
+    W[893] = W[82] * W[892] * 2.0 + W[487] * W[487];
+    W[896] = W[85] * W[895] * 2.0 + W[490] * W[490];
+    W[898] = W[87] * W[897] * 2.0 + W[492] * W[492];
+    W[901] = W[90] * W[900] * 2.0 + W[495] * W[495];
+    W[903] = W[92] * W[902] * 2.0 + W[497] * W[497];
+    W[906] = W[95] * W[905] * 2.0 + W[500] * W[500];
+    W[908] = W[97] * W[907] * 2.0 + W[502] * W[502];
+    W[911] = W[100] * W[910] * 2.0 + W[505] * W[505];
+    W[913] = W[102] * W[912] * 2.0 + W[507] * W[507];
+    W[916] = W[105] * W[915] * 2.0 + W[510] * W[510];
+    W[918] = W[107] * W[917] * 2.0 + W[512] * W[512];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_45(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[909] = W[906] + W[908];
+    W[914] = W[911] + W[913];
+    W[919] = W[916] + W[918];
+    W[924] = W[921] + W[923];
+    W[929] = W[926] + W[928];
+    W[962] = (-3.0 * W[854] * W[152] - 2.5 * W[449] * W[557]) / (2.0 * W[44]);
+    W[966] = (-3.0 * W[847] * W[156] - 2.5 * W[442] * W[561]) / (2.0 * W[37]);
+    W[971] = (-3.0 * W[840] * W[161] - 2.5 * W[435] * W[566]) / (2.0 * W[30]);
+    W[976] = (-3.0 * W[833] * W[166] - 2.5 * W[428] * W[571]) / (2.0 * W[23]);
+    W[981] = (-3.0 * W[826] * W[171] - 2.5 * W[421] * W[576]) / (2.0 * W[16]);
+    W[986] = (-3.0 * W[819] * W[176] - 2.5 * W[414] * W[581]) / (2.0 * W[9]);
+    W[1010] = (-3.0 * W[879] * W[200] - 2.5 * W[474] * W[605]) / (2.0 * W[69]);
+    W[1014] = (-3.0 * W[874] * W[204] - 2.5 * W[469] * W[609]) / (2.0 * W[64]);
+    W[1019] = (-3.0 * W[869] * W[209] - 2.5 * W[464] * W[614]) / (2.0 * W[59]);
+    W[1024] = (-3.0 * W[864] * W[214] - 2.5 * W[459] * W[619]) / (2.0 * W[54]);
+    W[1029] = (-3.0 * W[859] * W[219] - 2.5 * W[454] * W[624]) / (2.0 * W[49]);
+    W[1054] = (-3.0 * W[899] * W[244] - 2.5 * W[494] * W[649]) / (2.0 * W[89]);
+    W[1058] = (-3.0 * W[894] * W[248] - 2.5 * W[489] * W[653]) / (2.0 * W[84]);
+    W[1063] = (-3.0 * W[889] * W[253] - 2.5 * W[484] * W[658]) / (2.0 * W[79]);
+    W[1068] = (-3.0 * W[884] * W[258] - 2.5 * W[479] * W[663]) / (2.0 * W[74]);
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_47(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1020] = W[55] * W[1019] + W[460] * W[614] + W[865] * W[209];
+    W[1025] = W[50] * W[1024] + W[455] * W[619] + W[860] * W[214];
+    W[1030] = W[45] * W[1029] + W[450] * W[624] + W[855] * W[219];
+    W[1036] = W[67] * W[1010] + W[472] * W[605] + W[877] * W[200];
+    W[1038] = W[62] * W[1014] + W[467] * W[609] + W[872] * W[204];
+    W[1041] = W[57] * W[1019] + W[462] * W[614] + W[867] * W[209];
+    W[1044] = W[52] * W[1024] + W[457] * W[619] + W[862] * W[214];
+    W[1047] = W[47] * W[1029] + W[452] * W[624] + W[857] * W[219];
+    W[1055] = W[85] * W[1054] + W[490] * W[649] + W[895] * W[244];
+    W[1059] = W[80] * W[1058] + W[485] * W[653] + W[890] * W[248];
+    W[1064] = W[75] * W[1063] + W[480] * W[658] + W[885] * W[253];
+    W[1069] = W[70] * W[1068] + W[475] * W[663] + W[880] * W[258];
+    W[1077] = W[87] * W[1054] + W[492] * W[649] + W[897] * W[244];
+    W[1079] = W[82] * W[1058] + W[487] * W[653] + W[892] * W[248];
+    W[1082] = W[77] * W[1063] + W[482] * W[658] + W[887] * W[253];
+    W[1085] = W[72] * W[1068] + W[477] * W[663] + W[882] * W[258];
+    W[1095] = W[100] * W[1094] + W[505] * W[689] + W[910] * W[284];
+    W[1099] = W[95] * W[1098] + W[500] * W[693] + W[905] * W[288];
+    W[1104] = W[90] * W[1103] + W[495] * W[698] + W[900] * W[293];
+    W[1114] = W[102] * W[1094] + W[507] * W[689] + W[912] * W[284];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_49(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1012] = W[199] * W[1011];
+    W[1016] = W[203] * W[1015];
+    W[1021] = W[208] * W[1020];
+    W[1026] = W[213] * W[1025];
+    W[1031] = W[218] * W[1030];
+    W[1034] = W[127] * W[987];
+    W[1037] = W[199] * W[1036];
+    W[1039] = W[203] * W[1038];
+    W[1042] = W[208] * W[1041];
+    W[1045] = W[213] * W[1044];
+    W[1048] = W[218] * W[1047];
+    W[1051] = W[127] * W[1005];
+    W[1056] = W[243] * W[1055];
+    W[1060] = W[247] * W[1059];
+    W[1065] = W[252] * W[1064];
+    W[1070] = W[257] * W[1069];
+    W[1073] = W[133] * W[1030];
+    W[1075] = W[128] * W[982];
+    W[1078] = W[243] * W[1077];
+    W[1080] = W[247] * W[1079];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_51(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1143] = W[135] * W[1020];
+    W[1145] = W[130] * W[972];
+    W[1148] = W[319] * W[1147];
+    W[1150] = W[323] * W[1149];
+    W[1153] = W[142] * W[1119];
+    W[1155] = W[139] * W[1082];
+    W[1157] = W[135] * W[1041];
+    W[1159] = W[130] * W[996];
+    W[1164] = W[147] * W[1163];
+    W[1165] = W[145] * W[1135];
+    W[1167] = W[143] * W[1099];
+    W[1169] = W[140] * W[1059];
+    W[1171] = W[136] * W[1015];
+    W[1173] = W[131] * W[967];
+    W[1176] = W[147] * W[1175];
+    W[1177] = W[145] * W[1149];
+    W[1179] = W[143] * W[1116];
+    W[1181] = W[140] * W[1079];
+    W[1183] = W[136] * W[1038];
+    W[1185] = W[131] * W[993];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_53(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1066] = W[1061] + W[1065];
+    W[1084] = W[1081] + W[1083];
+    W[1106] = W[1101] + W[1105];
+    W[1121] = W[1118] + W[1120];
+    W[1138] = W[3] * W[1137];
+    W[1152] = W[3] * W[1151];
+    W[1168] = W[1166] - W[1167];
+    W[1180] = W[1178] - W[1179];
+    W[1189] = W[1096] + W[1188];
+    W[1196] = W[1115] + W[1195];
+    W[979] = W[974] + W[978];
+    W[1001] = W[998] + W[1000];
+    W[1027] = W[1022] + W[1026];
+    W[1046] = W[1043] + W[1045];
+    W[1071] = W[1066] + W[1070];
+    W[1087] = W[1084] + W[1086];
+    W[1107] = W[3] * W[1106];
+    W[1122] = W[3] * W[1121];
+    W[1140] = W[1138] - W[1139];
+    W[1154] = W[1152] - W[1153];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_55(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1033] = W[3] * W[1032];
+    W[1050] = W[3] * W[1049];
+    W[1074] = W[1072] - W[1073];
+    W[1090] = W[1088] - W[1089];
+    W[1111] = W[1109] - W[1110];
+    W[1126] = W[1124] - W[1125];
+    W[1144] = W[1142] - W[1143];
+    W[1158] = W[1156] - W[1157];
+    W[1174] = W[1172] - W[1173];
+    W[1186] = W[1184] - W[1185];
+    W[1192] = W[964] + W[1191];
+    W[1199] = W[992] + W[1198];
+    W[990] = W[3] * W[989];
+    W[1008] = W[3] * W[1007];
+    W[1035] = W[1033] - W[1034];
+    W[1052] = W[1050] - W[1051];
+    W[1076] = W[1074] - W[1075];
+    W[1092] = W[1090] - W[1091];
+    W[1113] = W[1111] - W[1112];
+    W[1128] = W[1126] - W[1127];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_56(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1146] = W[1144] - W[1145];
+    W[1160] = W[1158] - W[1159];
+    W[1193] = W[148] * W[1192];
+    W[1200] = W[148] * W[1199];
+    X[84] = X[70] / 3.0;
+    X[85] = X[71] / 3.0;
+    X[86] = X[72] / 3.0;
+    X[87] = X[73] / 3.0;
+    X[88] = X[74] / 3.0;
+    X[89] = X[75] / 3.0;
+    X[90] = X[76] / 3.0;
+    X[91] = X[77] / 3.0;
+    X[92] = X[78] / 3.0;
+    X[93] = X[79] / 3.0;
+    X[94] = X[80] / 3.0;
+    X[95] = X[81] / 3.0;
+    X[96] = X[82] / 3.0;
+    X[97] = X[83] / 3.0;
+    X[98] = -W[990] / W[120] / 3.0;
+    X[99] = -W[1008] / W[120] / 3.0;
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_59(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1280] = X[86] - X[96];
+    W[1282] = X[87] - X[97];
+    W[1285] = X[88] - X[90];
+    W[1287] = X[89] - X[91];
+    W[1290] = X[88] - X[92];
+    W[1292] = X[89] - X[93];
+    W[1295] = X[88] - X[94];
+    W[1297] = X[89] - X[95];
+    W[1300] = X[88] - X[96];
+    W[1302] = X[89] - X[97];
+    W[1305] = X[90] - X[92];
+    W[1307] = X[91] - X[93];
+    W[1310] = X[90] - X[94];
+    W[1312] = X[91] - X[95];
+    W[1315] = X[90] - X[96];
+    W[1317] = X[91] - X[97];
+    W[1320] = X[92] - X[94];
+    W[1322] = X[93] - X[95];
+    W[1325] = X[92] - X[96];
+    W[1327] = X[93] - X[97];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_61(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1276] = (W[60] * W[1275] + W[465] * W[870]) * 2.0;
+    W[1278] = (W[62] * W[1277] + W[467] * W[872]) * 2.0;
+    W[1281] = (W[65] * W[1280] + W[470] * W[875]) * 2.0;
+    W[1283] = (W[67] * W[1282] + W[472] * W[877]) * 2.0;
+    W[1286] = (W[70] * W[1285] + W[475] * W[880]) * 2.0;
+    W[1288] = (W[72] * W[1287] + W[477] * W[882]) * 2.0;
+    W[1291] = (W[75] * W[1290] + W[480] * W[885]) * 2.0;
+    W[1293] = (W[77] * W[1292] + W[482] * W[887]) * 2.0;
+    W[1296] = (W[80] * W[1295] + W[485] * W[890]) * 2.0;
+    W[1298] = (W[82] * W[1297] + W[487] * W[892]) * 2.0;
+    W[1301] = (W[85] * W[1300] + W[490] * W[895]) * 2.0;
+    W[1303] = (W[87] * W[1302] + W[492] * W[897]) * 2.0;
+    W[1306] = (W[90] * W[1305] + W[495] * W[900]) * 2.0;
+    W[1308] = (W[92] * W[1307] + W[497] * W[902]) * 2.0;
+    W[1311] = (W[95] * W[1310] + W[500] * W[905]) * 2.0;
+    W[1313] = (W[97] * W[1312] + W[502] * W[907]) * 2.0;
+    W[1316] = (W[100] * W[1315] + W[505] * W[910]) * 2.0;
+    W[1318] = (W[102] * W[1317] + W[507] * W[912]) * 2.0;
+    W[1321] = (W[105] * W[1320] + W[510] * W[915]) * 2.0;
+    W[1323] = (W[107] * W[1322] + W[512] * W[917]) * 2.0;
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_63(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1314] = W[1311] + W[1313];
+    W[1319] = W[1316] + W[1318];
+    W[1324] = W[1321] + W[1323];
+    W[1329] = W[1326] + W[1328];
+    W[1334] = W[1331] + W[1333];
+    W[1367] = (-4.5 * W[1259] * W[152] - 4.0 * W[854] * W[557] - 3.5 * W[449] * W[962]) / (3.0 * W[44]);
+    W[1371] = (-4.5 * W[1252] * W[156] - 4.0 * W[847] * W[561] - 3.5 * W[442] * W[966]) / (3.0 * W[37]);
+    W[1376] = (-4.5 * W[1245] * W[161] - 4.0 * W[840] * W[566] - 3.5 * W[435] * W[971]) / (3.0 * W[30]);
+    W[1381] = (-4.5 * W[1238] * W[166] - 4.0 * W[833] * W[571] - 3.5 * W[428] * W[976]) / (3.0 * W[23]);
+    W[1386] = (-4.5 * W[1231] * W[171] - 4.0 * W[826] * W[576] - 3.5 * W[421] * W[981]) / (3.0 * W[16]);
+    W[1391] = (-4.5 * W[1224] * W[176] - 4.0 * W[819] * W[581] - 3.5 * W[414] * W[986]) / (3.0 * W[9]);
+    W[1415] = (-4.5 * W[1284] * W[200] - 4.0 * W[879] * W[605] - 3.5 * W[474] * W[1010]) / (3.0 * W[69]);
+    W[1419] = (-4.5 * W[1279] * W[204] - 4.0 * W[874] * W[609] - 3.5 * W[469] * W[1014]) / (3.0 * W[64]);
+    W[1424] = (-4.5 * W[1274] * W[209] - 4.0 * W[869] * W[614] - 3.5 * W[464] * W[1019]) / (3.0 * W[59]);
+    W[1429] = (-4.5 * W[1269] * W[214] - 4.0 * W[864] * W[619] - 3.5 * W[459] * W[1024]) / (3.0 * W[54]);
+    W[1434] = (-4.5 * W[1264] * W[219] - 4.0 * W[859] * W[624] - 3.5 * W[454] * W[1029]) / (3.0 * W[49]);
+    W[1459] = (-4.5 * W[1304] * W[244] - 4.0 * W[899] * W[649] - 3.5 * W[494] * W[1054]) / (3.0 * W[89]);
+    W[1463] = (-4.5 * W[1299] * W[248] - 4.0 * W[894] * W[653] - 3.5 * W[489] * W[1058]) / (3.0 * W[84]);
+    W[1468] = (-4.5 * W[1294] * W[253] - 4.0 * W[889] * W[658] - 3.5 * W[484] * W[1063]) / (3.0 * W[79]);
+    W[1473] = (-4.5 * W[1289] * W[258] - 4.0 * W[884] * W[663] - 3.5 * W[479] * W[1068]) / (3.0 * W[74]);
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_65(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1425] = W[55] * W[1424] + W[460] * W[1019] + W[865] * W[614] + W[1270] * W[209];
+    W[1430] = W[50] * W[1429] + W[455] * W[1024] + W[860] * W[619] + W[1265] * W[214];
+    W[1435] = W[45] * W[1434] + W[450] * W[1029] + W[855] * W[624] + W[1260] * W[219];
+    W[1441] = W[67] * W[1415] + W[472] * W[1010] + W[877] * W[605] + W[1282] * W[200];
+    W[1443] = W[62] * W[1419] + W[467] * W[1014] + W[872] * W[609] + W[1277] * W[204];
+    W[1446] = W[57] * W[1424] + W[462] * W[1019] + W[867] * W[614] + W[1272] * W[209];
+    W[1449] = W[52] * W[1429] + W[457] * W[1024] + W[862] * W[619] + W[1267] * W[214];
+    W[1452] = W[47] * W[1434] + W[452] * W[1029] + W[857] * W[624] + W[1262] * W[219];
+    W[1460] = W[85] * W[1459] + W[490] * W[1054] + W[895] * W[649] + W[1300] * W[244];
+    W[1464] = W[80] * W[1463] + W[485] * W[1058] + W[890] * W[653] + W[1295] * W[248];
+    W[1469] = W[75] * W[1468] + W[480] * W[1063] + W[885] * W[658] + W[1290] * W[253];
+    W[1474] = W[70] * W[1473] + W[475] * W[1068] + W[880] * W[663] + W[1285] * W[258];
+    W[1482] = W[87] * W[1459] + W[492] * W[1054] + W[897] * W[649] + W[1302] * W[244];
+    W[1484] = W[82] * W[1463] + W[487] * W[1058] + W[892] * W[653] + W[1297] * W[248];
+    W[1487] = W[77] * W[1468] + W[482] * W[1063] + W[887] * W[658] + W[1292] * W[253];
+    W[1490] = W[72] * W[1473] + W[477] * W[1068] + W[882] * W[663] + W[1287] * W[258];
+    W[1500] = W[100] * W[1499] + W[505] * W[1094] + W[910] * W[689] + W[1315] * W[284];
+    W[1504] = W[95] * W[1503] + W[500] * W[1098] + W[905] * W[693] + W[1310] * W[288];
+    W[1509] = W[90] * W[1508] + W[495] * W[1103] + W[900] * W[698] + W[1305] * W[293];
+    W[1519] = W[102] * W[1499] + W[507] * W[1094] + W[912] * W[689] + W[1317] * W[284];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_67(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1417] = W[199] * W[1416];
+    W[1421] = W[203] * W[1420];
+    W[1426] = W[208] * W[1425];
+    W[1431] = W[213] * W[1430];
+    W[1436] = W[218] * W[1435];
+    W[1439] = W[127] * W[1392];
+    W[1442] = W[199] * W[1441];
+    W[1444] = W[203] * W[1443];
+    W[1447] = W[208] * W[1446];
+    W[1450] = W[213] * W[1449];
+    W[1453] = W[218] * W[1452];
+    W[1456] = W[127] * W[1410];
+    W[1461] = W[243] * W[1460];
+    W[1465] = W[247] * W[1464];
+    W[1470] = W[252] * W[1469];
+    W[1475] = W[257] * W[1474];
+    W[1478] = W[133] * W[1435];
+    W[1480] = W[128] * W[1387];
+    W[1483] = W[243] * W[1482];
+    W[1485] = W[247] * W[1484];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_69(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1548] = W[135] * W[1425];
+    W[1550] = W[130] * W[1377];
+    W[1553] = W[319] * W[1552];
+    W[1555] = W[323] * W[1554];
+    W[1558] = W[142] * W[1524];
+    W[1560] = W[139] * W[1487];
+    W[1562] = W[135] * W[1446];
+    W[1564] = W[130] * W[1401];
+    W[1569] = W[147] * W[1568];
+    W[1570] = W[145] * W[1540];
+    W[1572] = W[143] * W[1504];
+    W[1574] = W[140] * W[1464];
+    W[1576] = W[136] * W[1420];
+    W[1578] = W[131] * W[1372];
+    W[1581] = W[147] * W[1580];
+    W[1582] = W[145] * W[1554];
+    W[1584] = W[143] * W[1521];
+    W[1586] = W[140] * W[1484];
+    W[1588] = W[136] * W[1443];
+    W[1590] = W[131] * W[1398];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_71(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1471] = W[1466] + W[1470];
+    W[1489] = W[1486] + W[1488];
+    W[1511] = W[1506] + W[1510];
+    W[1526] = W[1523] + W[1525];
+    W[1543] = W[3] * W[1542];
+    W[1557] = W[3] * W[1556];
+    W[1573] = W[1571] - W[1572];
+    W[1585] = W[1583] - W[1584];
+    W[1594] = W[1501] + W[1593];
+    W[1601] = W[1520] + W[1600];
+    W[1384] = W[1379] + W[1383];
+    W[1406] = W[1403] + W[1405];
+    W[1432] = W[1427] + W[1431];
+    W[1451] = W[1448] + W[1450];
+    W[1476] = W[1471] + W[1475];
+    W[1492] = W[1489] + W[1491];
+    W[1512] = W[3] * W[1511];
+    W[1527] = W[3] * W[1526];
+    W[1545] = W[1543] - W[1544];
+    W[1559] = W[1557] - W[1558];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_73(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1438] = W[3] * W[1437];
+    W[1455] = W[3] * W[1454];
+    W[1479] = W[1477] - W[1478];
+    W[1495] = W[1493] - W[1494];
+    W[1516] = W[1514] - W[1515];
+    W[1531] = W[1529] - W[1530];
+    W[1549] = W[1547] - W[1548];
+    W[1563] = W[1561] - W[1562];
+    W[1579] = W[1577] - W[1578];
+    W[1591] = W[1589] - W[1590];
+    W[1597] = W[1369] + W[1596];
+    W[1604] = W[1397] + W[1603];
+    W[1395] = W[3] * W[1394];
+    W[1413] = W[3] * W[1412];
+    W[1440] = W[1438] - W[1439];
+    W[1457] = W[1455] - W[1456];
+    W[1481] = W[1479] - W[1480];
+    W[1497] = W[1495] - W[1496];
+    W[1518] = W[1516] - W[1517];
+    W[1533] = W[1531] - W[1532];
+    return 0;
+}
+
+/* Lines 340 .. 351 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_75(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[128] = -W[1440] / W[121] / 4.0;
+    X[129] = -W[1457] / W[121] / 4.0;
+    X[130] = -W[1481] / W[122] / 4.0;
+    X[131] = -W[1497] / W[122] / 4.0;
+    X[132] = -W[1518] / W[123] / 4.0;
+    X[133] = -W[1533] / W[123] / 4.0;
+    X[134] = -W[1551] / W[124] / 4.0;
+    X[135] = -W[1565] / W[124] / 4.0;
+    X[136] = -W[1579] / W[125] / 4.0;
+    X[137] = -W[1591] / W[125] / 4.0;
+    X[138] = -W[1598] / W[126] / 4.0;
+    X[139] = -W[1605] / W[126] / 4.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_76(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1622] = X[112] - X[114];
+    W[1627] = X[113] - X[115];
+    W[1631] = X[112] - X[116];
+    W[1634] = X[113] - X[117];
+    W[1638] = X[112] - X[118];
+    W[1641] = X[113] - X[119];
+    W[1645] = X[112] - X[120];
+    W[1648] = X[113] - X[121];
+    W[1652] = X[112] - X[122];
+    W[1655] = X[113] - X[123];
+    W[1659] = X[112] - X[124];
+    W[1662] = X[113] - X[125];
+    W[1665] = X[114] - X[116];
+    W[1667] = X[115] - X[117];
+    W[1670] = X[114] - X[118];
+    W[1672] = X[115] - X[119];
+    W[1675] = X[114] - X[120];
+    W[1677] = X[115] - X[121];
+    W[1680] = X[114] - X[122];
+    W[1682] = X[115] - X[123];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_78(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1735] = X[122] - X[124];
+    W[1737] = X[123] - X[125];
+    W[1624] = (W[2] * W[1622] + W[407] * W[1217]) * 2.0 + W[812] * W[812];
+    W[1628] = (W[7] * W[1627] + W[412] * W[1222]) * 2.0 + W[817] * W[817];
+    W[1632] = (W[11] * W[1631] + W[416] * W[1226]) * 2.0 + W[821] * W[821];
+    W[1635] = (W[14] * W[1634] + W[419] * W[1229]) * 2.0 + W[824] * W[824];
+    W[1639] = (W[18] * W[1638] + W[423] * W[1233]) * 2.0 + W[828] * W[828];
+    W[1642] = (W[21] * W[1641] + W[426] * W[1236]) * 2.0 + W[831] * W[831];
+    W[1646] = (W[25] * W[1645] + W[430] * W[1240]) * 2.0 + W[835] * W[835];
+    W[1649] = (W[28] * W[1648] + W[433] * W[1243]) * 2.0 + W[838] * W[838];
+    W[1653] = (W[32] * W[1652] + W[437] * W[1247]) * 2.0 + W[842] * W[842];
+    W[1656] = (W[35] * W[1655] + W[440] * W[1250]) * 2.0 + W[845] * W[845];
+    W[1660] = (W[39] * W[1659] + W[444] * W[1254]) * 2.0 + W[849] * W[849];
+    W[1663] = (W[42] * W[1662] + W[447] * W[1257]) * 2.0 + W[852] * W[852];
+    W[1666] = (W[45] * W[1665] + W[450] * W[1260]) * 2.0 + W[855] * W[855];
+    W[1668] = (W[47] * W[1667] + W[452] * W[1262]) * 2.0 + W[857] * W[857];
+    W[1671] = (W[50] * W[1670] + W[455] * W[1265]) * 2.0 + W[860] * W[860];
+    W[1673] = (W[52] * W[1672] + W[457] * W[1267]) * 2.0 + W[862] * W[862];
+    W[1676] = (W[55] * W[1675] + W[460] * W[1270]) * 2.0 + W[865] * W[865];
+    W[1678] = (W[57] * W[1677] + W[462] * W[1272]) * 2.0 + W[867] * W[867];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_80(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1731] = (W[110] * W[1730] + W[515] * W[1325]) * 2.0 + W[920] * W[920];
+    W[1733] = (W[112] * W[1732] + W[517] * W[1327]) * 2.0 + W[922] * W[922];
+    W[1736] = (W[115] * W[1735] + W[520] * W[1330]) * 2.0 + W[925] * W[925];
+    W[1738] = (W[117] * W[1737] + W[522] * W[1332]) * 2.0 + W[927] * W[927];
+    W[1629] = W[1624] + W[1628];
+    W[1636] = W[1632] + W[1635];
+    W[1643] = W[1639] + W[1642];
+    W[1650] = W[1646] + W[1649];
+    W[1657] = W[1653] + W[1656];
+    W[1664] = W[1660] + W[1663];
+    W[1669] = W[1666] + W[1668];
+    W[1674] = W[1671] + W[1673];
+    W[1679] = W[1676] + W[1678];
+    W[1684] = W[1681] + W[1683];
+    W[1689] = W[1686] + W[1688];
+    W[1694] = W[1691] + W[1693];
+    W[1699] = W[1696] + W[1698];
+    W[1704] = W[1701] + W[1703];
+    W[1709] = W[1706] + W[1708];
+    W[1714] = W[1711] + W[1713];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_82(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1904] = (-6.0 * W[1724] * W[284] - 5.5 * W[1319] * W[689] - 5.0 * W[914] * W[1094] - 4.5 * W[509] * W[1499]) / (4.0 * W[104]);
+    W[1908] = (-6.0 * W[1719] * W[288] - 5.5 * W[1314] * W[693] - 5.0 * W[909] * W[1098] - 4.5 * W[504] * W[1503]) / (4.0 * W[99]);
+    W[1913] = (-6.0 * W[1714] * W[293] - 5.5 * W[1309] * W[698] - 5.0 * W[904] * W[1103] - 4.5 * W[499] * W[1508]) / (4.0 * W[94]);
+    W[1940] = (-6.0 * W[1734] * W[320] - 5.5 * W[1329] * W[725] - 5.0 * W[924] * W[1130] - 4.5 * W[519] * W[1535]) / (4.0 * W[114]);
+    W[1944] = (-6.0 * W[1729] * W[324] - 5.5 * W[1324] * W[729] - 5.0 * W[919] * W[1134] - 4.5 * W[514] * W[1539]) / (4.0 * W[109]);
+    W[1972] = (-6.0 * W[1739] * W[352] - 5.5 * W[1334] * W[757] - 5.0 * W[929] * W[1162] - 4.5 * W[524] * W[1567]) / (4.0 * W[119]);
+    W[1773] = W[39] * W[1772] + W[444] * W[1367] + W[849] * W[962] + W[1254] * W[557] + W[1659] * W[152];
+    W[1777] = W[32] * W[1776] + W[437] * W[1371] + W[842] * W[966] + W[1247] * W[561] + W[1652] * W[156];
+    W[1782] = W[25] * W[1781] + W[430] * W[1376] + W[835] * W[971] + W[1240] * W[566] + W[1645] * W[161];
+    W[1787] = W[18] * W[1786] + W[423] * W[1381] + W[828] * W[976] + W[1233] * W[571] + W[1638] * W[166];
+    W[1792] = W[11] * W[1791] + W[416] * W[1386] + W[821] * W[981] + W[1226] * W[576] + W[1631] * W[171];
+    W[1797] = W[2] * W[1796] + W[407] * W[1391] + W[812] * W[986] + W[1217] * W[581] + W[1622] * W[176];
+    W[1801] = W[42] * W[1772] + W[447] * W[1367] + W[852] * W[962] + W[1257] * W[557] + W[1662] * W[152];
+    W[1803] = W[35] * W[1776] + W[440] * W[1371] + W[845] * W[966] + W[1250] * W[561] + W[1655] * W[156];
+    W[1806] = W[28] * W[1781] + W[433] * W[1376] + W[838] * W[971] + W[1243] * W[566] + W[1648] * W[161];
+    W[1809] = W[21] * W[1786] + W[426] * W[1381] + W[831] * W[976] + W[1236] * W[571] + W[1641] * W[166];
+    W[1812] = W[14] * W[1791] + W[419] * W[1386] + W[824] * W[981] + W[1229] * W[576] + W[1634] * W[171];
+    W[1815] = W[7] * W[1796] + W[412] * W[1391] + W[817] * W[986] + W[1222] * W[581] + W[1627] * W[176];
+    W[1821] = W[65] * W[1820] + W[470] * W[1415] + W[875] * W[1010] + W[1280] * W[605] + W[1685] * W[200];
+    W[1825] = W[60] * W[1824] + W[465] * W[1419] + W[870] * W[1014] + W[1275] * W[609] + W[1680] * W[204];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_84(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1926] = W[97] * W[1908] + W[502] * W[1503] + W[907] * W[1098] + W[1312] * W[693] + W[1717] * W[288];
+    W[1929] = W[92] * W[1913] + W[497] * W[1508] + W[902] * W[1103] + W[1307] * W[698] + W[1712] * W[293];
+    W[1941] = W[110] * W[1940] + W[515] * W[1535] + W[920] * W[1130] + W[1325] * W[725] + W[1730] * W[320];
+    W[1945] = W[105] * W[1944] + W[510] * W[1539] + W[915] * W[1134] + W[1320] * W[729] + W[1725] * W[324];
+    W[1957] = W[112] * W[1940] + W[517] * W[1535] + W[922] * W[1130] + W[1327] * W[725] + W[1732] * W[320];
+    W[1959] = W[107] * W[1944] + W[512] * W[1539] + W[917] * W[1134] + W[1322] * W[729] + W[1727] * W[324];
+    W[1973] = W[115] * W[1972] + W[520] * W[1567] + W[925] * W[1162] + W[1330] * W[757] + W[1735] * W[352];
+    W[1985] = W[117] * W[1972] + W[522] * W[1567] + W[927] * W[1162] + W[1332] * W[757] + W[1737] * W[352];
+    W[1774] = W[151] * W[1773];
+    W[1778] = W[155] * W[1777];
+    W[1783] = W[160] * W[1782];
+    W[1788] = W[165] * W[1787];
+    W[1793] = W[170] * W[1792];
+    W[1798] = W[175] * W[1797];
+    W[1802] = W[151] * W[1801];
+    W[1804] = W[155] * W[1803];
+    W[1807] = W[160] * W[1806];
+    W[1810] = W[165] * W[1809];
+    W[1813] = W[170] * W[1812];
+    W[1816] = W[175] * W[1815];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_86(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1893] = W[252] * W[1892];
+    W[1896] = W[257] * W[1895];
+    W[1899] = W[133] * W[1857];
+    W[1901] = W[128] * W[1812];
+    W[1906] = W[283] * W[1905];
+    W[1910] = W[287] * W[1909];
+    W[1915] = W[292] * W[1914];
+    W[1918] = W[138] * W[1879];
+    W[1920] = W[134] * W[1835];
+    W[1922] = W[129] * W[1787];
+    W[1925] = W[283] * W[1924];
+    W[1927] = W[287] * W[1926];
+    W[1930] = W[292] * W[1929];
+    W[1933] = W[138] * W[1895];
+    W[1935] = W[134] * W[1854];
+    W[1937] = W[129] * W[1809];
+    W[1942] = W[319] * W[1941];
+    W[1946] = W[323] * W[1945];
+    W[1949] = W[142] * W[1914];
+    W[1951] = W[139] * W[1874];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_88(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1997] = W[351] * W[1973];
+    W[2004] = W[351] * W[1985];
+    W[1779] = W[1774] + W[1778];
+    W[1805] = W[1802] + W[1804];
+    W[1827] = W[1822] + W[1826];
+    W[1850] = W[1847] + W[1849];
+    W[1871] = W[1866] + W[1870];
+    W[1891] = W[1888] + W[1890];
+    W[1911] = W[1906] + W[1910];
+    W[1928] = W[1925] + W[1927];
+    W[1947] = W[1942] + W[1946];
+    W[1961] = W[1958] + W[1960];
+    W[1976] = W[1974] - W[1975];
+    W[1988] = W[1986] - W[1987];
+    W[1998] = W[1942] + W[1997];
+    W[2005] = W[1958] + W[2004];
+    W[1784] = W[1779] + W[1783];
+    W[1808] = W[1805] + W[1807];
+    W[1832] = W[1827] + W[1831];
+    W[1853] = W[1850] + W[1852];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_90(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1980] = W[1978] - W[1979];
+    W[1992] = W[1990] - W[1991];
+    W[2000] = W[1866] + W[1999];
+    W[2007] = W[1888] + W[2006];
+    W[1794] = W[1789] + W[1793];
+    W[1814] = W[1811] + W[1813];
+    W[1842] = W[1837] + W[1841];
+    W[1859] = W[1856] + W[1858];
+    W[1882] = W[3] * W[1881];
+    W[1898] = W[3] * W[1897];
+    W[1919] = W[1917] - W[1918];
+    W[1934] = W[1932] - W[1933];
+    W[1952] = W[1950] - W[1951];
+    W[1966] = W[1964] - W[1965];
+    W[1982] = W[1980] - W[1981];
+    W[1994] = W[1992] - W[1993];
+    W[2001] = W[1822] + W[2000];
+    W[2008] = W[1847] + W[2007];
+    W[1799] = W[1794] + W[1798];
+    W[1817] = W[1814] + W[1816];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_92(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[1956] = W[1954] - W[1955];
+    W[1970] = W[1968] - W[1969];
+    W[2003] = W[148] * W[2002];
+    W[2010] = W[148] * W[2009];
+    X[140] = X[126] / 5.0;
+    X[141] = X[127] / 5.0;
+    X[142] = X[128] / 5.0;
+    X[143] = X[129] / 5.0;
+    X[144] = X[130] / 5.0;
+    X[145] = X[131] / 5.0;
+    X[146] = X[132] / 5.0;
+    X[147] = X[133] / 5.0;
+    X[148] = X[134] / 5.0;
+    X[149] = X[135] / 5.0;
+    X[150] = X[136] / 5.0;
+    X[151] = X[137] / 5.0;
+    X[152] = X[138] / 5.0;
+    X[153] = X[139] / 5.0;
+    X[154] = -W[1800] / W[120] / 5.0;
+    X[155] = -W[1818] / W[120] / 5.0;
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_95(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2090] = X[142] - X[152];
+    W[2092] = X[143] - X[153];
+    W[2095] = X[144] - X[146];
+    W[2097] = X[145] - X[147];
+    W[2100] = X[144] - X[148];
+    W[2102] = X[145] - X[149];
+    W[2105] = X[144] - X[150];
+    W[2107] = X[145] - X[151];
+    W[2110] = X[144] - X[152];
+    W[2112] = X[145] - X[153];
+    W[2115] = X[146] - X[148];
+    W[2117] = X[147] - X[149];
+    W[2120] = X[146] - X[150];
+    W[2122] = X[147] - X[151];
+    W[2125] = X[146] - X[152];
+    W[2127] = X[147] - X[153];
+    W[2130] = X[148] - X[150];
+    W[2132] = X[149] - X[151];
+    W[2135] = X[148] - X[152];
+    W[2137] = X[149] - X[153];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_97(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2086] = (W[60] * W[2085] + W[465] * W[1680] + W[870] * W[1275]) * 2.0;
+    W[2088] = (W[62] * W[2087] + W[467] * W[1682] + W[872] * W[1277]) * 2.0;
+    W[2091] = (W[65] * W[2090] + W[470] * W[1685] + W[875] * W[1280]) * 2.0;
+    W[2093] = (W[67] * W[2092] + W[472] * W[1687] + W[877] * W[1282]) * 2.0;
+    W[2096] = (W[70] * W[2095] + W[475] * W[1690] + W[880] * W[1285]) * 2.0;
+    W[2098] = (W[72] * W[2097] + W[477] * W[1692] + W[882] * W[1287]) * 2.0;
+    W[2101] = (W[75] * W[2100] + W[480] * W[1695] + W[885] * W[1290]) * 2.0;
+    W[2103] = (W[77] * W[2102] + W[482] * W[1697] + W[887] * W[1292]) * 2.0;
+    W[2106] = (W[80] * W[2105] + W[485] * W[1700] + W[890] * W[1295]) * 2.0;
+    W[2108] = (W[82] * W[2107] + W[487] * W[1702] + W[892] * W[1297]) * 2.0;
+    W[2111] = (W[85] * W[2110] + W[490] * W[1705] + W[895] * W[1300]) * 2.0;
+    W[2113] = (W[87] * W[2112] + W[492] * W[1707] + W[897] * W[1302]) * 2.0;
+    W[2116] = (W[90] * W[2115] + W[495] * W[1710] + W[900] * W[1305]) * 2.0;
+    W[2118] = (W[92] * W[2117] + W[497] * W[1712] + W[902] * W[1307]) * 2.0;
+    W[2121] = (W[95] * W[2120] + W[500] * W[1715] + W[905] * W[1310]) * 2.0;
+    W[2123] = (W[97] * W[2122] + W[502] * W[1717] + W[907] * W[1312]) * 2.0;
+    W[2126] = (W[100] * W[2125] + W[505] * W[1720] + W[910] * W[1315]) * 2.0;
+    W[2128] = (W[102] * W[2127] + W[507] * W[1722] + W[912] * W[1317]) * 2.0;
+    W[2131] = (W[105] * W[2130] + W[510] * W[1725] + W[915] * W[1320]) * 2.0;
+    W[2133] = (W[107] * W[2132] + W[512] * W[1727] + W[917] * W[1322]) * 2.0;
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_99(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2124] = W[2121] + W[2123];
+    W[2129] = W[2126] + W[2128];
+    W[2134] = W[2131] + W[2133];
+    W[2139] = W[2136] + W[2138];
+    W[2144] = W[2141] + W[2143];
+    W[2177] = (-7.5 * W[2069] * W[152] - 7.0 * W[1664] * W[557] - 6.5 * W[1259] * W[962] - 6.0 * W[854] * W[1367]
+            - 5.5 * W[449] * W[1772]) / (5.0 * W[44]);
+    W[2181] = (-7.5 * W[2062] * W[156] - 7.0 * W[1657] * W[561] - 6.5 * W[1252] * W[966] - 6.0 * W[847] * W[1371]
+            - 5.5 * W[442] * W[1776]) / (5.0 * W[37]);
+    W[2186] = (-7.5 * W[2055] * W[161] - 7.0 * W[1650] * W[566] - 6.5 * W[1245] * W[971] - 6.0 * W[840] * W[1376]
+            - 5.5 * W[435] * W[1781]) / (5.0 * W[30]);
+    W[2191] = (-7.5 * W[2048] * W[166] - 7.0 * W[1643] * W[571] - 6.5 * W[1238] * W[976] - 6.0 * W[833] * W[1381]
+            - 5.5 * W[428] * W[1786]) / (5.0 * W[23]);
+    W[2196] = (-7.5 * W[2041] * W[171] - 7.0 * W[1636] * W[576] - 6.5 * W[1231] * W[981] - 6.0 * W[826] * W[1386]
+            - 5.5 * W[421] * W[1791]) / (5.0 * W[16]);
+    W[2201] = (-7.5 * W[2034] * W[176] - 7.0 * W[1629] * W[581] - 6.5 * W[1224] * W[986] - 6.0 * W[819] * W[1391]
+            - 5.5 * W[414] * W[1796]) / (5.0 * W[9]);
+    W[2225] = (-7.5 * W[2094] * W[200] - 7.0 * W[1689] * W[605] - 6.5 * W[1284] * W[1010] - 6.0 * W[879] * W[1415]
+            - 5.5 * W[474] * W[1820]) / (5.0 * W[69]);
+    W[2229] = (-7.5 * W[2089] * W[204] - 7.0 * W[1684] * W[609] - 6.5 * W[1279] * W[1014] - 6.0 * W[874] * W[1419]
+            - 5.5 * W[469] * W[1824]) / (5.0 * W[64]);
+    W[2234] = (-7.5 * W[2084] * W[209] - 7.0 * W[1679] * W[614] - 6.5 * W[1274] * W[1019] - 6.0 * W[869] * W[1424]
+            - 5.5 * W[464] * W[1829]) / (5.0 * W[59]);
+    W[2239] = (-7.5 * W[2079] * W[214] - 7.0 * W[1674] * W[619] - 6.5 * W[1269] * W[1024] - 6.0 * W[864] * W[1429]
+            - 5.5 * W[459] * W[1834]) / (5.0 * W[54]);
+    W[2244] = (-7.5 * W[2074] * W[219] - 7.0 * W[1669] * W[624] - 6.5 * W[1264] * W[1029] - 6.0 * W[859] * W[1434]
+            - 5.5 * W[454] * W[1839]) / (5.0 * W[49]);
+    W[2269] = (-7.5 * W[2114] * W[244] - 7.0 * W[1709] * W[649] - 6.5 * W[1304] * W[1054] - 6.0 * W[899] * W[1459]
+            - 5.5 * W[494] * W[1864]) / (5.0 * W[89]);
+    W[2273] = (-7.5 * W[2109] * W[248] - 7.0 * W[1704] * W[653] - 6.5 * W[1299] * W[1058] - 6.0 * W[894] * W[1463]
+            - 5.5 * W[489] * W[1868]) / (5.0 * W[84]);
+    W[2278] = (-7.5 * W[2104] * W[253] - 7.0 * W[1699] * W[658] - 6.5 * W[1294] * W[1063] - 6.0 * W[889] * W[1468]
+            - 5.5 * W[484] * W[1873]) / (5.0 * W[79]);
+    W[2283] = (-7.5 * W[2099] * W[258] - 7.0 * W[1694] * W[663] - 6.5 * W[1289] * W[1068] - 6.0 * W[884] * W[1473]
+            - 5.5 * W[479] * W[1878]) / (5.0 * W[74]);
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_101(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2235] = W[55] * W[2234] + W[460] * W[1829] + W[865] * W[1424] + W[1270] * W[1019] + W[1675] * W[614]
+            + W[2080] * W[209];
+    W[2240] = W[50] * W[2239] + W[455] * W[1834] + W[860] * W[1429] + W[1265] * W[1024] + W[1670] * W[619]
+            + W[2075] * W[214];
+    W[2245] = W[45] * W[2244] + W[450] * W[1839] + W[855] * W[1434] + W[1260] * W[1029] + W[1665] * W[624]
+            + W[2070] * W[219];
+    W[2251] = W[67] * W[2225] + W[472] * W[1820] + W[877] * W[1415] + W[1282] * W[1010] + W[1687] * W[605]
+            + W[2092] * W[200];
+    W[2253] = W[62] * W[2229] + W[467] * W[1824] + W[872] * W[1419] + W[1277] * W[1014] + W[1682] * W[609]
+            + W[2087] * W[204];
+    W[2256] = W[57] * W[2234] + W[462] * W[1829] + W[867] * W[1424] + W[1272] * W[1019] + W[1677] * W[614]
+            + W[2082] * W[209];
+    W[2259] = W[52] * W[2239] + W[457] * W[1834] + W[862] * W[1429] + W[1267] * W[1024] + W[1672] * W[619]
+            + W[2077] * W[214];
+    W[2262] = W[47] * W[2244] + W[452] * W[1839] + W[857] * W[1434] + W[1262] * W[1029] + W[1667] * W[624]
+            + W[2072] * W[219];
+    W[2270] = W[85] * W[2269] + W[490] * W[1864] + W[895] * W[1459] + W[1300] * W[1054] + W[1705] * W[649]
+            + W[2110] * W[244];
+    W[2274] = W[80] * W[2273] + W[485] * W[1868] + W[890] * W[1463] + W[1295] * W[1058] + W[1700] * W[653]
+            + W[2105] * W[248];
+    W[2279] = W[75] * W[2278] + W[480] * W[1873] + W[885] * W[1468] + W[1290] * W[1063] + W[1695] * W[658]
+            + W[2100] * W[253];
+    W[2284] = W[70] * W[2283] + W[475] * W[1878] + W[880] * W[1473] + W[1285] * W[1068] + W[1690] * W[663]
+            + W[2095] * W[258];
+    W[2292] = W[87] * W[2269] + W[492] * W[1864] + W[897] * W[1459] + W[1302] * W[1054] + W[1707] * W[649]
+            + W[2112] * W[244];
+    W[2294] = W[82] * W[2273] + W[487] * W[1868] + W[892] * W[1463] + W[1297] * W[1058] + W[1702] * W[653]
+            + W[2107] * W[248];
+    W[2297] = W[77] * W[2278] + W[482] * W[1873] + W[887] * W[1468] + W[1292] * W[1063] + W[1697] * W[658]
+            + W[2102] * W[253];
+    W[2300] = W[72] * W[2283] + W[477] * W[1878] + W[882] * W[1473] + W[1287] * W[1068] + W[1692] * W[663]
+            + W[2097] * W[258];
+    W[2310] = W[100] * W[2309] + W[505] * W[1904] + W[910] * W[1499] + W[1315] * W[1094] + W[1720] * W[689]
+            + W[2125] * W[284];
+    W[2314] = W[95] * W[2313] + W[500] * W[1908] + W[905] * W[1503] + W[1310] * W[1098] + W[1715] * W[693]
+            + W[2120] * W[288];
+    W[2319] = W[90] * W[2318] + W[495] * W[1913] + W[900] * W[1508] + W[1305] * W[1103] + W[1710] * W[698]
+            + W[2115] * W[293];
+    W[2329] = W[102] * W[2309] + W[507] * W[1904] + W[912] * W[1499] + W[1317] * W[1094] + W[1722] * W[689]
+            + W[2127] * W[284];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_103(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2227] = W[199] * W[2226];
+    W[2231] = W[203] * W[2230];
+    W[2236] = W[208] * W[2235];
+    W[2241] = W[213] * W[2240];
+    W[2246] = W[218] * W[2245];
+    W[2249] = W[127] * W[2202];
+    W[2252] = W[199] * W[2251];
+    W[2254] = W[203] * W[2253];
+    W[2257] = W[208] * W[2256];
+    W[2260] = W[213] * W[2259];
+    W[2263] = W[218] * W[2262];
+    W[2266] = W[127] * W[2220];
+    W[2271] = W[243] * W[2270];
+    W[2275] = W[247] * W[2274];
+    W[2280] = W[252] * W[2279];
+    W[2285] = W[257] * W[2284];
+    W[2288] = W[133] * W[2245];
+    W[2290] = W[128] * W[2197];
+    W[2293] = W[243] * W[2292];
+    W[2295] = W[247] * W[2294];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_105(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2358] = W[135] * W[2235];
+    W[2360] = W[130] * W[2187];
+    W[2363] = W[319] * W[2362];
+    W[2365] = W[323] * W[2364];
+    W[2368] = W[142] * W[2334];
+    W[2370] = W[139] * W[2297];
+    W[2372] = W[135] * W[2256];
+    W[2374] = W[130] * W[2211];
+    W[2379] = W[147] * W[2378];
+    W[2380] = W[145] * W[2350];
+    W[2382] = W[143] * W[2314];
+    W[2384] = W[140] * W[2274];
+    W[2386] = W[136] * W[2230];
+    W[2388] = W[131] * W[2182];
+    W[2391] = W[147] * W[2390];
+    W[2392] = W[145] * W[2364];
+    W[2394] = W[143] * W[2331];
+    W[2396] = W[140] * W[2294];
+    W[2398] = W[136] * W[2253];
+    W[2400] = W[131] * W[2208];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_107(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2281] = W[2276] + W[2280];
+    W[2299] = W[2296] + W[2298];
+    W[2321] = W[2316] + W[2320];
+    W[2336] = W[2333] + W[2335];
+    W[2353] = W[3] * W[2352];
+    W[2367] = W[3] * W[2366];
+    W[2383] = W[2381] - W[2382];
+    W[2395] = W[2393] - W[2394];
+    W[2404] = W[2311] + W[2403];
+    W[2411] = W[2330] + W[2410];
+    W[2194] = W[2189] + W[2193];
+    W[2216] = W[2213] + W[2215];
+    W[2242] = W[2237] + W[2241];
+    W[2261] = W[2258] + W[2260];
+    W[2286] = W[2281] + W[2285];
+    W[2302] = W[2299] + W[2301];
+    W[2322] = W[3] * W[2321];
+    W[2337] = W[3] * W[2336];
+    W[2355] = W[2353] - W[2354];
+    W[2369] = W[2367] - W[2368];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_109(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2248] = W[3] * W[2247];
+    W[2265] = W[3] * W[2264];
+    W[2289] = W[2287] - W[2288];
+    W[2305] = W[2303] - W[2304];
+    W[2326] = W[2324] - W[2325];
+    W[2341] = W[2339] - W[2340];
+    W[2359] = W[2357] - W[2358];
+    W[2373] = W[2371] - W[2372];
+    W[2389] = W[2387] - W[2388];
+    W[2401] = W[2399] - W[2400];
+    W[2407] = W[2179] + W[2406];
+    W[2414] = W[2207] + W[2413];
+    W[2205] = W[3] * W[2204];
+    W[2223] = W[3] * W[2222];
+    W[2250] = W[2248] - W[2249];
+    W[2267] = W[2265] - W[2266];
+    W[2291] = W[2289] - W[2290];
+    W[2307] = W[2305] - W[2306];
+    W[2328] = W[2326] - W[2327];
+    W[2343] = W[2341] - W[2342];
+    return 0;
+}
+
+/* Lines 340 .. 351 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_111(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[184] = -W[2250] / W[121] / 6.0;
+    X[185] = -W[2267] / W[121] / 6.0;
+    X[186] = -W[2291] / W[122] / 6.0;
+    X[187] = -W[2307] / W[122] / 6.0;
+    X[188] = -W[2328] / W[123] / 6.0;
+    X[189] = -W[2343] / W[123] / 6.0;
+    X[190] = -W[2361] / W[124] / 6.0;
+    X[191] = -W[2375] / W[124] / 6.0;
+    X[192] = -W[2389] / W[125] / 6.0;
+    X[193] = -W[2401] / W[125] / 6.0;
+    X[194] = -W[2408] / W[126] / 6.0;
+    X[195] = -W[2415] / W[126] / 6.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_112(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2432] = X[168] - X[170];
+    W[2437] = X[169] - X[171];
+    W[2441] = X[168] - X[172];
+    W[2444] = X[169] - X[173];
+    W[2448] = X[168] - X[174];
+    W[2451] = X[169] - X[175];
+    W[2455] = X[168] - X[176];
+    W[2458] = X[169] - X[177];
+    W[2462] = X[168] - X[178];
+    W[2465] = X[169] - X[179];
+    W[2469] = X[168] - X[180];
+    W[2472] = X[169] - X[181];
+    W[2475] = X[170] - X[172];
+    W[2477] = X[171] - X[173];
+    W[2480] = X[170] - X[174];
+    W[2482] = X[171] - X[175];
+    W[2485] = X[170] - X[176];
+    W[2487] = X[171] - X[177];
+    W[2490] = X[170] - X[178];
+    W[2492] = X[171] - X[179];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_114(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2545] = X[178] - X[180];
+    W[2547] = X[179] - X[181];
+    W[2434] = (W[2] * W[2432] + W[407] * W[2027] + W[812] * W[1622]) * 2.0 + W[1217] * W[1217];
+    W[2438] = (W[7] * W[2437] + W[412] * W[2032] + W[817] * W[1627]) * 2.0 + W[1222] * W[1222];
+    W[2442] = (W[11] * W[2441] + W[416] * W[2036] + W[821] * W[1631]) * 2.0 + W[1226] * W[1226];
+    W[2445] = (W[14] * W[2444] + W[419] * W[2039] + W[824] * W[1634]) * 2.0 + W[1229] * W[1229];
+    W[2449] = (W[18] * W[2448] + W[423] * W[2043] + W[828] * W[1638]) * 2.0 + W[1233] * W[1233];
+    W[2452] = (W[21] * W[2451] + W[426] * W[2046] + W[831] * W[1641]) * 2.0 + W[1236] * W[1236];
+    W[2456] = (W[25] * W[2455] + W[430] * W[2050] + W[835] * W[1645]) * 2.0 + W[1240] * W[1240];
+    W[2459] = (W[28] * W[2458] + W[433] * W[2053] + W[838] * W[1648]) * 2.0 + W[1243] * W[1243];
+    W[2463] = (W[32] * W[2462] + W[437] * W[2057] + W[842] * W[1652]) * 2.0 + W[1247] * W[1247];
+    W[2466] = (W[35] * W[2465] + W[440] * W[2060] + W[845] * W[1655]) * 2.0 + W[1250] * W[1250];
+    W[2470] = (W[39] * W[2469] + W[444] * W[2064] + W[849] * W[1659]) * 2.0 + W[1254] * W[1254];
+    W[2473] = (W[42] * W[2472] + W[447] * W[2067] + W[852] * W[1662]) * 2.0 + W[1257] * W[1257];
+    W[2476] = (W[45] * W[2475] + W[450] * W[2070] + W[855] * W[1665]) * 2.0 + W[1260] * W[1260];
+    W[2478] = (W[47] * W[2477] + W[452] * W[2072] + W[857] * W[1667]) * 2.0 + W[1262] * W[1262];
+    W[2481] = (W[50] * W[2480] + W[455] * W[2075] + W[860] * W[1670]) * 2.0 + W[1265] * W[1265];
+    W[2483] = (W[52] * W[2482] + W[457] * W[2077] + W[862] * W[1672]) * 2.0 + W[1267] * W[1267];
+    W[2486] = (W[55] * W[2485] + W[460] * W[2080] + W[865] * W[1675]) * 2.0 + W[1270] * W[1270];
+    W[2488] = (W[57] * W[2487] + W[462] * W[2082] + W[867] * W[1677]) * 2.0 + W[1272] * W[1272];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_116(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2541] = (W[110] * W[2540] + W[515] * W[2135] + W[920] * W[1730]) * 2.0 + W[1325] * W[1325];
+    W[2543] = (W[112] * W[2542] + W[517] * W[2137] + W[922] * W[1732]) * 2.0 + W[1327] * W[1327];
+    W[2546] = (W[115] * W[2545] + W[520] * W[2140] + W[925] * W[1735]) * 2.0 + W[1330] * W[1330];
+    W[2548] = (W[117] * W[2547] + W[522] * W[2142] + W[927] * W[1737]) * 2.0 + W[1332] * W[1332];
+    W[2439] = W[2434] + W[2438];
+    W[2446] = W[2442] + W[2445];
+    W[2453] = W[2449] + W[2452];
+    W[2460] = W[2456] + W[2459];
+    W[2467] = W[2463] + W[2466];
+    W[2474] = W[2470] + W[2473];
+    W[2479] = W[2476] + W[2478];
+    W[2484] = W[2481] + W[2483];
+    W[2489] = W[2486] + W[2488];
+    W[2494] = W[2491] + W[2493];
+    W[2499] = W[2496] + W[2498];
+    W[2504] = W[2501] + W[2503];
+    W[2509] = W[2506] + W[2508];
+    W[2514] = W[2511] + W[2513];
+    W[2519] = W[2516] + W[2518];
+    W[2524] = W[2521] + W[2523];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_118(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2714] = (-9.0 * W[2534] * W[284] - 8.5 * W[2129] * W[689] - 8.0 * W[1724] * W[1094] - 7.5 * W[1319] * W[1499]
+            - 7.0 * W[914] * W[1904] - 6.5 * W[509] * W[2309]) / (6.0 * W[104]);
+    W[2718] = (-9.0 * W[2529] * W[288] - 8.5 * W[2124] * W[693] - 8.0 * W[1719] * W[1098] - 7.5 * W[1314] * W[1503]
+            - 7.0 * W[909] * W[1908] - 6.5 * W[504] * W[2313]) / (6.0 * W[99]);
+    W[2723] = (-9.0 * W[2524] * W[293] - 8.5 * W[2119] * W[698] - 8.0 * W[1714] * W[1103] - 7.5 * W[1309] * W[1508]
+            - 7.0 * W[904] * W[1913] - 6.5 * W[499] * W[2318]) / (6.0 * W[94]);
+    W[2750] = (-9.0 * W[2544] * W[320] - 8.5 * W[2139] * W[725] - 8.0 * W[1734] * W[1130] - 7.5 * W[1329] * W[1535]
+            - 7.0 * W[924] * W[1940] - 6.5 * W[519] * W[2345]) / (6.0 * W[114]);
+    W[2754] = (-9.0 * W[2539] * W[324] - 8.5 * W[2134] * W[729] - 8.0 * W[1729] * W[1134] - 7.5 * W[1324] * W[1539]
+            - 7.0 * W[919] * W[1944] - 6.5 * W[514] * W[2349]) / (6.0 * W[109]);
+    W[2782] = (-9.0 * W[2549] * W[352] - 8.5 * W[2144] * W[757] - 8.0 * W[1739] * W[1162] - 7.5 * W[1334] * W[1567]
+            - 7.0 * W[929] * W[1972] - 6.5 * W[524] * W[2377]) / (6.0 * W[119]);
+    W[2583] = W[39] * W[2582] + W[444] * W[2177] + W[849] * W[1772] + W[1254] * W[1367] + W[1659] * W[962]
+            + W[2064] * W[557] + W[2469] * W[152];
+    W[2587] = W[32] * W[2586] + W[437] * W[2181] + W[842] * W[1776] + W[1247] * W[1371] + W[1652] * W[966]
+            + W[2057] * W[561] + W[2462] * W[156];
+    W[2592] = W[25] * W[2591] + W[430] * W[2186] + W[835] * W[1781] + W[1240] * W[1376] + W[1645] * W[971]
+            + W[2050] * W[566] + W[2455] * W[161];
+    W[2597] = W[18] * W[2596] + W[423] * W[2191] + W[828] * W[1786] + W[1233] * W[1381] + W[1638] * W[976]
+            + W[2043] * W[571] + W[2448] * W[166];
+    W[2602] = W[11] * W[2601] + W[416] * W[2196] + W[821] * W[1791] + W[1226] * W[1386] + W[1631] * W[981]
+            + W[2036] * W[576] + W[2441] * W[171];
+    W[2607] = W[2] * W[2606] + W[407] * W[2201] + W[812] * W[1796] + W[1217] * W[1391] + W[1622] * W[986]
+            + W[2027] * W[581] + W[2432] * W[176];
+    W[2611] = W[42] * W[2582] + W[447] * W[2177] + W[852] * W[1772] + W[1257] * W[1367] + W[1662] * W[962]
+            + W[2067] * W[557] + W[2472] * W[152];
+    W[2613] = W[35] * W[2586] + W[440] * W[2181] + W[845] * W[1776] + W[1250] * W[1371] + W[1655] * W[966]
+            + W[2060] * W[561] + W[2465] * W[156];
+    W[2616] = W[28] * W[2591] + W[433] * W[2186] + W[838] * W[1781] + W[1243] * W[1376] + W[1648] * W[971]
+            + W[2053] * W[566] + W[2458] * W[161];
+    W[2619] = W[21] * W[2596] + W[426] * W[2191] + W[831] * W[1786] + W[1236] * W[1381] + W[1641] * W[976]
+            + W[2046] * W[571] + W[2451] * W[166];
+    W[2622] = W[14] * W[2601] + W[419] * W[2196] + W[824] * W[1791] + W[1229] * W[1386] + W[1634] * W[981]
+            + W[2039] * W[576] + W[2444] * W[171];
+    W[2625] = W[7] * W[2606] + W[412] * W[2201] + W[817] * W[1796] + W[1222] * W[1391] + W[1627] * W[986]
+            + W[2032] * W[581] + W[2437] * W[176];
+    W[2631] = W[65] * W[2630] + W[470] * W[2225] + W[875] * W[1820] + W[1280] * W[1415] + W[1685] * W[1010]
+            + W[2090] * W[605] + W[2495] * W[200];
+    W[2635] = W[60] * W[2634] + W[465] * W[2229] + W[870] * W[1824] + W[1275] * W[1419] + W[1680] * W[1014]
+            + W[2085] * W[609] + W[2490] * W[204];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_120(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2736] = W[97] * W[2718] + W[502] * W[2313] + W[907] * W[1908] + W[1312] * W[1503] + W[1717] * W[1098]
+            + W[2122] * W[693] + W[2527] * W[288];
+    W[2739] = W[92] * W[2723] + W[497] * W[2318] + W[902] * W[1913] + W[1307] * W[1508] + W[1712] * W[1103]
+            + W[2117] * W[698] + W[2522] * W[293];
+    W[2751] = W[110] * W[2750] + W[515] * W[2345] + W[920] * W[1940] + W[1325] * W[1535] + W[1730] * W[1130]
+            + W[2135] * W[725] + W[2540] * W[320];
+    W[2755] = W[105] * W[2754] + W[510] * W[2349] + W[915] * W[1944] + W[1320] * W[1539] + W[1725] * W[1134]
+            + W[2130] * W[729] + W[2535] * W[324];
+    W[2767] = W[112] * W[2750] + W[517] * W[2345] + W[922] * W[1940] + W[1327] * W[1535] + W[1732] * W[1130]
+            + W[2137] * W[725] + W[2542] * W[320];
+    W[2769] = W[107] * W[2754] + W[512] * W[2349] + W[917] * W[1944] + W[1322] * W[1539] + W[1727] * W[1134]
+            + W[2132] * W[729] + W[2537] * W[324];
+    W[2783] = W[115] * W[2782] + W[520] * W[2377] + W[925] * W[1972] + W[1330] * W[1567] + W[1735] * W[1162]
+            + W[2140] * W[757] + W[2545] * W[352];
+    W[2795] = W[117] * W[2782] + W[522] * W[2377] + W[927] * W[1972] + W[1332] * W[1567] + W[1737] * W[1162]
+            + W[2142] * W[757] + W[2547] * W[352];
+    W[2584] = W[151] * W[2583];
+    W[2588] = W[155] * W[2587];
+    W[2593] = W[160] * W[2592];
+    W[2598] = W[165] * W[2597];
+    W[2603] = W[170] * W[2602];
+    W[2608] = W[175] * W[2607];
+    W[2612] = W[151] * W[2611];
+    W[2614] = W[155] * W[2613];
+    W[2617] = W[160] * W[2616];
+    W[2620] = W[165] * W[2619];
+    W[2623] = W[170] * W[2622];
+    W[2626] = W[175] * W[2625];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_122(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2703] = W[252] * W[2702];
+    W[2706] = W[257] * W[2705];
+    W[2709] = W[133] * W[2667];
+    W[2711] = W[128] * W[2622];
+    W[2716] = W[283] * W[2715];
+    W[2720] = W[287] * W[2719];
+    W[2725] = W[292] * W[2724];
+    W[2728] = W[138] * W[2689];
+    W[2730] = W[134] * W[2645];
+    W[2732] = W[129] * W[2597];
+    W[2735] = W[283] * W[2734];
+    W[2737] = W[287] * W[2736];
+    W[2740] = W[292] * W[2739];
+    W[2743] = W[138] * W[2705];
+    W[2745] = W[134] * W[2664];
+    W[2747] = W[129] * W[2619];
+    W[2752] = W[319] * W[2751];
+    W[2756] = W[323] * W[2755];
+    W[2759] = W[142] * W[2724];
+    W[2761] = W[139] * W[2684];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_124(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2807] = W[351] * W[2783];
+    W[2814] = W[351] * W[2795];
+    W[2589] = W[2584] + W[2588];
+    W[2615] = W[2612] + W[2614];
+    W[2637] = W[2632] + W[2636];
+    W[2660] = W[2657] + W[2659];
+    W[2681] = W[2676] + W[2680];
+    W[2701] = W[2698] + W[2700];
+    W[2721] = W[2716] + W[2720];
+    W[2738] = W[2735] + W[2737];
+    W[2757] = W[2752] + W[2756];
+    W[2771] = W[2768] + W[2770];
+    W[2786] = W[2784] - W[2785];
+    W[2798] = W[2796] - W[2797];
+    W[2808] = W[2752] + W[2807];
+    W[2815] = W[2768] + W[2814];
+    W[2594] = W[2589] + W[2593];
+    W[2618] = W[2615] + W[2617];
+    W[2642] = W[2637] + W[2641];
+    W[2663] = W[2660] + W[2662];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_126(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2790] = W[2788] - W[2789];
+    W[2802] = W[2800] - W[2801];
+    W[2810] = W[2676] + W[2809];
+    W[2817] = W[2698] + W[2816];
+    W[2604] = W[2599] + W[2603];
+    W[2624] = W[2621] + W[2623];
+    W[2652] = W[2647] + W[2651];
+    W[2669] = W[2666] + W[2668];
+    W[2692] = W[3] * W[2691];
+    W[2708] = W[3] * W[2707];
+    W[2729] = W[2727] - W[2728];
+    W[2744] = W[2742] - W[2743];
+    W[2762] = W[2760] - W[2761];
+    W[2776] = W[2774] - W[2775];
+    W[2792] = W[2790] - W[2791];
+    W[2804] = W[2802] - W[2803];
+    W[2811] = W[2632] + W[2810];
+    W[2818] = W[2657] + W[2817];
+    W[2609] = W[2604] + W[2608];
+    W[2627] = W[2624] + W[2626];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_128(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2766] = W[2764] - W[2765];
+    W[2780] = W[2778] - W[2779];
+    W[2813] = W[148] * W[2812];
+    W[2820] = W[148] * W[2819];
+    X[196] = X[182] / 7.0;
+    X[197] = X[183] / 7.0;
+    X[198] = X[184] / 7.0;
+    X[199] = X[185] / 7.0;
+    X[200] = X[186] / 7.0;
+    X[201] = X[187] / 7.0;
+    X[202] = X[188] / 7.0;
+    X[203] = X[189] / 7.0;
+    X[204] = X[190] / 7.0;
+    X[205] = X[191] / 7.0;
+    X[206] = X[192] / 7.0;
+    X[207] = X[193] / 7.0;
+    X[208] = X[194] / 7.0;
+    X[209] = X[195] / 7.0;
+    X[210] = -W[2610] / W[120] / 7.0;
+    X[211] = -W[2628] / W[120] / 7.0;
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_131(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2900] = X[198] - X[208];
+    W[2902] = X[199] - X[209];
+    W[2905] = X[200] - X[202];
+    W[2907] = X[201] - X[203];
+    W[2910] = X[200] - X[204];
+    W[2912] = X[201] - X[205];
+    W[2915] = X[200] - X[206];
+    W[2917] = X[201] - X[207];
+    W[2920] = X[200] - X[208];
+    W[2922] = X[201] - X[209];
+    W[2925] = X[202] - X[204];
+    W[2927] = X[203] - X[205];
+    W[2930] = X[202] - X[206];
+    W[2932] = X[203] - X[207];
+    W[2935] = X[202] - X[208];
+    W[2937] = X[203] - X[209];
+    W[2940] = X[204] - X[206];
+    W[2942] = X[205] - X[207];
+    W[2945] = X[204] - X[208];
+    W[2947] = X[205] - X[209];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_133(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2896] = (W[60] * W[2895] + W[465] * W[2490] + W[870] * W[2085] + W[1275] * W[1680]) * 2.0;
+    W[2898] = (W[62] * W[2897] + W[467] * W[2492] + W[872] * W[2087] + W[1277] * W[1682]) * 2.0;
+    W[2901] = (W[65] * W[2900] + W[470] * W[2495] + W[875] * W[2090] + W[1280] * W[1685]) * 2.0;
+    W[2903] = (W[67] * W[2902] + W[472] * W[2497] + W[877] * W[2092] + W[1282] * W[1687]) * 2.0;
+    W[2906] = (W[70] * W[2905] + W[475] * W[2500] + W[880] * W[2095] + W[1285] * W[1690]) * 2.0;
+    W[2908] = (W[72] * W[2907] + W[477] * W[2502] + W[882] * W[2097] + W[1287] * W[1692]) * 2.0;
+    W[2911] = (W[75] * W[2910] + W[480] * W[2505] + W[885] * W[2100] + W[1290] * W[1695]) * 2.0;
+    W[2913] = (W[77] * W[2912] + W[482] * W[2507] + W[887] * W[2102] + W[1292] * W[1697]) * 2.0;
+    W[2916] = (W[80] * W[2915] + W[485] * W[2510] + W[890] * W[2105] + W[1295] * W[1700]) * 2.0;
+    W[2918] = (W[82] * W[2917] + W[487] * W[2512] + W[892] * W[2107] + W[1297] * W[1702]) * 2.0;
+    W[2921] = (W[85] * W[2920] + W[490] * W[2515] + W[895] * W[2110] + W[1300] * W[1705]) * 2.0;
+    W[2923] = (W[87] * W[2922] + W[492] * W[2517] + W[897] * W[2112] + W[1302] * W[1707]) * 2.0;
+    W[2926] = (W[90] * W[2925] + W[495] * W[2520] + W[900] * W[2115] + W[1305] * W[1710]) * 2.0;
+    W[2928] = (W[92] * W[2927] + W[497] * W[2522] + W[902] * W[2117] + W[1307] * W[1712]) * 2.0;
+    W[2931] = (W[95] * W[2930] + W[500] * W[2525] + W[905] * W[2120] + W[1310] * W[1715]) * 2.0;
+    W[2933] = (W[97] * W[2932] + W[502] * W[2527] + W[907] * W[2122] + W[1312] * W[1717]) * 2.0;
+    W[2936] = (W[100] * W[2935] + W[505] * W[2530] + W[910] * W[2125] + W[1315] * W[1720]) * 2.0;
+    W[2938] = (W[102] * W[2937] + W[507] * W[2532] + W[912] * W[2127] + W[1317] * W[1722]) * 2.0;
+    W[2941] = (W[105] * W[2940] + W[510] * W[2535] + W[915] * W[2130] + W[1320] * W[1725]) * 2.0;
+    W[2943] = (W[107] * W[2942] + W[512] * W[2537] + W[917] * W[2132] + W[1322] * W[1727]) * 2.0;
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_135(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[2934] = W[2931] + W[2933];
+    W[2939] = W[2936] + W[2938];
+    W[2944] = W[2941] + W[2943];
+    W[2949] = W[2946] + W[2948];
+    W[2954] = W[2951] + W[2953];
+    W[2987] = (-10.5 * W[2879] * W[152] - 10.0 * W[2474] * W[557] - 9.5 * W[2069] * W[962] - 9.0 * W[1664] * W[1367]
+            - 8.5 * W[1259] * W[1772] - 8.0 * W[854] * W[2177] - 7.5 * W[449] * W[2582]) / (7.0 * W[44]);
+    W[2991] = (-10.5 * W[2872] * W[156] - 10.0 * W[2467] * W[561] - 9.5 * W[2062] * W[966] - 9.0 * W[1657] * W[1371]
+            - 8.5 * W[1252] * W[1776] - 8.0 * W[847] * W[2181] - 7.5 * W[442] * W[2586]) / (7.0 * W[37]);
+    W[2996] = (-10.5 * W[2865] * W[161] - 10.0 * W[2460] * W[566] - 9.5 * W[2055] * W[971] - 9.0 * W[1650] * W[1376]
+            - 8.5 * W[1245] * W[1781] - 8.0 * W[840] * W[2186] - 7.5 * W[435] * W[2591]) / (7.0 * W[30]);
+    W[3001] = (-10.5 * W[2858] * W[166] - 10.0 * W[2453] * W[571] - 9.5 * W[2048] * W[976] - 9.0 * W[1643] * W[1381]
+            - 8.5 * W[1238] * W[1786] - 8.0 * W[833] * W[2191] - 7.5 * W[428] * W[2596]) / (7.0 * W[23]);
+    W[3006] = (-10.5 * W[2851] * W[171] - 10.0 * W[2446] * W[576] - 9.5 * W[2041] * W[981] - 9.0 * W[1636] * W[1386]
+            - 8.5 * W[1231] * W[1791] - 8.0 * W[826] * W[2196] - 7.5 * W[421] * W[2601]) / (7.0 * W[16]);
+    W[3011] = (-10.5 * W[2844] * W[176] - 10.0 * W[2439] * W[581] - 9.5 * W[2034] * W[986] - 9.0 * W[1629] * W[1391]
+            - 8.5 * W[1224] * W[1796] - 8.0 * W[819] * W[2201] - 7.5 * W[414] * W[2606]) / (7.0 * W[9]);
+    W[3035] = (-10.5 * W[2904] * W[200] - 10.0 * W[2499] * W[605] - 9.5 * W[2094] * W[1010] - 9.0 * W[1689] * W[1415]
+            - 8.5 * W[1284] * W[1820] - 8.0 * W[879] * W[2225] - 7.5 * W[474] * W[2630]) / (7.0 * W[69]);
+    W[3039] = (-10.5 * W[2899] * W[204] - 10.0 * W[2494] * W[609] - 9.5 * W[2089] * W[1014] - 9.0 * W[1684] * W[1419]
+            - 8.5 * W[1279] * W[1824] - 8.0 * W[874] * W[2229] - 7.5 * W[469] * W[2634]) / (7.0 * W[64]);
+    W[3044] = (-10.5 * W[2894] * W[209] - 10.0 * W[2489] * W[614] - 9.5 * W[2084] * W[1019] - 9.0 * W[1679] * W[1424]
+            - 8.5 * W[1274] * W[1829] - 8.0 * W[869] * W[2234] - 7.5 * W[464] * W[2639]) / (7.0 * W[59]);
+    W[3049] = (-10.5 * W[2889] * W[214] - 10.0 * W[2484] * W[619] - 9.5 * W[2079] * W[1024] - 9.0 * W[1674] * W[1429]
+            - 8.5 * W[1269] * W[1834] - 8.0 * W[864] * W[2239] - 7.5 * W[459] * W[2644]) / (7.0 * W[54]);
+    W[3054] = (-10.5 * W[2884] * W[219] - 10.0 * W[2479] * W[624] - 9.5 * W[2074] * W[1029] - 9.0 * W[1669] * W[1434]
+            - 8.5 * W[1264] * W[1839] - 8.0 * W[859] * W[2244] - 7.5 * W[454] * W[2649]) / (7.0 * W[49]);
+    W[3079] = (-10.5 * W[2924] * W[244] - 10.0 * W[2519] * W[649] - 9.5 * W[2114] * W[1054] - 9.0 * W[1709] * W[1459]
+            - 8.5 * W[1304] * W[1864] - 8.0 * W[899] * W[2269] - 7.5 * W[494] * W[2674]) / (7.0 * W[89]);
+    W[3083] = (-10.5 * W[2919] * W[248] - 10.0 * W[2514] * W[653] - 9.5 * W[2109] * W[1058] - 9.0 * W[1704] * W[1463]
+            - 8.5 * W[1299] * W[1868] - 8.0 * W[894] * W[2273] - 7.5 * W[489] * W[2678]) / (7.0 * W[84]);
+    W[3088] = (-10.5 * W[2914] * W[253] - 10.0 * W[2509] * W[658] - 9.5 * W[2104] * W[1063] - 9.0 * W[1699] * W[1468]
+            - 8.5 * W[1294] * W[1873] - 8.0 * W[889] * W[2278] - 7.5 * W[484] * W[2683]) / (7.0 * W[79]);
+    W[3093] = (-10.5 * W[2909] * W[258] - 10.0 * W[2504] * W[663] - 9.5 * W[2099] * W[1068] - 9.0 * W[1694] * W[1473]
+            - 8.5 * W[1289] * W[1878] - 8.0 * W[884] * W[2283] - 7.5 * W[479] * W[2688]) / (7.0 * W[74]);
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_137(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3045] = W[55] * W[3044] + W[460] * W[2639] + W[865] * W[2234] + W[1270] * W[1829] + W[1675] * W[1424]
+            + W[2080] * W[1019] + W[2485] * W[614] + W[2890] * W[209];
+    W[3050] = W[50] * W[3049] + W[455] * W[2644] + W[860] * W[2239] + W[1265] * W[1834] + W[1670] * W[1429]
+            + W[2075] * W[1024] + W[2480] * W[619] + W[2885] * W[214];
+    W[3055] = W[45] * W[3054] + W[450] * W[2649] + W[855] * W[2244] + W[1260] * W[1839] + W[1665] * W[1434]
+            + W[2070] * W[1029] + W[2475] * W[624] + W[2880] * W[219];
+    W[3061] = W[67] * W[3035] + W[472] * W[2630] + W[877] * W[2225] + W[1282] * W[1820] + W[1687] * W[1415]
+            + W[2092] * W[1010] + W[2497] * W[605] + W[2902] * W[200];
+    W[3063] = W[62] * W[3039] + W[467] * W[2634] + W[872] * W[2229] + W[1277] * W[1824] + W[1682] * W[1419]
+            + W[2087] * W[1014] + W[2492] * W[609] + W[2897] * W[204];
+    W[3066] = W[57] * W[3044] + W[462] * W[2639] + W[867] * W[2234] + W[1272] * W[1829] + W[1677] * W[1424]
+            + W[2082] * W[1019] + W[2487] * W[614] + W[2892] * W[209];
+    W[3069] = W[52] * W[3049] + W[457] * W[2644] + W[862] * W[2239] + W[1267] * W[1834] + W[1672] * W[1429]
+            + W[2077] * W[1024] + W[2482] * W[619] + W[2887] * W[214];
+    W[3072] = W[47] * W[3054] + W[452] * W[2649] + W[857] * W[2244] + W[1262] * W[1839] + W[1667] * W[1434]
+            + W[2072] * W[1029] + W[2477] * W[624] + W[2882] * W[219];
+    W[3080] = W[85] * W[3079] + W[490] * W[2674] + W[895] * W[2269] + W[1300] * W[1864] + W[1705] * W[1459]
+            + W[2110] * W[1054] + W[2515] * W[649] + W[2920] * W[244];
+    W[3084] = W[80] * W[3083] + W[485] * W[2678] + W[890] * W[2273] + W[1295] * W[1868] + W[1700] * W[1463]
+            + W[2105] * W[1058] + W[2510] * W[653] + W[2915] * W[248];
+    W[3089] = W[75] * W[3088] + W[480] * W[2683] + W[885] * W[2278] + W[1290] * W[1873] + W[1695] * W[1468]
+            + W[2100] * W[1063] + W[2505] * W[658] + W[2910] * W[253];
+    W[3094] = W[70] * W[3093] + W[475] * W[2688] + W[880] * W[2283] + W[1285] * W[1878] + W[1690] * W[1473]
+            + W[2095] * W[1068] + W[2500] * W[663] + W[2905] * W[258];
+    W[3102] = W[87] * W[3079] + W[492] * W[2674] + W[897] * W[2269] + W[1302] * W[1864] + W[1707] * W[1459]
+            + W[2112] * W[1054] + W[2517] * W[649] + W[2922] * W[244];
+    W[3104] = W[82] * W[3083] + W[487] * W[2678] + W[892] * W[2273] + W[1297] * W[1868] + W[1702] * W[1463]
+            + W[2107] * W[1058] + W[2512] * W[653] + W[2917] * W[248];
+    W[3107] = W[77] * W[3088] + W[482] * W[2683] + W[887] * W[2278] + W[1292] * W[1873] + W[1697] * W[1468]
+            + W[2102] * W[1063] + W[2507] * W[658] + W[2912] * W[253];
+    W[3110] = W[72] * W[3093] + W[477] * W[2688] + W[882] * W[2283] + W[1287] * W[1878] + W[1692] * W[1473]
+            + W[2097] * W[1068] + W[2502] * W[663] + W[2907] * W[258];
+    W[3120] = W[100] * W[3119] + W[505] * W[2714] + W[910] * W[2309] + W[1315] * W[1904] + W[1720] * W[1499]
+            + W[2125] * W[1094] + W[2530] * W[689] + W[2935] * W[284];
+    W[3124] = W[95] * W[3123] + W[500] * W[2718] + W[905] * W[2313] + W[1310] * W[1908] + W[1715] * W[1503]
+            + W[2120] * W[1098] + W[2525] * W[693] + W[2930] * W[288];
+    W[3129] = W[90] * W[3128] + W[495] * W[2723] + W[900] * W[2318] + W[1305] * W[1913] + W[1710] * W[1508]
+            + W[2115] * W[1103] + W[2520] * W[698] + W[2925] * W[293];
+    W[3139] = W[102] * W[3119] + W[507] * W[2714] + W[912] * W[2309] + W[1317] * W[1904] + W[1722] * W[1499]
+            + W[2127] * W[1094] + W[2532] * W[689] + W[2937] * W[284];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_139(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3037] = W[199] * W[3036];
+    W[3041] = W[203] * W[3040];
+    W[3046] = W[208] * W[3045];
+    W[3051] = W[213] * W[3050];
+    W[3056] = W[218] * W[3055];
+    W[3059] = W[127] * W[3012];
+    W[3062] = W[199] * W[3061];
+    W[3064] = W[203] * W[3063];
+    W[3067] = W[208] * W[3066];
+    W[3070] = W[213] * W[3069];
+    W[3073] = W[218] * W[3072];
+    W[3076] = W[127] * W[3030];
+    W[3081] = W[243] * W[3080];
+    W[3085] = W[247] * W[3084];
+    W[3090] = W[252] * W[3089];
+    W[3095] = W[257] * W[3094];
+    W[3098] = W[133] * W[3055];
+    W[3100] = W[128] * W[3007];
+    W[3103] = W[243] * W[3102];
+    W[3105] = W[247] * W[3104];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_141(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3168] = W[135] * W[3045];
+    W[3170] = W[130] * W[2997];
+    W[3173] = W[319] * W[3172];
+    W[3175] = W[323] * W[3174];
+    W[3178] = W[142] * W[3144];
+    W[3180] = W[139] * W[3107];
+    W[3182] = W[135] * W[3066];
+    W[3184] = W[130] * W[3021];
+    W[3189] = W[147] * W[3188];
+    W[3190] = W[145] * W[3160];
+    W[3192] = W[143] * W[3124];
+    W[3194] = W[140] * W[3084];
+    W[3196] = W[136] * W[3040];
+    W[3198] = W[131] * W[2992];
+    W[3201] = W[147] * W[3200];
+    W[3202] = W[145] * W[3174];
+    W[3204] = W[143] * W[3141];
+    W[3206] = W[140] * W[3104];
+    W[3208] = W[136] * W[3063];
+    W[3210] = W[131] * W[3018];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_143(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3091] = W[3086] + W[3090];
+    W[3109] = W[3106] + W[3108];
+    W[3131] = W[3126] + W[3130];
+    W[3146] = W[3143] + W[3145];
+    W[3163] = W[3] * W[3162];
+    W[3177] = W[3] * W[3176];
+    W[3193] = W[3191] - W[3192];
+    W[3205] = W[3203] - W[3204];
+    W[3214] = W[3121] + W[3213];
+    W[3221] = W[3140] + W[3220];
+    W[3004] = W[2999] + W[3003];
+    W[3026] = W[3023] + W[3025];
+    W[3052] = W[3047] + W[3051];
+    W[3071] = W[3068] + W[3070];
+    W[3096] = W[3091] + W[3095];
+    W[3112] = W[3109] + W[3111];
+    W[3132] = W[3] * W[3131];
+    W[3147] = W[3] * W[3146];
+    W[3165] = W[3163] - W[3164];
+    W[3179] = W[3177] - W[3178];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_145(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3058] = W[3] * W[3057];
+    W[3075] = W[3] * W[3074];
+    W[3099] = W[3097] - W[3098];
+    W[3115] = W[3113] - W[3114];
+    W[3136] = W[3134] - W[3135];
+    W[3151] = W[3149] - W[3150];
+    W[3169] = W[3167] - W[3168];
+    W[3183] = W[3181] - W[3182];
+    W[3199] = W[3197] - W[3198];
+    W[3211] = W[3209] - W[3210];
+    W[3217] = W[2989] + W[3216];
+    W[3224] = W[3017] + W[3223];
+    W[3015] = W[3] * W[3014];
+    W[3033] = W[3] * W[3032];
+    W[3060] = W[3058] - W[3059];
+    W[3077] = W[3075] - W[3076];
+    W[3101] = W[3099] - W[3100];
+    W[3117] = W[3115] - W[3116];
+    W[3138] = W[3136] - W[3137];
+    W[3153] = W[3151] - W[3152];
+    return 0;
+}
+
+/* Lines 340 .. 351 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_147(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[240] = -W[3060] / W[121] / 8.0;
+    X[241] = -W[3077] / W[121] / 8.0;
+    X[242] = -W[3101] / W[122] / 8.0;
+    X[243] = -W[3117] / W[122] / 8.0;
+    X[244] = -W[3138] / W[123] / 8.0;
+    X[245] = -W[3153] / W[123] / 8.0;
+    X[246] = -W[3171] / W[124] / 8.0;
+    X[247] = -W[3185] / W[124] / 8.0;
+    X[248] = -W[3199] / W[125] / 8.0;
+    X[249] = -W[3211] / W[125] / 8.0;
+    X[250] = -W[3218] / W[126] / 8.0;
+    X[251] = -W[3225] / W[126] / 8.0;
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_149(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3305] = X[226] - X[236];
+    W[3307] = X[227] - X[237];
+    W[3310] = X[228] - X[230];
+    W[3312] = X[229] - X[231];
+    W[3315] = X[228] - X[232];
+    W[3317] = X[229] - X[233];
+    W[3320] = X[228] - X[234];
+    W[3322] = X[229] - X[235];
+    W[3325] = X[228] - X[236];
+    W[3327] = X[229] - X[237];
+    W[3330] = X[230] - X[232];
+    W[3332] = X[231] - X[233];
+    W[3335] = X[230] - X[234];
+    W[3337] = X[231] - X[235];
+    W[3340] = X[230] - X[236];
+    W[3342] = X[231] - X[237];
+    W[3345] = X[232] - X[234];
+    W[3347] = X[233] - X[235];
+    W[3350] = X[232] - X[236];
+    W[3352] = X[233] - X[237];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_151(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3301] = (W[60] * W[3300] + W[465] * W[2895] + W[870] * W[2490] + W[1275] * W[2085]) * 2.0
+            + W[1680] * W[1680];
+    W[3303] = (W[62] * W[3302] + W[467] * W[2897] + W[872] * W[2492] + W[1277] * W[2087]) * 2.0
+            + W[1682] * W[1682];
+    W[3306] = (W[65] * W[3305] + W[470] * W[2900] + W[875] * W[2495] + W[1280] * W[2090]) * 2.0
+            + W[1685] * W[1685];
+    W[3308] = (W[67] * W[3307] + W[472] * W[2902] + W[877] * W[2497] + W[1282] * W[2092]) * 2.0
+            + W[1687] * W[1687];
+    W[3311] = (W[70] * W[3310] + W[475] * W[2905] + W[880] * W[2500] + W[1285] * W[2095]) * 2.0
+            + W[1690] * W[1690];
+    W[3313] = (W[72] * W[3312] + W[477] * W[2907] + W[882] * W[2502] + W[1287] * W[2097]) * 2.0
+            + W[1692] * W[1692];
+    W[3316] = (W[75] * W[3315] + W[480] * W[2910] + W[885] * W[2505] + W[1290] * W[2100]) * 2.0
+            + W[1695] * W[1695];
+    W[3318] = (W[77] * W[3317] + W[482] * W[2912] + W[887] * W[2507] + W[1292] * W[2102]) * 2.0
+            + W[1697] * W[1697];
+    W[3321] = (W[80] * W[3320] + W[485] * W[2915] + W[890] * W[2510] + W[1295] * W[2105]) * 2.0
+            + W[1700] * W[1700];
+    W[3323] = (W[82] * W[3322] + W[487] * W[2917] + W[892] * W[2512] + W[1297] * W[2107]) * 2.0
+            + W[1702] * W[1702];
+    W[3326] = (W[85] * W[3325] + W[490] * W[2920] + W[895] * W[2515] + W[1300] * W[2110]) * 2.0
+            + W[1705] * W[1705];
+    W[3328] = (W[87] * W[3327] + W[492] * W[2922] + W[897] * W[2517] + W[1302] * W[2112]) * 2.0
+            + W[1707] * W[1707];
+    W[3331] = (W[90] * W[3330] + W[495] * W[2925] + W[900] * W[2520] + W[1305] * W[2115]) * 2.0
+            + W[1710] * W[1710];
+    W[3333] = (W[92] * W[3332] + W[497] * W[2927] + W[902] * W[2522] + W[1307] * W[2117]) * 2.0
+            + W[1712] * W[1712];
+    W[3336] = (W[95] * W[3335] + W[500] * W[2930] + W[905] * W[2525] + W[1310] * W[2120]) * 2.0
+            + W[1715] * W[1715];
+    W[3338] = (W[97] * W[3337] + W[502] * W[2932] + W[907] * W[2527] + W[1312] * W[2122]) * 2.0
+            + W[1717] * W[1717];
+    W[3341] = (W[100] * W[3340] + W[505] * W[2935] + W[910] * W[2530] + W[1315] * W[2125]) * 2.0
+            + W[1720] * W[1720];
+    W[3343] = (W[102] * W[3342] + W[507] * W[2937] + W[912] * W[2532] + W[1317] * W[2127]) * 2.0
+            + W[1722] * W[1722];
+    W[3346] = (W[105] * W[3345] + W[510] * W[2940] + W[915] * W[2535] + W[1320] * W[2130]) * 2.0
+            + W[1725] * W[1725];
+    W[3348] = (W[107] * W[3347] + W[512] * W[2942] + W[917] * W[2537] + W[1322] * W[2132]) * 2.0
+            + W[1727] * W[1727];
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_153(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3339] = W[3336] + W[3338];
+    W[3344] = W[3341] + W[3343];
+    W[3349] = W[3346] + W[3348];
+    W[3354] = W[3351] + W[3353];
+    W[3359] = W[3356] + W[3358];
+    W[3392] = (-12.0 * W[3284] * W[152] - 11.5 * W[2879] * W[557] - 11.0 * W[2474] * W[962] - 10.5 * W[2069] * W[1367]
+            - 10.0 * W[1664] * W[1772] - 9.5 * W[1259] * W[2177] - 9.0 * W[854] * W[2582] - 8.5 * W[449] * W[2987]) / (8.0 * W[44]);
+    W[3396] = (-12.0 * W[3277] * W[156] - 11.5 * W[2872] * W[561] - 11.0 * W[2467] * W[966] - 10.5 * W[2062] * W[1371]
+            - 10.0 * W[1657] * W[1776] - 9.5 * W[1252] * W[2181] - 9.0 * W[847] * W[2586] - 8.5 * W[442] * W[2991]) / (8.0 * W[37]);
+    W[3401] = (-12.0 * W[3270] * W[161] - 11.5 * W[2865] * W[566] - 11.0 * W[2460] * W[971] - 10.5 * W[2055] * W[1376]
+            - 10.0 * W[1650] * W[1781] - 9.5 * W[1245] * W[2186] - 9.0 * W[840] * W[2591] - 8.5 * W[435] * W[2996]) / (8.0 * W[30]);
+    W[3406] = (-12.0 * W[3263] * W[166] - 11.5 * W[2858] * W[571] - 11.0 * W[2453] * W[976] - 10.5 * W[2048] * W[1381]
+            - 10.0 * W[1643] * W[1786] - 9.5 * W[1238] * W[2191] - 9.0 * W[833] * W[2596] - 8.5 * W[428] * W[3001]) / (8.0 * W[23]);
+    W[3411] = (-12.0 * W[3256] * W[171] - 11.5 * W[2851] * W[576] - 11.0 * W[2446] * W[981] - 10.5 * W[2041] * W[1386]
+            - 10.0 * W[1636] * W[1791] - 9.5 * W[1231] * W[2196] - 9.0 * W[826] * W[2601] - 8.5 * W[421] * W[3006]) / (8.0 * W[16]);
+    W[3416] = (-12.0 * W[3249] * W[176] - 11.5 * W[2844] * W[581] - 11.0 * W[2439] * W[986] - 10.5 * W[2034] * W[1391]
+            - 10.0 * W[1629] * W[1796] - 9.5 * W[1224] * W[2201] - 9.0 * W[819] * W[2606] - 8.5 * W[414] * W[3011]) / (8.0 * W[9]);
+    W[3440] = (-12.0 * W[3309] * W[200] - 11.5 * W[2904] * W[605] - 11.0 * W[2499] * W[1010] - 10.5 * W[2094] * W[1415]
+            - 10.0 * W[1689] * W[1820] - 9.5 * W[1284] * W[2225] - 9.0 * W[879] * W[2630] - 8.5 * W[474] * W[3035]) / (8.0 * W[69]);
+    W[3444] = (-12.0 * W[3304] * W[204] - 11.5 * W[2899] * W[609] - 11.0 * W[2494] * W[1014] - 10.5 * W[2089] * W[1419]
+            - 10.0 * W[1684] * W[1824] - 9.5 * W[1279] * W[2229] - 9.0 * W[874] * W[2634] - 8.5 * W[469] * W[3039]) / (8.0 * W[64]);
+    W[3449] = (-12.0 * W[3299] * W[209] - 11.5 * W[2894] * W[614] - 11.0 * W[2489] * W[1019] - 10.5 * W[2084] * W[1424]
+            - 10.0 * W[1679] * W[1829] - 9.5 * W[1274] * W[2234] - 9.0 * W[869] * W[2639] - 8.5 * W[464] * W[3044]) / (8.0 * W[59]);
+    W[3454] = (-12.0 * W[3294] * W[214] - 11.5 * W[2889] * W[619] - 11.0 * W[2484] * W[1024] - 10.5 * W[2079] * W[1429]
+            - 10.0 * W[1674] * W[1834] - 9.5 * W[1269] * W[2239] - 9.0 * W[864] * W[2644] - 8.5 * W[459] * W[3049]) / (8.0 * W[54]);
+    W[3459] = (-12.0 * W[3289] * W[219] - 11.5 * W[2884] * W[624] - 11.0 * W[2479] * W[1029] - 10.5 * W[2074] * W[1434]
+            - 10.0 * W[1669] * W[1839] - 9.5 * W[1264] * W[2244] - 9.0 * W[859] * W[2649] - 8.5 * W[454] * W[3054]) / (8.0 * W[49]);
+    W[3484] = (-12.0 * W[3329] * W[244] - 11.5 * W[2924] * W[649] - 11.0 * W[2519] * W[1054] - 10.5 * W[2114] * W[1459]
+            - 10.0 * W[1709] * W[1864] - 9.5 * W[1304] * W[2269] - 9.0 * W[899] * W[2674] - 8.5 * W[494] * W[3079]) / (8.0 * W[89]);
+    W[3488] = (-12.0 * W[3324] * W[248] - 11.5 * W[2919] * W[653] - 11.0 * W[2514] * W[1058] - 10.5 * W[2109] * W[1463]
+            - 10.0 * W[1704] * W[1868] - 9.5 * W[1299] * W[2273] - 9.0 * W[894] * W[2678] - 8.5 * W[489] * W[3083]) / (8.0 * W[84]);
+    W[3493] = (-12.0 * W[3319] * W[253] - 11.5 * W[2914] * W[658] - 11.0 * W[2509] * W[1063] - 10.5 * W[2104] * W[1468]
+            - 10.0 * W[1699] * W[1873] - 9.5 * W[1294] * W[2278] - 9.0 * W[889] * W[2683] - 8.5 * W[484] * W[3088]) / (8.0 * W[79]);
+    W[3498] = (-12.0 * W[3314] * W[258] - 11.5 * W[2909] * W[663] - 11.0 * W[2504] * W[1068] - 10.5 * W[2099] * W[1473]
+            - 10.0 * W[1694] * W[1878] - 9.5 * W[1289] * W[2283] - 9.0 * W[884] * W[2688] - 8.5 * W[479] * W[3093]) / (8.0 * W[74]);
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_155(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3450] = W[55] * W[3449] + W[460] * W[3044] + W[865] * W[2639] + W[1270] * W[2234] + W[1675] * W[1829]
+            + W[2080] * W[1424] + W[2485] * W[1019] + W[2890] * W[614] + W[3295] * W[209];
+    W[3455] = W[50] * W[3454] + W[455] * W[3049] + W[860] * W[2644] + W[1265] * W[2239] + W[1670] * W[1834]
+            + W[2075] * W[1429] + W[2480] * W[1024] + W[2885] * W[619] + W[3290] * W[214];
+    W[3460] = W[45] * W[3459] + W[450] * W[3054] + W[855] * W[2649] + W[1260] * W[2244] + W[1665] * W[1839]
+            + W[2070] * W[1434] + W[2475] * W[1029] + W[2880] * W[624] + W[3285] * W[219];
+    W[3466] = W[67] * W[3440] + W[472] * W[3035] + W[877] * W[2630] + W[1282] * W[2225] + W[1687] * W[1820]
+            + W[2092] * W[1415] + W[2497] * W[1010] + W[2902] * W[605] + W[3307] * W[200];
+    W[3468] = W[62] * W[3444] + W[467] * W[3039] + W[872] * W[2634] + W[1277] * W[2229] + W[1682] * W[1824]
+            + W[2087] * W[1419] + W[2492] * W[1014] + W[2897] * W[609] + W[3302] * W[204];
+    W[3471] = W[57] * W[3449] + W[462] * W[3044] + W[867] * W[2639] + W[1272] * W[2234] + W[1677] * W[1829]
+            + W[2082] * W[1424] + W[2487] * W[1019] + W[2892] * W[614] + W[3297] * W[209];
+    W[3474] = W[52] * W[3454] + W[457] * W[3049] + W[862] * W[2644] + W[1267] * W[2239] + W[1672] * W[1834]
+            + W[2077] * W[1429] + W[2482] * W[1024] + W[2887] * W[619] + W[3292] * W[214];
+    W[3477] = W[47] * W[3459] + W[452] * W[3054] + W[857] * W[2649] + W[1262] * W[2244] + W[1667] * W[1839]
+            + W[2072] * W[1434] + W[2477] * W[1029] + W[2882] * W[624] + W[3287] * W[219];
+    W[3485] = W[85] * W[3484] + W[490] * W[3079] + W[895] * W[2674] + W[1300] * W[2269] + W[1705] * W[1864]
+            + W[2110] * W[1459] + W[2515] * W[1054] + W[2920] * W[649] + W[3325] * W[244];
+    W[3489] = W[80] * W[3488] + W[485] * W[3083] + W[890] * W[2678] + W[1295] * W[2273] + W[1700] * W[1868]
+            + W[2105] * W[1463] + W[2510] * W[1058] + W[2915] * W[653] + W[3320] * W[248];
+    W[3494] = W[75] * W[3493] + W[480] * W[3088] + W[885] * W[2683] + W[1290] * W[2278] + W[1695] * W[1873]
+            + W[2100] * W[1468] + W[2505] * W[1063] + W[2910] * W[658] + W[3315] * W[253];
+    W[3499] = W[70] * W[3498] + W[475] * W[3093] + W[880] * W[2688] + W[1285] * W[2283] + W[1690] * W[1878]
+            + W[2095] * W[1473] + W[2500] * W[1068] + W[2905] * W[663] + W[3310] * W[258];
+    W[3507] = W[87] * W[3484] + W[492] * W[3079] + W[897] * W[2674] + W[1302] * W[2269] + W[1707] * W[1864]
+            + W[2112] * W[1459] + W[2517] * W[1054] + W[2922] * W[649] + W[3327] * W[244];
+    W[3509] = W[82] * W[3488] + W[487] * W[3083] + W[892] * W[2678] + W[1297] * W[2273] + W[1702] * W[1868]
+            + W[2107] * W[1463] + W[2512] * W[1058] + W[2917] * W[653] + W[3322] * W[248];
+    W[3512] = W[77] * W[3493] + W[482] * W[3088] + W[887] * W[2683] + W[1292] * W[2278] + W[1697] * W[1873]
+            + W[2102] * W[1468] + W[2507] * W[1063] + W[2912] * W[658] + W[3317] * W[253];
+    W[3515] = W[72] * W[3498] + W[477] * W[3093] + W[882] * W[2688] + W[1287] * W[2283] + W[1692] * W[1878]
+            + W[2097] * W[1473] + W[2502] * W[1068] + W[2907] * W[663] + W[3312] * W[258];
+    W[3525] = W[100] * W[3524] + W[505] * W[3119] + W[910] * W[2714] + W[1315] * W[2309] + W[1720] * W[1904]
+            + W[2125] * W[1499] + W[2530] * W[1094] + W[2935] * W[689] + W[3340] * W[284];
+    W[3529] = W[95] * W[3528] + W[500] * W[3123] + W[905] * W[2718] + W[1310] * W[2313] + W[1715] * W[1908]
+            + W[2120] * W[1503] + W[2525] * W[1098] + W[2930] * W[693] + W[3335] * W[288];
+    W[3534] = W[90] * W[3533] + W[495] * W[3128] + W[900] * W[2723] + W[1305] * W[2318] + W[1710] * W[1913]
+            + W[2115] * W[1508] + W[2520] * W[1103] + W[2925] * W[698] + W[3330] * W[293];
+    W[3544] = W[102] * W[3524] + W[507] * W[3119] + W[912] * W[2714] + W[1317] * W[2309] + W[1722] * W[1904]
+            + W[2127] * W[1499] + W[2532] * W[1094] + W[2937] * W[689] + W[3342] * W[284];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_157(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3442] = W[199] * W[3441];
+    W[3446] = W[203] * W[3445];
+    W[3451] = W[208] * W[3450];
+    W[3456] = W[213] * W[3455];
+    W[3461] = W[218] * W[3460];
+    W[3464] = W[127] * W[3417];
+    W[3467] = W[199] * W[3466];
+    W[3469] = W[203] * W[3468];
+    W[3472] = W[208] * W[3471];
+    W[3475] = W[213] * W[3474];
+    W[3478] = W[218] * W[3477];
+    W[3481] = W[127] * W[3435];
+    W[3486] = W[243] * W[3485];
+    W[3490] = W[247] * W[3489];
+    W[3495] = W[252] * W[3494];
+    W[3500] = W[257] * W[3499];
+    W[3503] = W[133] * W[3460];
+    W[3505] = W[128] * W[3412];
+    W[3508] = W[243] * W[3507];
+    W[3510] = W[247] * W[3509];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_159(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3573] = W[135] * W[3450];
+    W[3575] = W[130] * W[3402];
+    W[3578] = W[319] * W[3577];
+    W[3580] = W[323] * W[3579];
+    W[3583] = W[142] * W[3549];
+    W[3585] = W[139] * W[3512];
+    W[3587] = W[135] * W[3471];
+    W[3589] = W[130] * W[3426];
+    W[3594] = W[147] * W[3593];
+    W[3595] = W[145] * W[3565];
+    W[3597] = W[143] * W[3529];
+    W[3599] = W[140] * W[3489];
+    W[3601] = W[136] * W[3445];
+    W[3603] = W[131] * W[3397];
+    W[3606] = W[147] * W[3605];
+    W[3607] = W[145] * W[3579];
+    W[3609] = W[143] * W[3546];
+    W[3611] = W[140] * W[3509];
+    W[3613] = W[136] * W[3468];
+    W[3615] = W[131] * W[3423];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_161(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3496] = W[3491] + W[3495];
+    W[3514] = W[3511] + W[3513];
+    W[3536] = W[3531] + W[3535];
+    W[3551] = W[3548] + W[3550];
+    W[3568] = W[3] * W[3567];
+    W[3582] = W[3] * W[3581];
+    W[3598] = W[3596] - W[3597];
+    W[3610] = W[3608] - W[3609];
+    W[3619] = W[3526] + W[3618];
+    W[3626] = W[3545] + W[3625];
+    W[3409] = W[3404] + W[3408];
+    W[3431] = W[3428] + W[3430];
+    W[3457] = W[3452] + W[3456];
+    W[3476] = W[3473] + W[3475];
+    W[3501] = W[3496] + W[3500];
+    W[3517] = W[3514] + W[3516];
+    W[3537] = W[3] * W[3536];
+    W[3552] = W[3] * W[3551];
+    W[3570] = W[3568] - W[3569];
+    W[3584] = W[3582] - W[3583];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_163(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3463] = W[3] * W[3462];
+    W[3480] = W[3] * W[3479];
+    W[3504] = W[3502] - W[3503];
+    W[3520] = W[3518] - W[3519];
+    W[3541] = W[3539] - W[3540];
+    W[3556] = W[3554] - W[3555];
+    W[3574] = W[3572] - W[3573];
+    W[3588] = W[3586] - W[3587];
+    W[3604] = W[3602] - W[3603];
+    W[3616] = W[3614] - W[3615];
+    W[3622] = W[3394] + W[3621];
+    W[3629] = W[3422] + W[3628];
+    W[3420] = W[3] * W[3419];
+    W[3438] = W[3] * W[3437];
+    W[3465] = W[3463] - W[3464];
+    W[3482] = W[3480] - W[3481];
+    W[3506] = W[3504] - W[3505];
+    W[3522] = W[3520] - W[3521];
+    W[3543] = W[3541] - W[3542];
+    W[3558] = W[3556] - W[3557];
+    return 0;
+}
+
+/* Lines 340 .. 351 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_165(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[268] = -W[3465] / W[121] / 9.0;
+    X[269] = -W[3482] / W[121] / 9.0;
+    X[270] = -W[3506] / W[122] / 9.0;
+    X[271] = -W[3522] / W[122] / 9.0;
+    X[272] = -W[3543] / W[123] / 9.0;
+    X[273] = -W[3558] / W[123] / 9.0;
+    X[274] = -W[3576] / W[124] / 9.0;
+    X[275] = -W[3590] / W[124] / 9.0;
+    X[276] = -W[3604] / W[125] / 9.0;
+    X[277] = -W[3616] / W[125] / 9.0;
+    X[278] = -W[3623] / W[126] / 9.0;
+    X[279] = -W[3630] / W[126] / 9.0;
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 9, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_167(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3710] = X[254] - X[264];
+    W[3712] = X[255] - X[265];
+    W[3715] = X[256] - X[258];
+    W[3717] = X[257] - X[259];
+    W[3720] = X[256] - X[260];
+    W[3722] = X[257] - X[261];
+    W[3725] = X[256] - X[262];
+    W[3727] = X[257] - X[263];
+    W[3730] = X[256] - X[264];
+    W[3732] = X[257] - X[265];
+    W[3735] = X[258] - X[260];
+    W[3737] = X[259] - X[261];
+    W[3740] = X[258] - X[262];
+    W[3742] = X[259] - X[263];
+    W[3745] = X[258] - X[264];
+    W[3747] = X[259] - X[265];
+    W[3750] = X[260] - X[262];
+    W[3752] = X[261] - X[263];
+    W[3755] = X[260] - X[264];
+    W[3757] = X[261] - X[265];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 9, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_169(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3706] = (W[60] * W[3705] + W[465] * W[3300] + W[870] * W[2895] + W[1275] * W[2490] + W[1680] * W[2085]) * 2.0;
+    W[3708] = (W[62] * W[3707] + W[467] * W[3302] + W[872] * W[2897] + W[1277] * W[2492] + W[1682] * W[2087]) * 2.0;
+    W[3711] = (W[65] * W[3710] + W[470] * W[3305] + W[875] * W[2900] + W[1280] * W[2495] + W[1685] * W[2090]) * 2.0;
+    W[3713] = (W[67] * W[3712] + W[472] * W[3307] + W[877] * W[2902] + W[1282] * W[2497] + W[1687] * W[2092]) * 2.0;
+    W[3716] = (W[70] * W[3715] + W[475] * W[3310] + W[880] * W[2905] + W[1285] * W[2500] + W[1690] * W[2095]) * 2.0;
+    W[3718] = (W[72] * W[3717] + W[477] * W[3312] + W[882] * W[2907] + W[1287] * W[2502] + W[1692] * W[2097]) * 2.0;
+    W[3721] = (W[75] * W[3720] + W[480] * W[3315] + W[885] * W[2910] + W[1290] * W[2505] + W[1695] * W[2100]) * 2.0;
+    W[3723] = (W[77] * W[3722] + W[482] * W[3317] + W[887] * W[2912] + W[1292] * W[2507] + W[1697] * W[2102]) * 2.0;
+    W[3726] = (W[80] * W[3725] + W[485] * W[3320] + W[890] * W[2915] + W[1295] * W[2510] + W[1700] * W[2105]) * 2.0;
+    W[3728] = (W[82] * W[3727] + W[487] * W[3322] + W[892] * W[2917] + W[1297] * W[2512] + W[1702] * W[2107]) * 2.0;
+    W[3731] = (W[85] * W[3730] + W[490] * W[3325] + W[895] * W[2920] + W[1300] * W[2515] + W[1705] * W[2110]) * 2.0;
+    W[3733] = (W[87] * W[3732] + W[492] * W[3327] + W[897] * W[2922] + W[1302] * W[2517] + W[1707] * W[2112]) * 2.0;
+    W[3736] = (W[90] * W[3735] + W[495] * W[3330] + W[900] * W[2925] + W[1305] * W[2520] + W[1710] * W[2115]) * 2.0;
+    W[3738] = (W[92] * W[3737] + W[497] * W[3332] + W[902] * W[2927] + W[1307] * W[2522] + W[1712] * W[2117]) * 2.0;
+    W[3741] = (W[95] * W[3740] + W[500] * W[3335] + W[905] * W[2930] + W[1310] * W[2525] + W[1715] * W[2120]) * 2.0;
+    W[3743] = (W[97] * W[3742] + W[502] * W[3337] + W[907] * W[2932] + W[1312] * W[2527] + W[1717] * W[2122]) * 2.0;
+    W[3746] = (W[100] * W[3745] + W[505] * W[3340] + W[910] * W[2935] + W[1315] * W[2530] + W[1720] * W[2125]) * 2.0;
+    W[3748] = (W[102] * W[3747] + W[507] * W[3342] + W[912] * W[2937] + W[1317] * W[2532] + W[1722] * W[2127]) * 2.0;
+    W[3751] = (W[105] * W[3750] + W[510] * W[3345] + W[915] * W[2940] + W[1320] * W[2535] + W[1725] * W[2130]) * 2.0;
+    W[3753] = (W[107] * W[3752] + W[512] * W[3347] + W[917] * W[2942] + W[1322] * W[2537] + W[1727] * W[2132]) * 2.0;
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 9, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_171(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3744] = W[3741] + W[3743];
+    W[3749] = W[3746] + W[3748];
+    W[3754] = W[3751] + W[3753];
+    W[3759] = W[3756] + W[3758];
+    W[3764] = W[3761] + W[3763];
+    W[3797] = (-13.5 * W[3689] * W[152] - 13.0 * W[3284] * W[557] - 12.5 * W[2879] * W[962] - 12.0 * W[2474] * W[1367]
+            - 11.5 * W[2069] * W[1772] - 11.0 * W[1664] * W[2177] - 10.5 * W[1259] * W[2582] - 10.0 * W[854] * W[2987]
+            - 9.5 * W[449] * W[3392]) / (9.0 * W[44]);
+    W[3801] = (-13.5 * W[3682] * W[156] - 13.0 * W[3277] * W[561] - 12.5 * W[2872] * W[966] - 12.0 * W[2467] * W[1371]
+            - 11.5 * W[2062] * W[1776] - 11.0 * W[1657] * W[2181] - 10.5 * W[1252] * W[2586] - 10.0 * W[847] * W[2991]
+            - 9.5 * W[442] * W[3396]) / (9.0 * W[37]);
+    W[3806] = (-13.5 * W[3675] * W[161] - 13.0 * W[3270] * W[566] - 12.5 * W[2865] * W[971] - 12.0 * W[2460] * W[1376]
+            - 11.5 * W[2055] * W[1781] - 11.0 * W[1650] * W[2186] - 10.5 * W[1245] * W[2591] - 10.0 * W[840] * W[2996]
+            - 9.5 * W[435] * W[3401]) / (9.0 * W[30]);
+    W[3811] = (-13.5 * W[3668] * W[166] - 13.0 * W[3263] * W[571] - 12.5 * W[2858] * W[976] - 12.0 * W[2453] * W[1381]
+            - 11.5 * W[2048] * W[1786] - 11.0 * W[1643] * W[2191] - 10.5 * W[1238] * W[2596] - 10.0 * W[833] * W[3001]
+            - 9.5 * W[428] * W[3406]) / (9.0 * W[23]);
+    W[3816] = (-13.5 * W[3661] * W[171] - 13.0 * W[3256] * W[576] - 12.5 * W[2851] * W[981] - 12.0 * W[2446] * W[1386]
+            - 11.5 * W[2041] * W[1791] - 11.0 * W[1636] * W[2196] - 10.5 * W[1231] * W[2601] - 10.0 * W[826] * W[3006]
+            - 9.5 * W[421] * W[3411]) / (9.0 * W[16]);
+    W[3821] = (-13.5 * W[3654] * W[176] - 13.0 * W[3249] * W[581] - 12.5 * W[2844] * W[986] - 12.0 * W[2439] * W[1391]
+            - 11.5 * W[2034] * W[1796] - 11.0 * W[1629] * W[2201] - 10.5 * W[1224] * W[2606] - 10.0 * W[819] * W[3011]
+            - 9.5 * W[414] * W[3416]) / (9.0 * W[9]);
+    W[3845] = (-13.5 * W[3714] * W[200] - 13.0 * W[3309] * W[605] - 12.5 * W[2904] * W[1010] - 12.0 * W[2499] * W[1415]
+            - 11.5 * W[2094] * W[1820] - 11.0 * W[1689] * W[2225] - 10.5 * W[1284] * W[2630] - 10.0 * W[879] * W[3035]
+            - 9.5 * W[474] * W[3440]) / (9.0 * W[69]);
+    W[3849] = (-13.5 * W[3709] * W[204] - 13.0 * W[3304] * W[609] - 12.5 * W[2899] * W[1014] - 12.0 * W[2494] * W[1419]
+            - 11.5 * W[2089] * W[1824] - 11.0 * W[1684] * W[2229] - 10.5 * W[1279] * W[2634] - 10.0 * W[874] * W[3039]
+            - 9.5 * W[469] * W[3444]) / (9.0 * W[64]);
+    W[3854] = (-13.5 * W[3704] * W[209] - 13.0 * W[3299] * W[614] - 12.5 * W[2894] * W[1019] - 12.0 * W[2489] * W[1424]
+            - 11.5 * W[2084] * W[1829] - 11.0 * W[1679] * W[2234] - 10.5 * W[1274] * W[2639] - 10.0 * W[869] * W[3044]
+            - 9.5 * W[464] * W[3449]) / (9.0 * W[59]);
+    W[3859] = (-13.5 * W[3699] * W[214] - 13.0 * W[3294] * W[619] - 12.5 * W[2889] * W[1024] - 12.0 * W[2484] * W[1429]
+            - 11.5 * W[2079] * W[1834] - 11.0 * W[1674] * W[2239] - 10.5 * W[1269] * W[2644] - 10.0 * W[864] * W[3049]
+            - 9.5 * W[459] * W[3454]) / (9.0 * W[54]);
+    W[3864] = (-13.5 * W[3694] * W[219] - 13.0 * W[3289] * W[624] - 12.5 * W[2884] * W[1029] - 12.0 * W[2479] * W[1434]
+            - 11.5 * W[2074] * W[1839] - 11.0 * W[1669] * W[2244] - 10.5 * W[1264] * W[2649] - 10.0 * W[859] * W[3054]
+            - 9.5 * W[454] * W[3459]) / (9.0 * W[49]);
+    W[3889] = (-13.5 * W[3734] * W[244] - 13.0 * W[3329] * W[649] - 12.5 * W[2924] * W[1054] - 12.0 * W[2519] * W[1459]
+            - 11.5 * W[2114] * W[1864] - 11.0 * W[1709] * W[2269] - 10.5 * W[1304] * W[2674] - 10.0 * W[899] * W[3079]
+            - 9.5 * W[494] * W[3484]) / (9.0 * W[89]);
+    W[3893] = (-13.5 * W[3729] * W[248] - 13.0 * W[3324] * W[653] - 12.5 * W[2919] * W[1058] - 12.0 * W[2514] * W[1463]
+            - 11.5 * W[2109] * W[1868] - 11.0 * W[1704] * W[2273] - 10.5 * W[1299] * W[2678] - 10.0 * W[894] * W[3083]
+            - 9.5 * W[489] * W[3488]) / (9.0 * W[84]);
+    W[3898] = (-13.5 * W[3724] * W[253] - 13.0 * W[3319] * W[658] - 12.5 * W[2914] * W[1063] - 12.0 * W[2509] * W[1468]
+            - 11.5 * W[2104] * W[1873] - 11.0 * W[1699] * W[2278] - 10.5 * W[1294] * W[2683] - 10.0 * W[889] * W[3088]
+            - 9.5 * W[484] * W[3493]) / (9.0 * W[79]);
+    W[3903] = (-13.5 * W[3719] * W[258] - 13.0 * W[3314] * W[663] - 12.5 * W[2909] * W[1068] - 12.0 * W[2504] * W[1473]
+            - 11.5 * W[2099] * W[1878] - 11.0 * W[1694] * W[2283] - 10.5 * W[1289] * W[2688] - 10.0 * W[884] * W[3093]
+            - 9.5 * W[479] * W[3498]) / (9.0 * W[74]);
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 9, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_173(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3855] = W[55] * W[3854] + W[460] * W[3449] + W[865] * W[3044] + W[1270] * W[2639] + W[1675] * W[2234]
+            + W[2080] * W[1829] + W[2485] * W[1424] + W[2890] * W[1019] + W[3295] * W[614] + W[3700] * W[209];
+    W[3860] = W[50] * W[3859] + W[455] * W[3454] + W[860] * W[3049] + W[1265] * W[2644] + W[1670] * W[2239]
+            + W[2075] * W[1834] + W[2480] * W[1429] + W[2885] * W[1024] + W[3290] * W[619] + W[3695] * W[214];
+    W[3865] = W[45] * W[3864] + W[450] * W[3459] + W[855] * W[3054] + W[1260] * W[2649] + W[1665] * W[2244]
+            + W[2070] * W[1839] + W[2475] * W[1434] + W[2880] * W[1029] + W[3285] * W[624] + W[3690] * W[219];
+    W[3871] = W[67] * W[3845] + W[472] * W[3440] + W[877] * W[3035] + W[1282] * W[2630] + W[1687] * W[2225]
+            + W[2092] * W[1820] + W[2497] * W[1415] + W[2902] * W[1010] + W[3307] * W[605] + W[3712] * W[200];
+    W[3873] = W[62] * W[3849] + W[467] * W[3444] + W[872] * W[3039] + W[1277] * W[2634] + W[1682] * W[2229]
+            + W[2087] * W[1824] + W[2492] * W[1419] + W[2897] * W[1014] + W[3302] * W[609] + W[3707] * W[204];
+    W[3876] = W[57] * W[3854] + W[462] * W[3449] + W[867] * W[3044] + W[1272] * W[2639] + W[1677] * W[2234]
+            + W[2082] * W[1829] + W[2487] * W[1424] + W[2892] * W[1019] + W[3297] * W[614] + W[3702] * W[209];
+    W[3879] = W[52] * W[3859] + W[457] * W[3454] + W[862] * W[3049] + W[1267] * W[2644] + W[1672] * W[2239]
+            + W[2077] * W[1834] + W[2482] * W[1429] + W[2887] * W[1024] + W[3292] * W[619] + W[3697] * W[214];
+    W[3882] = W[47] * W[3864] + W[452] * W[3459] + W[857] * W[3054] + W[1262] * W[2649] + W[1667] * W[2244]
+            + W[2072] * W[1839] + W[2477] * W[1434] + W[2882] * W[1029] + W[3287] * W[624] + W[3692] * W[219];
+    W[3890] = W[85] * W[3889] + W[490] * W[3484] + W[895] * W[3079] + W[1300] * W[2674] + W[1705] * W[2269]
+            + W[2110] * W[1864] + W[2515] * W[1459] + W[2920] * W[1054] + W[3325] * W[649] + W[3730] * W[244];
+    W[3894] = W[80] * W[3893] + W[485] * W[3488] + W[890] * W[3083] + W[1295] * W[2678] + W[1700] * W[2273]
+            + W[2105] * W[1868] + W[2510] * W[1463] + W[2915] * W[1058] + W[3320] * W[653] + W[3725] * W[248];
+    W[3899] = W[75] * W[3898] + W[480] * W[3493] + W[885] * W[3088] + W[1290] * W[2683] + W[1695] * W[2278]
+            + W[2100] * W[1873] + W[2505] * W[1468] + W[2910] * W[1063] + W[3315] * W[658] + W[3720] * W[253];
+    W[3904] = W[70] * W[3903] + W[475] * W[3498] + W[880] * W[3093] + W[1285] * W[2688] + W[1690] * W[2283]
+            + W[2095] * W[1878] + W[2500] * W[1473] + W[2905] * W[1068] + W[3310] * W[663] + W[3715] * W[258];
+    W[3912] = W[87] * W[3889] + W[492] * W[3484] + W[897] * W[3079] + W[1302] * W[2674] + W[1707] * W[2269]
+            + W[2112] * W[1864] + W[2517] * W[1459] + W[2922] * W[1054] + W[3327] * W[649] + W[3732] * W[244];
+    W[3914] = W[82] * W[3893] + W[487] * W[3488] + W[892] * W[3083] + W[1297] * W[2678] + W[1702] * W[2273]
+            + W[2107] * W[1868] + W[2512] * W[1463] + W[2917] * W[1058] + W[3322] * W[653] + W[3727] * W[248];
+    W[3917] = W[77] * W[3898] + W[482] * W[3493] + W[887] * W[3088] + W[1292] * W[2683] + W[1697] * W[2278]
+            + W[2102] * W[1873] + W[2507] * W[1468] + W[2912] * W[1063] + W[3317] * W[658] + W[3722] * W[253];
+    W[3920] = W[72] * W[3903] + W[477] * W[3498] + W[882] * W[3093] + W[1287] * W[2688] + W[1692] * W[2283]
+            + W[2097] * W[1878] + W[2502] * W[1473] + W[2907] * W[1068] + W[3312] * W[663] + W[3717] * W[258];
+    W[3930] = W[100] * W[3929] + W[505] * W[3524] + W[910] * W[3119] + W[1315] * W[2714] + W[1720] * W[2309]
+            + W[2125] * W[1904] + W[2530] * W[1499] + W[2935] * W[1094] + W[3340] * W[689] + W[3745] * W[284];
+    W[3934] = W[95] * W[3933] + W[500] * W[3528] + W[905] * W[3123] + W[1310] * W[2718] + W[1715] * W[2313]
+            + W[2120] * W[1908] + W[2525] * W[1503] + W[2930] * W[1098] + W[3335] * W[693] + W[3740] * W[288];
+    W[3939] = W[90] * W[3938] + W[495] * W[3533] + W[900] * W[3128] + W[1305] * W[2723] + W[1710] * W[2318]
+            + W[2115] * W[1913] + W[2520] * W[1508] + W[2925] * W[1103] + W[3330] * W[698] + W[3735] * W[293];
+    W[3949] = W[102] * W[3929] + W[507] * W[3524] + W[912] * W[3119] + W[1317] * W[2714] + W[1722] * W[2309]
+            + W[2127] * W[1904] + W[2532] * W[1499] + W[2937] * W[1094] + W[3342] * W[689] + W[3747] * W[284];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 9, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_176(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3918] = W[252] * W[3917];
+    W[3921] = W[257] * W[3920];
+    W[3924] = W[133] * W[3882];
+    W[3926] = W[128] * W[3837];
+    W[3931] = W[283] * W[3930];
+    W[3935] = W[287] * W[3934];
+    W[3940] = W[292] * W[3939];
+    W[3943] = W[138] * W[3904];
+    W[3945] = W[134] * W[3860];
+    W[3947] = W[129] * W[3812];
+    W[3950] = W[283] * W[3949];
+    W[3952] = W[287] * W[3951];
+    W[3955] = W[292] * W[3954];
+    W[3958] = W[138] * W[3920];
+    W[3960] = W[134] * W[3879];
+    W[3962] = W[129] * W[3834];
+    W[3967] = W[319] * W[3966];
+    W[3971] = W[323] * W[3970];
+    W[3974] = W[142] * W[3939];
+    W[3976] = W[139] * W[3899];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 9, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_178(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4022] = W[351] * W[3998];
+    W[4029] = W[351] * W[4010];
+    W[3804] = W[3799] + W[3803];
+    W[3830] = W[3827] + W[3829];
+    W[3852] = W[3847] + W[3851];
+    W[3875] = W[3872] + W[3874];
+    W[3896] = W[3891] + W[3895];
+    W[3916] = W[3913] + W[3915];
+    W[3936] = W[3931] + W[3935];
+    W[3953] = W[3950] + W[3952];
+    W[3972] = W[3967] + W[3971];
+    W[3986] = W[3983] + W[3985];
+    W[4001] = W[3999] - W[4000];
+    W[4013] = W[4011] - W[4012];
+    W[4023] = W[3967] + W[4022];
+    W[4030] = W[3983] + W[4029];
+    W[3809] = W[3804] + W[3808];
+    W[3833] = W[3830] + W[3832];
+    W[3857] = W[3852] + W[3856];
+    W[3878] = W[3875] + W[3877];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 9, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_180(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4005] = W[4003] - W[4004];
+    W[4017] = W[4015] - W[4016];
+    W[4025] = W[3891] + W[4024];
+    W[4032] = W[3913] + W[4031];
+    W[3819] = W[3814] + W[3818];
+    W[3839] = W[3836] + W[3838];
+    W[3867] = W[3862] + W[3866];
+    W[3884] = W[3881] + W[3883];
+    W[3907] = W[3] * W[3906];
+    W[3923] = W[3] * W[3922];
+    W[3944] = W[3942] - W[3943];
+    W[3959] = W[3957] - W[3958];
+    W[3977] = W[3975] - W[3976];
+    W[3991] = W[3989] - W[3990];
+    W[4007] = W[4005] - W[4006];
+    W[4019] = W[4017] - W[4018];
+    W[4026] = W[3847] + W[4025];
+    W[4033] = W[3872] + W[4032];
+    W[3824] = W[3819] + W[3823];
+    W[3842] = W[3839] + W[3841];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 9, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_182(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[3981] = W[3979] - W[3980];
+    W[3995] = W[3993] - W[3994];
+    W[4028] = W[148] * W[4027];
+    W[4035] = W[148] * W[4034];
+    X[280] = X[266] / 10.0;
+    X[281] = X[267] / 10.0;
+    X[282] = X[268] / 10.0;
+    X[283] = X[269] / 10.0;
+    X[284] = X[270] / 10.0;
+    X[285] = X[271] / 10.0;
+    X[286] = X[272] / 10.0;
+    X[287] = X[273] / 10.0;
+    X[288] = X[274] / 10.0;
+    X[289] = X[275] / 10.0;
+    X[290] = X[276] / 10.0;
+    X[291] = X[277] / 10.0;
+    X[292] = X[278] / 10.0;
+    X[293] = X[279] / 10.0;
+    X[294] = -W[3825] / W[120] / 10.0;
+    X[295] = -W[3843] / W[120] / 10.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_184(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4052] = X[280] - X[282];
+    W[4057] = X[281] - X[283];
+    W[4061] = X[280] - X[284];
+    W[4064] = X[281] - X[285];
+    W[4068] = X[280] - X[286];
+    W[4071] = X[281] - X[287];
+    W[4075] = X[280] - X[288];
+    W[4078] = X[281] - X[289];
+    W[4082] = X[280] - X[290];
+    W[4085] = X[281] - X[291];
+    W[4089] = X[280] - X[292];
+    W[4092] = X[281] - X[293];
+    W[4095] = X[282] - X[284];
+    W[4097] = X[283] - X[285];
+    W[4100] = X[282] - X[286];
+    W[4102] = X[283] - X[287];
+    W[4105] = X[282] - X[288];
+    W[4107] = X[283] - X[289];
+    W[4110] = X[282] - X[290];
+    W[4112] = X[283] - X[291];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_186(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4165] = X[290] - X[292];
+    W[4167] = X[291] - X[293];
+    W[4054] = (W[2] * W[4052] + W[407] * W[3647] + W[812] * W[3242] + W[1217] * W[2837] + W[1622] * W[2432]) * 2.0
+            + W[2027] * W[2027];
+    W[4058] = (W[7] * W[4057] + W[412] * W[3652] + W[817] * W[3247] + W[1222] * W[2842] + W[1627] * W[2437]) * 2.0
+            + W[2032] * W[2032];
+    W[4062] = (W[11] * W[4061] + W[416] * W[3656] + W[821] * W[3251] + W[1226] * W[2846] + W[1631] * W[2441]) * 2.0
+            + W[2036] * W[2036];
+    W[4065] = (W[14] * W[4064] + W[419] * W[3659] + W[824] * W[3254] + W[1229] * W[2849] + W[1634] * W[2444]) * 2.0
+            + W[2039] * W[2039];
+    W[4069] = (W[18] * W[4068] + W[423] * W[3663] + W[828] * W[3258] + W[1233] * W[2853] + W[1638] * W[2448]) * 2.0
+            + W[2043] * W[2043];
+    W[4072] = (W[21] * W[4071] + W[426] * W[3666] + W[831] * W[3261] + W[1236] * W[2856] + W[1641] * W[2451]) * 2.0
+            + W[2046] * W[2046];
+    W[4076] = (W[25] * W[4075] + W[430] * W[3670] + W[835] * W[3265] + W[1240] * W[2860] + W[1645] * W[2455]) * 2.0
+            + W[2050] * W[2050];
+    W[4079] = (W[28] * W[4078] + W[433] * W[3673] + W[838] * W[3268] + W[1243] * W[2863] + W[1648] * W[2458]) * 2.0
+            + W[2053] * W[2053];
+    W[4083] = (W[32] * W[4082] + W[437] * W[3677] + W[842] * W[3272] + W[1247] * W[2867] + W[1652] * W[2462]) * 2.0
+            + W[2057] * W[2057];
+    W[4086] = (W[35] * W[4085] + W[440] * W[3680] + W[845] * W[3275] + W[1250] * W[2870] + W[1655] * W[2465]) * 2.0
+            + W[2060] * W[2060];
+    W[4090] = (W[39] * W[4089] + W[444] * W[3684] + W[849] * W[3279] + W[1254] * W[2874] + W[1659] * W[2469]) * 2.0
+            + W[2064] * W[2064];
+    W[4093] = (W[42] * W[4092] + W[447] * W[3687] + W[852] * W[3282] + W[1257] * W[2877] + W[1662] * W[2472]) * 2.0
+            + W[2067] * W[2067];
+    W[4096] = (W[45] * W[4095] + W[450] * W[3690] + W[855] * W[3285] + W[1260] * W[2880] + W[1665] * W[2475]) * 2.0
+            + W[2070] * W[2070];
+    W[4098] = (W[47] * W[4097] + W[452] * W[3692] + W[857] * W[3287] + W[1262] * W[2882] + W[1667] * W[2477]) * 2.0
+            + W[2072] * W[2072];
+    W[4101] = (W[50] * W[4100] + W[455] * W[3695] + W[860] * W[3290] + W[1265] * W[2885] + W[1670] * W[2480]) * 2.0
+            + W[2075] * W[2075];
+    W[4103] = (W[52] * W[4102] + W[457] * W[3697] + W[862] * W[3292] + W[1267] * W[2887] + W[1672] * W[2482]) * 2.0
+            + W[2077] * W[2077];
+    W[4106] = (W[55] * W[4105] + W[460] * W[3700] + W[865] * W[3295] + W[1270] * W[2890] + W[1675] * W[2485]) * 2.0
+            + W[2080] * W[2080];
+    W[4108] = (W[57] * W[4107] + W[462] * W[3702] + W[867] * W[3297] + W[1272] * W[2892] + W[1677] * W[2487]) * 2.0
+            + W[2082] * W[2082];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_188(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4161] = (W[110] * W[4160] + W[515] * W[3755] + W[920] * W[3350] + W[1325] * W[2945] + W[1730] * W[2540]) * 2.0
+            + W[2135] * W[2135];
+    W[4163] = (W[112] * W[4162] + W[517] * W[3757] + W[922] * W[3352] + W[1327] * W[2947] + W[1732] * W[2542]) * 2.0
+            + W[2137] * W[2137];
+    W[4166] = (W[115] * W[4165] + W[520] * W[3760] + W[925] * W[3355] + W[1330] * W[2950] + W[1735] * W[2545]) * 2.0
+            + W[2140] * W[2140];
+    W[4168] = (W[117] * W[4167] + W[522] * W[3762] + W[927] * W[3357] + W[1332] * W[2952] + W[1737] * W[2547]) * 2.0
+            + W[2142] * W[2142];
+    W[4059] = W[4054] + W[4058];
+    W[4066] = W[4062] + W[4065];
+    W[4073] = W[4069] + W[4072];
+    W[4080] = W[4076] + W[4079];
+    W[4087] = W[4083] + W[4086];
+    W[4094] = W[4090] + W[4093];
+    W[4099] = W[4096] + W[4098];
+    W[4104] = W[4101] + W[4103];
+    W[4109] = W[4106] + W[4108];
+    W[4114] = W[4111] + W[4113];
+    W[4119] = W[4116] + W[4118];
+    W[4124] = W[4121] + W[4123];
+    W[4129] = W[4126] + W[4128];
+    W[4134] = W[4131] + W[4133];
+    W[4139] = W[4136] + W[4138];
+    W[4144] = W[4141] + W[4143];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_190(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4334] = (-15.0 * W[4154] * W[284] - 14.5 * W[3749] * W[689] - 14.0 * W[3344] * W[1094] - 13.5 * W[2939] * W[1499]
+            - 13.0 * W[2534] * W[1904] - 12.5 * W[2129] * W[2309] - 12.0 * W[1724] * W[2714] - 11.5 * W[1319] * W[3119]
+            - 11.0 * W[914] * W[3524] - 10.5 * W[509] * W[3929]) / (10.0 * W[104]);
+    W[4338] = (-15.0 * W[4149] * W[288] - 14.5 * W[3744] * W[693] - 14.0 * W[3339] * W[1098] - 13.5 * W[2934] * W[1503]
+            - 13.0 * W[2529] * W[1908] - 12.5 * W[2124] * W[2313] - 12.0 * W[1719] * W[2718] - 11.5 * W[1314] * W[3123]
+            - 11.0 * W[909] * W[3528] - 10.5 * W[504] * W[3933]) / (10.0 * W[99]);
+    W[4343] = (-15.0 * W[4144] * W[293] - 14.5 * W[3739] * W[698] - 14.0 * W[3334] * W[1103] - 13.5 * W[2929] * W[1508]
+            - 13.0 * W[2524] * W[1913] - 12.5 * W[2119] * W[2318] - 12.0 * W[1714] * W[2723] - 11.5 * W[1309] * W[3128]
+            - 11.0 * W[904] * W[3533] - 10.5 * W[499] * W[3938]) / (10.0 * W[94]);
+    W[4370] = (-15.0 * W[4164] * W[320] - 14.5 * W[3759] * W[725] - 14.0 * W[3354] * W[1130] - 13.5 * W[2949] * W[1535]
+            - 13.0 * W[2544] * W[1940] - 12.5 * W[2139] * W[2345] - 12.0 * W[1734] * W[2750] - 11.5 * W[1329] * W[3155]
+            - 11.0 * W[924] * W[3560] - 10.5 * W[519] * W[3965]) / (10.0 * W[114]);
+    W[4374] = (-15.0 * W[4159] * W[324] - 14.5 * W[3754] * W[729] - 14.0 * W[3349] * W[1134] - 13.5 * W[2944] * W[1539]
+            - 13.0 * W[2539] * W[1944] - 12.5 * W[2134] * W[2349] - 12.0 * W[1729] * W[2754] - 11.5 * W[1324] * W[3159]
+            - 11.0 * W[919] * W[3564] - 10.5 * W[514] * W[3969]) / (10.0 * W[109]);
+    W[4402] = (-15.0 * W[4169] * W[352] - 14.5 * W[3764] * W[757] - 14.0 * W[3359] * W[1162] - 13.5 * W[2954] * W[1567]
+            - 13.0 * W[2549] * W[1972] - 12.5 * W[2144] * W[2377] - 12.0 * W[1739] * W[2782] - 11.5 * W[1334] * W[3187]
+            - 11.0 * W[929] * W[3592] - 10.5 * W[524] * W[3997]) / (10.0 * W[119]);
+    W[4203] = W[39] * W[4202] + W[444] * W[3797] + W[849] * W[3392] + W[1254] * W[2987] + W[1659] * W[2582]
+            + W[2064] * W[2177] + W[2469] * W[1772] + W[2874] * W[1367] + W[3279] * W[962] + W[3684] * W[557]
+            + W[4089] * W[152];
+    W[4207] = W[32] * W[4206] + W[437] * W[3801] + W[842] * W[3396] + W[1247] * W[2991] + W[1652] * W[2586]
+            + W[2057] * W[2181] + W[2462] * W[1776] + W[2867] * W[1371] + W[3272] * W[966] + W[3677] * W[561]
+            + W[4082] * W[156];
+    W[4212] = W[25] * W[4211] + W[430] * W[3806] + W[835] * W[3401] + W[1240] * W[2996] + W[1645] * W[2591]
+            + W[2050] * W[2186] + W[2455] * W[1781] + W[2860] * W[1376] + W[3265] * W[971] + W[3670] * W[566]
+            + W[4075] * W[161];
+    W[4217] = W[18] * W[4216] + W[423] * W[3811] + W[828] * W[3406] + W[1233] * W[3001] + W[1638] * W[2596]
+            + W[2043] * W[2191] + W[2448] * W[1786] + W[2853] * W[1381] + W[3258] * W[976] + W[3663] * W[571]
+            + W[4068] * W[166];
+    W[4222] = W[11] * W[4221] + W[416] * W[3816] + W[821] * W[3411] + W[1226] * W[3006] + W[1631] * W[2601]
+            + W[2036] * W[2196] + W[2441] * W[1791] + W[2846] * W[1386] + W[3251] * W[981] + W[3656] * W[576]
+            + W[4061] * W[171];
+    W[4227] = W[2] * W[4226] + W[407] * W[3821] + W[812] * W[3416] + W[1217] * W[3011] + W[1622] * W[2606]
+            + W[2027] * W[2201] + W[2432] * W[1796] + W[2837] * W[1391] + W[3242] * W[986] + W[3647] * W[581]
+            + W[4052] * W[176];
+    W[4231] = W[42] * W[4202] + W[447] * W[3797] + W[852] * W[3392] + W[1257] * W[2987] + W[1662] * W[2582]
+            + W[2067] * W[2177] + W[2472] * W[1772] + W[2877] * W[1367] + W[3282] * W[962] + W[3687] * W[557]
+            + W[4092] * W[152];
+    W[4233] = W[35] * W[4206] + W[440] * W[3801] + W[845] * W[3396] + W[1250] * W[2991] + W[1655] * W[2586]
+            + W[2060] * W[2181] + W[2465] * W[1776] + W[2870] * W[1371] + W[3275] * W[966] + W[3680] * W[561]
+            + W[4085] * W[156];
+    W[4236] = W[28] * W[4211] + W[433] * W[3806] + W[838] * W[3401] + W[1243] * W[2996] + W[1648] * W[2591]
+            + W[2053] * W[2186] + W[2458] * W[1781] + W[2863] * W[1376] + W[3268] * W[971] + W[3673] * W[566]
+            + W[4078] * W[161];
+    W[4239] = W[21] * W[4216] + W[426] * W[3811] + W[831] * W[3406] + W[1236] * W[3001] + W[1641] * W[2596]
+            + W[2046] * W[2191] + W[2451] * W[1786] + W[2856] * W[1381] + W[3261] * W[976] + W[3666] * W[571]
+            + W[4071] * W[166];
+    W[4242] = W[14] * W[4221] + W[419] * W[3816] + W[824] * W[3411] + W[1229] * W[3006] + W[1634] * W[2601]
+            + W[2039] * W[2196] + W[2444] * W[1791] + W[2849] * W[1386] + W[3254] * W[981] + W[3659] * W[576]
+            + W[4064] * W[171];
+    W[4245] = W[7] * W[4226] + W[412] * W[3821] + W[817] * W[3416] + W[1222] * W[3011] + W[1627] * W[2606]
+            + W[2032] * W[2201] + W[2437] * W[1796] + W[2842] * W[1391] + W[3247] * W[986] + W[3652] * W[581]
+            + W[4057] * W[176];
+    W[4251] = W[65] * W[4250] + W[470] * W[3845] + W[875] * W[3440] + W[1280] * W[3035] + W[1685] * W[2630]
+            + W[2090] * W[2225] + W[2495] * W[1820] + W[2900] * W[1415] + W[3305] * W[1010] + W[3710] * W[605]
+            + W[4115] * W[200];
+    W[4255] = W[60] * W[4254] + W[465] * W[3849] + W[870] * W[3444] + W[1275] * W[3039] + W[1680] * W[2634]
+            + W[2085] * W[2229] + W[2490] * W[1824] + W[2895] * W[1419] + W[3300] * W[1014] + W[3705] * W[609]
+            + W[4110] * W[204];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_192(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4356] = W[97] * W[4338] + W[502] * W[3933] + W[907] * W[3528] + W[1312] * W[3123] + W[1717] * W[2718]
+            + W[2122] * W[2313] + W[2527] * W[1908] + W[2932] * W[1503] + W[3337] * W[1098] + W[3742] * W[693]
+            + W[4147] * W[288];
+    W[4359] = W[92] * W[4343] + W[497] * W[3938] + W[902] * W[3533] + W[1307] * W[3128] + W[1712] * W[2723]
+            + W[2117] * W[2318] + W[2522] * W[1913] + W[2927] * W[1508] + W[3332] * W[1103] + W[3737] * W[698]
+            + W[4142] * W[293];
+    W[4371] = W[110] * W[4370] + W[515] * W[3965] + W[920] * W[3560] + W[1325] * W[3155] + W[1730] * W[2750]
+            + W[2135] * W[2345] + W[2540] * W[1940] + W[2945] * W[1535] + W[3350] * W[1130] + W[3755] * W[725]
+            + W[4160] * W[320];
+    W[4375] = W[105] * W[4374] + W[510] * W[3969] + W[915] * W[3564] + W[1320] * W[3159] + W[1725] * W[2754]
+            + W[2130] * W[2349] + W[2535] * W[1944] + W[2940] * W[1539] + W[3345] * W[1134] + W[3750] * W[729]
+            + W[4155] * W[324];
+    W[4387] = W[112] * W[4370] + W[517] * W[3965] + W[922] * W[3560] + W[1327] * W[3155] + W[1732] * W[2750]
+            + W[2137] * W[2345] + W[2542] * W[1940] + W[2947] * W[1535] + W[3352] * W[1130] + W[3757] * W[725]
+            + W[4162] * W[320];
+    W[4389] = W[107] * W[4374] + W[512] * W[3969] + W[917] * W[3564] + W[1322] * W[3159] + W[1727] * W[2754]
+            + W[2132] * W[2349] + W[2537] * W[1944] + W[2942] * W[1539] + W[3347] * W[1134] + W[3752] * W[729]
+            + W[4157] * W[324];
+    W[4403] = W[115] * W[4402] + W[520] * W[3997] + W[925] * W[3592] + W[1330] * W[3187] + W[1735] * W[2782]
+            + W[2140] * W[2377] + W[2545] * W[1972] + W[2950] * W[1567] + W[3355] * W[1162] + W[3760] * W[757]
+            + W[4165] * W[352];
+    W[4415] = W[117] * W[4402] + W[522] * W[3997] + W[927] * W[3592] + W[1332] * W[3187] + W[1737] * W[2782]
+            + W[2142] * W[2377] + W[2547] * W[1972] + W[2952] * W[1567] + W[3357] * W[1162] + W[3762] * W[757]
+            + W[4167] * W[352];
+    W[4204] = W[151] * W[4203];
+    W[4208] = W[155] * W[4207];
+    W[4213] = W[160] * W[4212];
+    W[4218] = W[165] * W[4217];
+    W[4223] = W[170] * W[4222];
+    W[4228] = W[175] * W[4227];
+    W[4232] = W[151] * W[4231];
+    W[4234] = W[155] * W[4233];
+    W[4237] = W[160] * W[4236];
+    W[4240] = W[165] * W[4239];
+    W[4243] = W[170] * W[4242];
+    W[4246] = W[175] * W[4245];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_193(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4252] = W[199] * W[4251];
+    W[4256] = W[203] * W[4255];
+    W[4261] = W[208] * W[4260];
+    W[4266] = W[213] * W[4265];
+    W[4271] = W[218] * W[4270];
+    W[4274] = W[127] * W[4227];
+    W[4277] = W[199] * W[4276];
+    W[4279] = W[203] * W[4278];
+    W[4282] = W[208] * W[4281];
+    W[4285] = W[213] * W[4284];
+    W[4288] = W[218] * W[4287];
+    W[4291] = W[127] * W[4245];
+    W[4296] = W[243] * W[4295];
+    W[4300] = W[247] * W[4299];
+    W[4305] = W[252] * W[4304];
+    W[4310] = W[257] * W[4309];
+    W[4313] = W[133] * W[4270];
+    W[4315] = W[128] * W[4222];
+    W[4318] = W[243] * W[4317];
+    W[4320] = W[247] * W[4319];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_195(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4383] = W[135] * W[4260];
+    W[4385] = W[130] * W[4212];
+    W[4388] = W[319] * W[4387];
+    W[4390] = W[323] * W[4389];
+    W[4393] = W[142] * W[4359];
+    W[4395] = W[139] * W[4322];
+    W[4397] = W[135] * W[4281];
+    W[4399] = W[130] * W[4236];
+    W[4404] = W[147] * W[4403];
+    W[4405] = W[145] * W[4375];
+    W[4407] = W[143] * W[4339];
+    W[4409] = W[140] * W[4299];
+    W[4411] = W[136] * W[4255];
+    W[4413] = W[131] * W[4207];
+    W[4416] = W[147] * W[4415];
+    W[4417] = W[145] * W[4389];
+    W[4419] = W[143] * W[4356];
+    W[4421] = W[140] * W[4319];
+    W[4423] = W[136] * W[4278];
+    W[4425] = W[131] * W[4233];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_197(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4306] = W[4301] + W[4305];
+    W[4324] = W[4321] + W[4323];
+    W[4346] = W[4341] + W[4345];
+    W[4361] = W[4358] + W[4360];
+    W[4378] = W[3] * W[4377];
+    W[4392] = W[3] * W[4391];
+    W[4408] = W[4406] - W[4407];
+    W[4420] = W[4418] - W[4419];
+    W[4429] = W[4336] + W[4428];
+    W[4436] = W[4355] + W[4435];
+    W[4219] = W[4214] + W[4218];
+    W[4241] = W[4238] + W[4240];
+    W[4267] = W[4262] + W[4266];
+    W[4286] = W[4283] + W[4285];
+    W[4311] = W[4306] + W[4310];
+    W[4327] = W[4324] + W[4326];
+    W[4347] = W[3] * W[4346];
+    W[4362] = W[3] * W[4361];
+    W[4380] = W[4378] - W[4379];
+    W[4394] = W[4392] - W[4393];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_199(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4273] = W[3] * W[4272];
+    W[4290] = W[3] * W[4289];
+    W[4314] = W[4312] - W[4313];
+    W[4330] = W[4328] - W[4329];
+    W[4351] = W[4349] - W[4350];
+    W[4366] = W[4364] - W[4365];
+    W[4384] = W[4382] - W[4383];
+    W[4398] = W[4396] - W[4397];
+    W[4414] = W[4412] - W[4413];
+    W[4426] = W[4424] - W[4425];
+    W[4432] = W[4204] + W[4431];
+    W[4439] = W[4232] + W[4438];
+    W[4230] = W[3] * W[4229];
+    W[4248] = W[3] * W[4247];
+    W[4275] = W[4273] - W[4274];
+    W[4292] = W[4290] - W[4291];
+    W[4316] = W[4314] - W[4315];
+    W[4332] = W[4330] - W[4331];
+    W[4353] = W[4351] - W[4352];
+    W[4368] = W[4366] - W[4367];
+    return 0;
+}
+
+/* Lines 340 .. 351 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_201(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[324] = -W[4275] / W[121] / 11.0;
+    X[325] = -W[4292] / W[121] / 11.0;
+    X[326] = -W[4316] / W[122] / 11.0;
+    X[327] = -W[4332] / W[122] / 11.0;
+    X[328] = -W[4353] / W[123] / 11.0;
+    X[329] = -W[4368] / W[123] / 11.0;
+    X[330] = -W[4386] / W[124] / 11.0;
+    X[331] = -W[4400] / W[124] / 11.0;
+    X[332] = -W[4414] / W[125] / 11.0;
+    X[333] = -W[4426] / W[125] / 11.0;
+    X[334] = -W[4433] / W[126] / 11.0;
+    X[335] = -W[4440] / W[126] / 11.0;
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 11, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_203(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4520] = X[310] - X[320];
+    W[4522] = X[311] - X[321];
+    W[4525] = X[312] - X[314];
+    W[4527] = X[313] - X[315];
+    W[4530] = X[312] - X[316];
+    W[4532] = X[313] - X[317];
+    W[4535] = X[312] - X[318];
+    W[4537] = X[313] - X[319];
+    W[4540] = X[312] - X[320];
+    W[4542] = X[313] - X[321];
+    W[4545] = X[314] - X[316];
+    W[4547] = X[315] - X[317];
+    W[4550] = X[314] - X[318];
+    W[4552] = X[315] - X[319];
+    W[4555] = X[314] - X[320];
+    W[4557] = X[315] - X[321];
+    W[4560] = X[316] - X[318];
+    W[4562] = X[317] - X[319];
+    W[4565] = X[316] - X[320];
+    W[4567] = X[317] - X[321];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 11, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_205(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4516] = (W[60] * W[4515] + W[465] * W[4110] + W[870] * W[3705] + W[1275] * W[3300] + W[1680] * W[2895]
+            + W[2085] * W[2490]) * 2.0;
+    W[4518] = (W[62] * W[4517] + W[467] * W[4112] + W[872] * W[3707] + W[1277] * W[3302] + W[1682] * W[2897]
+            + W[2087] * W[2492]) * 2.0;
+    W[4521] = (W[65] * W[4520] + W[470] * W[4115] + W[875] * W[3710] + W[1280] * W[3305] + W[1685] * W[2900]
+            + W[2090] * W[2495]) * 2.0;
+    W[4523] = (W[67] * W[4522] + W[472] * W[4117] + W[877] * W[3712] + W[1282] * W[3307] + W[1687] * W[2902]
+            + W[2092] * W[2497]) * 2.0;
+    W[4526] = (W[70] * W[4525] + W[475] * W[4120] + W[880] * W[3715] + W[1285] * W[3310] + W[1690] * W[2905]
+            + W[2095] * W[2500]) * 2.0;
+    W[4528] = (W[72] * W[4527] + W[477] * W[4122] + W[882] * W[3717] + W[1287] * W[3312] + W[1692] * W[2907]
+            + W[2097] * W[2502]) * 2.0;
+    W[4531] = (W[75] * W[4530] + W[480] * W[4125] + W[885] * W[3720] + W[1290] * W[3315] + W[1695] * W[2910]
+            + W[2100] * W[2505]) * 2.0;
+    W[4533] = (W[77] * W[4532] + W[482] * W[4127] + W[887] * W[3722] + W[1292] * W[3317] + W[1697] * W[2912]
+            + W[2102] * W[2507]) * 2.0;
+    W[4536] = (W[80] * W[4535] + W[485] * W[4130] + W[890] * W[3725] + W[1295] * W[3320] + W[1700] * W[2915]
+            + W[2105] * W[2510]) * 2.0;
+    W[4538] = (W[82] * W[4537] + W[487] * W[4132] + W[892] * W[3727] + W[1297] * W[3322] + W[1702] * W[2917]
+            + W[2107] * W[2512]) * 2.0;
+    W[4541] = (W[85] * W[4540] + W[490] * W[4135] + W[895] * W[3730] + W[1300] * W[3325] + W[1705] * W[2920]
+            + W[2110] * W[2515]) * 2.0;
+    W[4543] = (W[87] * W[4542] + W[492] * W[4137] + W[897] * W[3732] + W[1302] * W[3327] + W[1707] * W[2922]
+            + W[2112] * W[2517]) * 2.0;
+    W[4546] = (W[90] * W[4545] + W[495] * W[4140] + W[900] * W[3735] + W[1305] * W[3330] + W[1710] * W[2925]
+            + W[2115] * W[2520]) * 2.0;
+    W[4548] = (W[92] * W[4547] + W[497] * W[4142] + W[902] * W[3737] + W[1307] * W[3332] + W[1712] * W[2927]
+            + W[2117] * W[2522]) * 2.0;
+    W[4551] = (W[95] * W[4550] + W[500] * W[4145] + W[905] * W[3740] + W[1310] * W[3335] + W[1715] * W[2930]
+            + W[2120] * W[2525]) * 2.0;
+    W[4553] = (W[97] * W[4552] + W[502] * W[4147] + W[907] * W[3742] + W[1312] * W[3337] + W[1717] * W[2932]
+            + W[2122] * W[2527]) * 2.0;
+    W[4556] = (W[100] * W[4555] + W[505] * W[4150] + W[910] * W[3745] + W[1315] * W[3340] + W[1720] * W[2935]
+            + W[2125] * W[2530]) * 2.0;
+    W[4558] = (W[102] * W[4557] + W[507] * W[4152] + W[912] * W[3747] + W[1317] * W[3342] + W[1722] * W[2937]
+            + W[2127] * W[2532]) * 2.0;
+    W[4561] = (W[105] * W[4560] + W[510] * W[4155] + W[915] * W[3750] + W[1320] * W[3345] + W[1725] * W[2940]
+            + W[2130] * W[2535]) * 2.0;
+    W[4563] = (W[107] * W[4562] + W[512] * W[4157] + W[917] * W[3752] + W[1322] * W[3347] + W[1727] * W[2942]
+            + W[2132] * W[2537]) * 2.0;
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 11, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_207(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4554] = W[4551] + W[4553];
+    W[4559] = W[4556] + W[4558];
+    W[4564] = W[4561] + W[4563];
+    W[4569] = W[4566] + W[4568];
+    W[4574] = W[4571] + W[4573];
+    W[4607] = (-16.5 * W[4499] * W[152] - 16.0 * W[4094] * W[557] - 15.5 * W[3689] * W[962] - 15.0 * W[3284] * W[1367]
+            - 14.5 * W[2879] * W[1772] - 14.0 * W[2474] * W[2177] - 13.5 * W[2069] * W[2582] - 13.0 * W[1664] * W[2987]
+            - 12.5 * W[1259] * W[3392] - 12.0 * W[854] * W[3797] - 11.5 * W[449] * W[4202]) / (11.0 * W[44]);
+    W[4611] = (-16.5 * W[4492] * W[156] - 16.0 * W[4087] * W[561] - 15.5 * W[3682] * W[966] - 15.0 * W[3277] * W[1371]
+            - 14.5 * W[2872] * W[1776] - 14.0 * W[2467] * W[2181] - 13.5 * W[2062] * W[2586] - 13.0 * W[1657] * W[2991]
+            - 12.5 * W[1252] * W[3396] - 12.0 * W[847] * W[3801] - 11.5 * W[442] * W[4206]) / (11.0 * W[37]);
+    W[4616] = (-16.5 * W[4485] * W[161] - 16.0 * W[4080] * W[566] - 15.5 * W[3675] * W[971] - 15.0 * W[3270] * W[1376]
+            - 14.5 * W[2865] * W[1781] - 14.0 * W[2460] * W[2186] - 13.5 * W[2055] * W[2591] - 13.0 * W[1650] * W[2996]
+            - 12.5 * W[1245] * W[3401] - 12.0 * W[840] * W[3806] - 11.5 * W[435] * W[4211]) / (11.0 * W[30]);
+    W[4621] = (-16.5 * W[4478] * W[166] - 16.0 * W[4073] * W[571] - 15.5 * W[3668] * W[976] - 15.0 * W[3263] * W[1381]
+            - 14.5 * W[2858] * W[1786] - 14.0 * W[2453] * W[2191] - 13.5 * W[2048] * W[2596] - 13.0 * W[1643] * W[3001]
+            - 12.5 * W[1238] * W[3406] - 12.0 * W[833] * W[3811] - 11.5 * W[428] * W[4216]) / (11.0 * W[23]);
+    W[4626] = (-16.5 * W[4471] * W[171] - 16.0 * W[4066] * W[576] - 15.5 * W[3661] * W[981] - 15.0 * W[3256] * W[1386]
+            - 14.5 * W[2851] * W[1791] - 14.0 * W[2446] * W[2196] - 13.5 * W[2041] * W[2601] - 13.0 * W[1636] * W[3006]
+            - 12.5 * W[1231] * W[3411] - 12.0 * W[826] * W[3816] - 11.5 * W[421] * W[4221]) / (11.0 * W[16]);
+    W[4631] = (-16.5 * W[4464] * W[176] - 16.0 * W[4059] * W[581] - 15.5 * W[3654] * W[986] - 15.0 * W[3249] * W[1391]
+            - 14.5 * W[2844] * W[1796] - 14.0 * W[2439] * W[2201] - 13.5 * W[2034] * W[2606] - 13.0 * W[1629] * W[3011]
+            - 12.5 * W[1224] * W[3416] - 12.0 * W[819] * W[3821] - 11.5 * W[414] * W[4226]) / (11.0 * W[9]);
+    W[4655] = (-16.5 * W[4524] * W[200] - 16.0 * W[4119] * W[605] - 15.5 * W[3714] * W[1010] - 15.0 * W[3309] * W[1415]
+            - 14.5 * W[2904] * W[1820] - 14.0 * W[2499] * W[2225] - 13.5 * W[2094] * W[2630] - 13.0 * W[1689] * W[3035]
+            - 12.5 * W[1284] * W[3440] - 12.0 * W[879] * W[3845] - 11.5 * W[474] * W[4250]) / (11.0 * W[69]);
+    W[4659] = (-16.5 * W[4519] * W[204] - 16.0 * W[4114] * W[609] - 15.5 * W[3709] * W[1014] - 15.0 * W[3304] * W[1419]
+            - 14.5 * W[2899] * W[1824] - 14.0 * W[2494] * W[2229] - 13.5 * W[2089] * W[2634] - 13.0 * W[1684] * W[3039]
+            - 12.5 * W[1279] * W[3444] - 12.0 * W[874] * W[3849] - 11.5 * W[469] * W[4254]) / (11.0 * W[64]);
+    W[4664] = (-16.5 * W[4514] * W[209] - 16.0 * W[4109] * W[614] - 15.5 * W[3704] * W[1019] - 15.0 * W[3299] * W[1424]
+            - 14.5 * W[2894] * W[1829] - 14.0 * W[2489] * W[2234] - 13.5 * W[2084] * W[2639] - 13.0 * W[1679] * W[3044]
+            - 12.5 * W[1274] * W[3449] - 12.0 * W[869] * W[3854] - 11.5 * W[464] * W[4259]) / (11.0 * W[59]);
+    W[4669] = (-16.5 * W[4509] * W[214] - 16.0 * W[4104] * W[619] - 15.5 * W[3699] * W[1024] - 15.0 * W[3294] * W[1429]
+            - 14.5 * W[2889] * W[1834] - 14.0 * W[2484] * W[2239] - 13.5 * W[2079] * W[2644] - 13.0 * W[1674] * W[3049]
+            - 12.5 * W[1269] * W[3454] - 12.0 * W[864] * W[3859] - 11.5 * W[459] * W[4264]) / (11.0 * W[54]);
+    W[4674] = (-16.5 * W[4504] * W[219] - 16.0 * W[4099] * W[624] - 15.5 * W[3694] * W[1029] - 15.0 * W[3289] * W[1434]
+            - 14.5 * W[2884] * W[1839] - 14.0 * W[2479] * W[2244] - 13.5 * W[2074] * W[2649] - 13.0 * W[1669] * W[3054]
+            - 12.5 * W[1264] * W[3459] - 12.0 * W[859] * W[3864] - 11.5 * W[454] * W[4269]) / (11.0 * W[49]);
+    W[4699] = (-16.5 * W[4544] * W[244] - 16.0 * W[4139] * W[649] - 15.5 * W[3734] * W[1054] - 15.0 * W[3329] * W[1459]
+            - 14.5 * W[2924] * W[1864] - 14.0 * W[2519] * W[2269] - 13.5 * W[2114] * W[2674] - 13.0 * W[1709] * W[3079]
+            - 12.5 * W[1304] * W[3484] - 12.0 * W[899] * W[3889] - 11.5 * W[494] * W[4294]) / (11.0 * W[89]);
+    W[4703] = (-16.5 * W[4539] * W[248] - 16.0 * W[4134] * W[653] - 15.5 * W[3729] * W[1058] - 15.0 * W[3324] * W[1463]
+            - 14.5 * W[2919] * W[1868] - 14.0 * W[2514] * W[2273] - 13.5 * W[2109] * W[2678] - 13.0 * W[1704] * W[3083]
+            - 12.5 * W[1299] * W[3488] - 12.0 * W[894] * W[3893] - 11.5 * W[489] * W[4298]) / (11.0 * W[84]);
+    W[4708] = (-16.5 * W[4534] * W[253] - 16.0 * W[4129] * W[658] - 15.5 * W[3724] * W[1063] - 15.0 * W[3319] * W[1468]
+            - 14.5 * W[2914] * W[1873] - 14.0 * W[2509] * W[2278] - 13.5 * W[2104] * W[2683] - 13.0 * W[1699] * W[3088]
+            - 12.5 * W[1294] * W[3493] - 12.0 * W[889] * W[3898] - 11.5 * W[484] * W[4303]) / (11.0 * W[79]);
+    W[4713] = (-16.5 * W[4529] * W[258] - 16.0 * W[4124] * W[663] - 15.5 * W[3719] * W[1068] - 15.0 * W[3314] * W[1473]
+            - 14.5 * W[2909] * W[1878] - 14.0 * W[2504] * W[2283] - 13.5 * W[2099] * W[2688] - 13.0 * W[1694] * W[3093]
+            - 12.5 * W[1289] * W[3498] - 12.0 * W[884] * W[3903] - 11.5 * W[479] * W[4308]) / (11.0 * W[74]);
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 11, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_209(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4665] = W[55] * W[4664] + W[460] * W[4259] + W[865] * W[3854] + W[1270] * W[3449] + W[1675] * W[3044]
+            + W[2080] * W[2639] + W[2485] * W[2234] + W[2890] * W[1829] + W[3295] * W[1424] + W[3700] * W[1019]
+            + W[4105] * W[614] + W[4510] * W[209];
+    W[4670] = W[50] * W[4669] + W[455] * W[4264] + W[860] * W[3859] + W[1265] * W[3454] + W[1670] * W[3049]
+            + W[2075] * W[2644] + W[2480] * W[2239] + W[2885] * W[1834] + W[3290] * W[1429] + W[3695] * W[1024]
+            + W[4100] * W[619] + W[4505] * W[214];
+    W[4675] = W[45] * W[4674] + W[450] * W[4269] + W[855] * W[3864] + W[1260] * W[3459] + W[1665] * W[3054]
+            + W[2070] * W[2649] + W[2475] * W[2244] + W[2880] * W[1839] + W[3285] * W[1434] + W[3690] * W[1029]
+            + W[4095] * W[624] + W[4500] * W[219];
+    W[4681] = W[67] * W[4655] + W[472] * W[4250] + W[877] * W[3845] + W[1282] * W[3440] + W[1687] * W[3035]
+            + W[2092] * W[2630] + W[2497] * W[2225] + W[2902] * W[1820] + W[3307] * W[1415] + W[3712] * W[1010]
+            + W[4117] * W[605] + W[4522] * W[200];
+    W[4683] = W[62] * W[4659] + W[467] * W[4254] + W[872] * W[3849] + W[1277] * W[3444] + W[1682] * W[3039]
+            + W[2087] * W[2634] + W[2492] * W[2229] + W[2897] * W[1824] + W[3302] * W[1419] + W[3707] * W[1014]
+            + W[4112] * W[609] + W[4517] * W[204];
+    W[4686] = W[57] * W[4664] + W[462] * W[4259] + W[867] * W[3854] + W[1272] * W[3449] + W[1677] * W[3044]
+            + W[2082] * W[2639] + W[2487] * W[2234] + W[2892] * W[1829] + W[3297] * W[1424] + W[3702] * W[1019]
+            + W[4107] * W[614] + W[4512] * W[209];
+    W[4689] = W[52] * W[4669] + W[457] * W[4264] + W[862] * W[3859] + W[1267] * W[3454] + W[1672] * W[3049]
+            + W[2077] * W[2644] + W[2482] * W[2239] + W[2887] * W[1834] + W[3292] * W[1429] + W[3697] * W[1024]
+            + W[4102] * W[619] + W[4507] * W[214];
+    W[4692] = W[47] * W[4674] + W[452] * W[4269] + W[857] * W[3864] + W[1262] * W[3459] + W[1667] * W[3054]
+            + W[2072] * W[2649] + W[2477] * W[2244] + W[2882] * W[1839] + W[3287] * W[1434] + W[3692] * W[1029]
+            + W[4097] * W[624] + W[4502] * W[219];
+    W[4700] = W[85] * W[4699] + W[490] * W[4294] + W[895] * W[3889] + W[1300] * W[3484] + W[1705] * W[3079]
+            + W[2110] * W[2674] + W[2515] * W[2269] + W[2920] * W[1864] + W[3325] * W[1459] + W[3730] * W[1054]
+            + W[4135] * W[649] + W[4540] * W[244];
+    W[4704] = W[80] * W[4703] + W[485] * W[4298] + W[890] * W[3893] + W[1295] * W[3488] + W[1700] * W[3083]
+            + W[2105] * W[2678] + W[2510] * W[2273] + W[2915] * W[1868] + W[3320] * W[1463] + W[3725] * W[1058]
+            + W[4130] * W[653] + W[4535] * W[248];
+    W[4709] = W[75] * W[4708] + W[480] * W[4303] + W[885] * W[3898] + W[1290] * W[3493] + W[1695] * W[3088]
+            + W[2100] * W[2683] + W[2505] * W[2278] + W[2910] * W[1873] + W[3315] * W[1468] + W[3720] * W[1063]
+            + W[4125] * W[658] + W[4530] * W[253];
+    W[4714] = W[70] * W[4713] + W[475] * W[4308] + W[880] * W[3903] + W[1285] * W[3498] + W[1690] * W[3093]
+            + W[2095] * W[2688] + W[2500] * W[2283] + W[2905] * W[1878] + W[3310] * W[1473] + W[3715] * W[1068]
+            + W[4120] * W[663] + W[4525] * W[258];
+    W[4722] = W[87] * W[4699] + W[492] * W[4294] + W[897] * W[3889] + W[1302] * W[3484] + W[1707] * W[3079]
+            + W[2112] * W[2674] + W[2517] * W[2269] + W[2922] * W[1864] + W[3327] * W[1459] + W[3732] * W[1054]
+            + W[4137] * W[649] + W[4542] * W[244];
+    W[4724] = W[82] * W[4703] + W[487] * W[4298] + W[892] * W[3893] + W[1297] * W[3488] + W[1702] * W[3083]
+            + W[2107] * W[2678] + W[2512] * W[2273] + W[2917] * W[1868] + W[3322] * W[1463] + W[3727] * W[1058]
+            + W[4132] * W[653] + W[4537] * W[248];
+    W[4727] = W[77] * W[4708] + W[482] * W[4303] + W[887] * W[3898] + W[1292] * W[3493] + W[1697] * W[3088]
+            + W[2102] * W[2683] + W[2507] * W[2278] + W[2912] * W[1873] + W[3317] * W[1468] + W[3722] * W[1063]
+            + W[4127] * W[658] + W[4532] * W[253];
+    W[4730] = W[72] * W[4713] + W[477] * W[4308] + W[882] * W[3903] + W[1287] * W[3498] + W[1692] * W[3093]
+            + W[2097] * W[2688] + W[2502] * W[2283] + W[2907] * W[1878] + W[3312] * W[1473] + W[3717] * W[1068]
+            + W[4122] * W[663] + W[4527] * W[258];
+    W[4740] = W[100] * W[4739] + W[505] * W[4334] + W[910] * W[3929] + W[1315] * W[3524] + W[1720] * W[3119]
+            + W[2125] * W[2714] + W[2530] * W[2309] + W[2935] * W[1904] + W[3340] * W[1499] + W[3745] * W[1094]
+            + W[4150] * W[689] + W[4555] * W[284];
+    W[4744] = W[95] * W[4743] + W[500] * W[4338] + W[905] * W[3933] + W[1310] * W[3528] + W[1715] * W[3123]
+            + W[2120] * W[2718] + W[2525] * W[2313] + W[2930] * W[1908] + W[3335] * W[1503] + W[3740] * W[1098]
+            + W[4145] * W[693] + W[4550] * W[288];
+    W[4749] = W[90] * W[4748] + W[495] * W[4343] + W[900] * W[3938] + W[1305] * W[3533] + W[1710] * W[3128]
+            + W[2115] * W[2723] + W[2520] * W[2318] + W[2925] * W[1913] + W[3330] * W[1508] + W[3735] * W[1103]
+            + W[4140] * W[698] + W[4545] * W[293];
+    W[4759] = W[102] * W[4739] + W[507] * W[4334] + W[912] * W[3929] + W[1317] * W[3524] + W[1722] * W[3119]
+            + W[2127] * W[2714] + W[2532] * W[2309] + W[2937] * W[1904] + W[3342] * W[1499] + W[3747] * W[1094]
+            + W[4152] * W[689] + W[4557] * W[284];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 11, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_212(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4728] = W[252] * W[4727];
+    W[4731] = W[257] * W[4730];
+    W[4734] = W[133] * W[4692];
+    W[4736] = W[128] * W[4647];
+    W[4741] = W[283] * W[4740];
+    W[4745] = W[287] * W[4744];
+    W[4750] = W[292] * W[4749];
+    W[4753] = W[138] * W[4714];
+    W[4755] = W[134] * W[4670];
+    W[4757] = W[129] * W[4622];
+    W[4760] = W[283] * W[4759];
+    W[4762] = W[287] * W[4761];
+    W[4765] = W[292] * W[4764];
+    W[4768] = W[138] * W[4730];
+    W[4770] = W[134] * W[4689];
+    W[4772] = W[129] * W[4644];
+    W[4777] = W[319] * W[4776];
+    W[4781] = W[323] * W[4780];
+    W[4784] = W[142] * W[4749];
+    W[4786] = W[139] * W[4709];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 11, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_214(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4832] = W[351] * W[4808];
+    W[4839] = W[351] * W[4820];
+    W[4614] = W[4609] + W[4613];
+    W[4640] = W[4637] + W[4639];
+    W[4662] = W[4657] + W[4661];
+    W[4685] = W[4682] + W[4684];
+    W[4706] = W[4701] + W[4705];
+    W[4726] = W[4723] + W[4725];
+    W[4746] = W[4741] + W[4745];
+    W[4763] = W[4760] + W[4762];
+    W[4782] = W[4777] + W[4781];
+    W[4796] = W[4793] + W[4795];
+    W[4811] = W[4809] - W[4810];
+    W[4823] = W[4821] - W[4822];
+    W[4833] = W[4777] + W[4832];
+    W[4840] = W[4793] + W[4839];
+    W[4619] = W[4614] + W[4618];
+    W[4643] = W[4640] + W[4642];
+    W[4667] = W[4662] + W[4666];
+    W[4688] = W[4685] + W[4687];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 11, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_216(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4815] = W[4813] - W[4814];
+    W[4827] = W[4825] - W[4826];
+    W[4835] = W[4701] + W[4834];
+    W[4842] = W[4723] + W[4841];
+    W[4629] = W[4624] + W[4628];
+    W[4649] = W[4646] + W[4648];
+    W[4677] = W[4672] + W[4676];
+    W[4694] = W[4691] + W[4693];
+    W[4717] = W[3] * W[4716];
+    W[4733] = W[3] * W[4732];
+    W[4754] = W[4752] - W[4753];
+    W[4769] = W[4767] - W[4768];
+    W[4787] = W[4785] - W[4786];
+    W[4801] = W[4799] - W[4800];
+    W[4817] = W[4815] - W[4816];
+    W[4829] = W[4827] - W[4828];
+    W[4836] = W[4657] + W[4835];
+    W[4843] = W[4682] + W[4842];
+    W[4634] = W[4629] + W[4633];
+    W[4652] = W[4649] + W[4651];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 11, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_218(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4791] = W[4789] - W[4790];
+    W[4805] = W[4803] - W[4804];
+    W[4838] = W[148] * W[4837];
+    W[4845] = W[148] * W[4844];
+    X[336] = X[322] / 12.0;
+    X[337] = X[323] / 12.0;
+    X[338] = X[324] / 12.0;
+    X[339] = X[325] / 12.0;
+    X[340] = X[326] / 12.0;
+    X[341] = X[327] / 12.0;
+    X[342] = X[328] / 12.0;
+    X[343] = X[329] / 12.0;
+    X[344] = X[330] / 12.0;
+    X[345] = X[331] / 12.0;
+    X[346] = X[332] / 12.0;
+    X[347] = X[333] / 12.0;
+    X[348] = X[334] / 12.0;
+    X[349] = X[335] / 12.0;
+    X[350] = -W[4635] / W[120] / 12.0;
+    X[351] = -W[4653] / W[120] / 12.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 12, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_220(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4862] = X[336] - X[338];
+    W[4867] = X[337] - X[339];
+    W[4871] = X[336] - X[340];
+    W[4874] = X[337] - X[341];
+    W[4878] = X[336] - X[342];
+    W[4881] = X[337] - X[343];
+    W[4885] = X[336] - X[344];
+    W[4888] = X[337] - X[345];
+    W[4892] = X[336] - X[346];
+    W[4895] = X[337] - X[347];
+    W[4899] = X[336] - X[348];
+    W[4902] = X[337] - X[349];
+    W[4905] = X[338] - X[340];
+    W[4907] = X[339] - X[341];
+    W[4910] = X[338] - X[342];
+    W[4912] = X[339] - X[343];
+    W[4915] = X[338] - X[344];
+    W[4917] = X[339] - X[345];
+    W[4920] = X[338] - X[346];
+    W[4922] = X[339] - X[347];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 12, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_222(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4975] = X[346] - X[348];
+    W[4977] = X[347] - X[349];
+    W[4864] = (W[2] * W[4862] + W[407] * W[4457] + W[812] * W[4052] + W[1217] * W[3647] + W[1622] * W[3242]
+            + W[2027] * W[2837]) * 2.0 + W[2432] * W[2432];
+    W[4868] = (W[7] * W[4867] + W[412] * W[4462] + W[817] * W[4057] + W[1222] * W[3652] + W[1627] * W[3247]
+            + W[2032] * W[2842]) * 2.0 + W[2437] * W[2437];
+    W[4872] = (W[11] * W[4871] + W[416] * W[4466] + W[821] * W[4061] + W[1226] * W[3656] + W[1631] * W[3251]
+            + W[2036] * W[2846]) * 2.0 + W[2441] * W[2441];
+    W[4875] = (W[14] * W[4874] + W[419] * W[4469] + W[824] * W[4064] + W[1229] * W[3659] + W[1634] * W[3254]
+            + W[2039] * W[2849]) * 2.0 + W[2444] * W[2444];
+    W[4879] = (W[18] * W[4878] + W[423] * W[4473] + W[828] * W[4068] + W[1233] * W[3663] + W[1638] * W[3258]
+            + W[2043] * W[2853]) * 2.0 + W[2448] * W[2448];
+    W[4882] = (W[21] * W[4881] + W[426] * W[4476] + W[831] * W[4071] + W[1236] * W[3666] + W[1641] * W[3261]
+            + W[2046] * W[2856]) * 2.0 + W[2451] * W[2451];
+    W[4886] = (W[25] * W[4885] + W[430] * W[4480] + W[835] * W[4075] + W[1240] * W[3670] + W[1645] * W[3265]
+            + W[2050] * W[2860]) * 2.0 + W[2455] * W[2455];
+    W[4889] = (W[28] * W[4888] + W[433] * W[4483] + W[838] * W[4078] + W[1243] * W[3673] + W[1648] * W[3268]
+            + W[2053] * W[2863]) * 2.0 + W[2458] * W[2458];
+    W[4893] = (W[32] * W[4892] + W[437] * W[4487] + W[842] * W[4082] + W[1247] * W[3677] + W[1652] * W[3272]
+            + W[2057] * W[2867]) * 2.0 + W[2462] * W[2462];
+    W[4896] = (W[35] * W[4895] + W[440] * W[4490] + W[845] * W[4085] + W[1250] * W[3680] + W[1655] * W[3275]
+            + W[2060] * W[2870]) * 2.0 + W[2465] * W[2465];
+    W[4900] = (W[39] * W[4899] + W[444] * W[4494] + W[849] * W[4089] + W[1254] * W[3684] + W[1659] * W[3279]
+            + W[2064] * W[2874]) * 2.0 + W[2469] * W[2469];
+    W[4903] = (W[42] * W[4902] + W[447] * W[4497] + W[852] * W[4092] + W[1257] * W[3687] + W[1662] * W[3282]
+            + W[2067] * W[2877]) * 2.0 + W[2472] * W[2472];
+    W[4906] = (W[45] * W[4905] + W[450] * W[4500] + W[855] * W[4095] + W[1260] * W[3690] + W[1665] * W[3285]
+            + W[2070] * W[2880]) * 2.0 + W[2475] * W[2475];
+    W[4908] = (W[47] * W[4907] + W[452] * W[4502] + W[857] * W[4097] + W[1262] * W[3692] + W[1667] * W[3287]
+            + W[2072] * W[2882]) * 2.0 + W[2477] * W[2477];
+    W[4911] = (W[50] * W[4910] + W[455] * W[4505] + W[860] * W[4100] + W[1265] * W[3695] + W[1670] * W[3290]
+            + W[2075] * W[2885]) * 2.0 + W[2480] * W[2480];
+    W[4913] = (W[52] * W[4912] + W[457] * W[4507] + W[862] * W[4102] + W[1267] * W[3697] + W[1672] * W[3292]
+            + W[2077] * W[2887]) * 2.0 + W[2482] * W[2482];
+    W[4916] = (W[55] * W[4915] + W[460] * W[4510] + W[865] * W[4105] + W[1270] * W[3700] + W[1675] * W[3295]
+            + W[2080] * W[2890]) * 2.0 + W[2485] * W[2485];
+    W[4918] = (W[57] * W[4917] + W[462] * W[4512] + W[867] * W[4107] + W[1272] * W[3702] + W[1677] * W[3297]
+            + W[2082] * W[2892]) * 2.0 + W[2487] * W[2487];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 12, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_224(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[4971] = (W[110] * W[4970] + W[515] * W[4565] + W[920] * W[4160] + W[1325] * W[3755] + W[1730] * W[3350]
+            + W[2135] * W[2945]) * 2.0 + W[2540] * W[2540];
+    W[4973] = (W[112] * W[4972] + W[517] * W[4567] + W[922] * W[4162] + W[1327] * W[3757] + W[1732] * W[3352]
+            + W[2137] * W[2947]) * 2.0 + W[2542] * W[2542];
+    W[4976] = (W[115] * W[4975] + W[520] * W[4570] + W[925] * W[4165] + W[1330] * W[3760] + W[1735] * W[3355]
+            + W[2140] * W[2950]) * 2.0 + W[2545] * W[2545];
+    W[4978] = (W[117] * W[4977] + W[522] * W[4572] + W[927] * W[4167] + W[1332] * W[3762] + W[1737] * W[3357]
+            + W[2142] * W[2952]) * 2.0 + W[2547] * W[2547];
+    W[4869] = W[4864] + W[4868];
+    W[4876] = W[4872] + W[4875];
+    W[4883] = W[4879] + W[4882];
+    W[4890] = W[4886] + W[4889];
+    W[4897] = W[4893] + W[4896];
+    W[4904] = W[4900] + W[4903];
+    W[4909] = W[4906] + W[4908];
+    W[4914] = W[4911] + W[4913];
+    W[4919] = W[4916] + W[4918];
+    W[4924] = W[4921] + W[4923];
+    W[4929] = W[4926] + W[4928];
+    W[4934] = W[4931] + W[4933];
+    W[4939] = W[4936] + W[4938];
+    W[4944] = W[4941] + W[4943];
+    W[4949] = W[4946] + W[4948];
+    W[4954] = W[4951] + W[4953];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 12, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_226(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5144] = (-18.0 * W[4964] * W[284] - 17.5 * W[4559] * W[689] - 17.0 * W[4154] * W[1094] - 16.5 * W[3749] * W[1499]
+            - 16.0 * W[3344] * W[1904] - 15.5 * W[2939] * W[2309] - 15.0 * W[2534] * W[2714] - 14.5 * W[2129] * W[3119]
+            - 14.0 * W[1724] * W[3524] - 13.5 * W[1319] * W[3929] - 13.0 * W[914] * W[4334] - 12.5 * W[509] * W[4739]) / (12.0 * W[104]);
+    W[5148] = (-18.0 * W[4959] * W[288] - 17.5 * W[4554] * W[693] - 17.0 * W[4149] * W[1098] - 16.5 * W[3744] * W[1503]
+            - 16.0 * W[3339] * W[1908] - 15.5 * W[2934] * W[2313] - 15.0 * W[2529] * W[2718] - 14.5 * W[2124] * W[3123]
+            - 14.0 * W[1719] * W[3528] - 13.5 * W[1314] * W[3933] - 13.0 * W[909] * W[4338] - 12.5 * W[504] * W[4743]) / (12.0 * W[99]);
+    W[5153] = (-18.0 * W[4954] * W[293] - 17.5 * W[4549] * W[698] - 17.0 * W[4144] * W[1103] - 16.5 * W[3739] * W[1508]
+            - 16.0 * W[3334] * W[1913] - 15.5 * W[2929] * W[2318] - 15.0 * W[2524] * W[2723] - 14.5 * W[2119] * W[3128]
+            - 14.0 * W[1714] * W[3533] - 13.5 * W[1309] * W[3938] - 13.0 * W[904] * W[4343] - 12.5 * W[499] * W[4748]) / (12.0 * W[94]);
+    W[5180] = (-18.0 * W[4974] * W[320] - 17.5 * W[4569] * W[725] - 17.0 * W[4164] * W[1130] - 16.5 * W[3759] * W[1535]
+            - 16.0 * W[3354] * W[1940] - 15.5 * W[2949] * W[2345] - 15.0 * W[2544] * W[2750] - 14.5 * W[2139] * W[3155]
+            - 14.0 * W[1734] * W[3560] - 13.5 * W[1329] * W[3965] - 13.0 * W[924] * W[4370] - 12.5 * W[519] * W[4775]) / (12.0 * W[114]);
+    W[5184] = (-18.0 * W[4969] * W[324] - 17.5 * W[4564] * W[729] - 17.0 * W[4159] * W[1134] - 16.5 * W[3754] * W[1539]
+            - 16.0 * W[3349] * W[1944] - 15.5 * W[2944] * W[2349] - 15.0 * W[2539] * W[2754] - 14.5 * W[2134] * W[3159]
+            - 14.0 * W[1729] * W[3564] - 13.5 * W[1324] * W[3969] - 13.0 * W[919] * W[4374] - 12.5 * W[514] * W[4779]) / (12.0 * W[109]);
+    W[5212] = (-18.0 * W[4979] * W[352] - 17.5 * W[4574] * W[757] - 17.0 * W[4169] * W[1162] - 16.5 * W[3764] * W[1567]
+            - 16.0 * W[3359] * W[1972] - 15.5 * W[2954] * W[2377] - 15.0 * W[2549] * W[2782] - 14.5 * W[2144] * W[3187]
+            - 14.0 * W[1739] * W[3592] - 13.5 * W[1334] * W[3997] - 13.0 * W[929] * W[4402] - 12.5 * W[524] * W[4807]) / (12.0 * W[119]);
+    W[5013] = W[39] * W[5012] + W[444] * W[4607] + W[849] * W[4202] + W[1254] * W[3797] + W[1659] * W[3392]
+            + W[2064] * W[2987] + W[2469] * W[2582] + W[2874] * W[2177] + W[3279] * W[1772] + W[3684] * W[1367]
+            + W[4089] * W[962] + W[4494] * W[557] + W[4899] * W[152];
+    W[5017] = W[32] * W[5016] + W[437] * W[4611] + W[842] * W[4206] + W[1247] * W[3801] + W[1652] * W[3396]
+            + W[2057] * W[2991] + W[2462] * W[2586] + W[2867] * W[2181] + W[3272] * W[1776] + W[3677] * W[1371]
+            + W[4082] * W[966] + W[4487] * W[561] + W[4892] * W[156];
+    W[5022] = W[25] * W[5021] + W[430] * W[4616] + W[835] * W[4211] + W[1240] * W[3806] + W[1645] * W[3401]
+            + W[2050] * W[2996] + W[2455] * W[2591] + W[2860] * W[2186] + W[3265] * W[1781] + W[3670] * W[1376]
+            + W[4075] * W[971] + W[4480] * W[566] + W[4885] * W[161];
+    W[5027] = W[18] * W[5026] + W[423] * W[4621] + W[828] * W[4216] + W[1233] * W[3811] + W[1638] * W[3406]
+            + W[2043] * W[3001] + W[2448] * W[2596] + W[2853] * W[2191] + W[3258] * W[1786] + W[3663] * W[1381]
+            + W[4068] * W[976] + W[4473] * W[571] + W[4878] * W[166];
+    W[5032] = W[11] * W[5031] + W[416] * W[4626] + W[821] * W[4221] + W[1226] * W[3816] + W[1631] * W[3411]
+            + W[2036] * W[3006] + W[2441] * W[2601] + W[2846] * W[2196] + W[3251] * W[1791] + W[3656] * W[1386]
+            + W[4061] * W[981] + W[4466] * W[576] + W[4871] * W[171];
+    W[5037] = W[2] * W[5036] + W[407] * W[4631] + W[812] * W[4226] + W[1217] * W[3821] + W[1622] * W[3416]
+            + W[2027] * W[3011] + W[2432] * W[2606] + W[2837] * W[2201] + W[3242] * W[1796] + W[3647] * W[1391]
+            + W[4052] * W[986] + W[4457] * W[581] + W[4862] * W[176];
+    W[5041] = W[42] * W[5012] + W[447] * W[4607] + W[852] * W[4202] + W[1257] * W[3797] + W[1662] * W[3392]
+            + W[2067] * W[2987] + W[2472] * W[2582] + W[2877] * W[2177] + W[3282] * W[1772] + W[3687] * W[1367]
+            + W[4092] * W[962] + W[4497] * W[557] + W[4902] * W[152];
+    W[5043] = W[35] * W[5016] + W[440] * W[4611] + W[845] * W[4206] + W[1250] * W[3801] + W[1655] * W[3396]
+            + W[2060] * W[2991] + W[2465] * W[2586] + W[2870] * W[2181] + W[3275] * W[1776] + W[3680] * W[1371]
+            + W[4085] * W[966] + W[4490] * W[561] + W[4895] * W[156];
+    W[5046] = W[28] * W[5021] + W[433] * W[4616] + W[838] * W[4211] + W[1243] * W[3806] + W[1648] * W[3401]
+            + W[2053] * W[2996] + W[2458] * W[2591] + W[2863] * W[2186] + W[3268] * W[1781] + W[3673] * W[1376]
+            + W[4078] * W[971] + W[4483] * W[566] + W[4888] * W[161];
+    W[5049] = W[21] * W[5026] + W[426] * W[4621] + W[831] * W[4216] + W[1236] * W[3811] + W[1641] * W[3406]
+            + W[2046] * W[3001] + W[2451] * W[2596] + W[2856] * W[2191] + W[3261] * W[1786] + W[3666] * W[1381]
+            + W[4071] * W[976] + W[4476] * W[571] + W[4881] * W[166];
+    W[5052] = W[14] * W[5031] + W[419] * W[4626] + W[824] * W[4221] + W[1229] * W[3816] + W[1634] * W[3411]
+            + W[2039] * W[3006] + W[2444] * W[2601] + W[2849] * W[2196] + W[3254] * W[1791] + W[3659] * W[1386]
+            + W[4064] * W[981] + W[4469] * W[576] + W[4874] * W[171];
+    W[5055] = W[7] * W[5036] + W[412] * W[4631] + W[817] * W[4226] + W[1222] * W[3821] + W[1627] * W[3416]
+            + W[2032] * W[3011] + W[2437] * W[2606] + W[2842] * W[2201] + W[3247] * W[1796] + W[3652] * W[1391]
+            + W[4057] * W[986] + W[4462] * W[581] + W[4867] * W[176];
+    W[5061] = W[65] * W[5060] + W[470] * W[4655] + W[875] * W[4250] + W[1280] * W[3845] + W[1685] * W[3440]
+            + W[2090] * W[3035] + W[2495] * W[2630] + W[2900] * W[2225] + W[3305] * W[1820] + W[3710] * W[1415]
+            + W[4115] * W[1010] + W[4520] * W[605] + W[4925] * W[200];
+    W[5065] = W[60] * W[5064] + W[465] * W[4659] + W[870] * W[4254] + W[1275] * W[3849] + W[1680] * W[3444]
+            + W[2085] * W[3039] + W[2490] * W[2634] + W[2895] * W[2229] + W[3300] * W[1824] + W[3705] * W[1419]
+            + W[4110] * W[1014] + W[4515] * W[609] + W[4920] * W[204];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 12, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_228(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5166] = W[97] * W[5148] + W[502] * W[4743] + W[907] * W[4338] + W[1312] * W[3933] + W[1717] * W[3528]
+            + W[2122] * W[3123] + W[2527] * W[2718] + W[2932] * W[2313] + W[3337] * W[1908] + W[3742] * W[1503]
+            + W[4147] * W[1098] + W[4552] * W[693] + W[4957] * W[288];
+    W[5169] = W[92] * W[5153] + W[497] * W[4748] + W[902] * W[4343] + W[1307] * W[3938] + W[1712] * W[3533]
+            + W[2117] * W[3128] + W[2522] * W[2723] + W[2927] * W[2318] + W[3332] * W[1913] + W[3737] * W[1508]
+            + W[4142] * W[1103] + W[4547] * W[698] + W[4952] * W[293];
+    W[5181] = W[110] * W[5180] + W[515] * W[4775] + W[920] * W[4370] + W[1325] * W[3965] + W[1730] * W[3560]
+            + W[2135] * W[3155] + W[2540] * W[2750] + W[2945] * W[2345] + W[3350] * W[1940] + W[3755] * W[1535]
+            + W[4160] * W[1130] + W[4565] * W[725] + W[4970] * W[320];
+    W[5185] = W[105] * W[5184] + W[510] * W[4779] + W[915] * W[4374] + W[1320] * W[3969] + W[1725] * W[3564]
+            + W[2130] * W[3159] + W[2535] * W[2754] + W[2940] * W[2349] + W[3345] * W[1944] + W[3750] * W[1539]
+            + W[4155] * W[1134] + W[4560] * W[729] + W[4965] * W[324];
+    W[5197] = W[112] * W[5180] + W[517] * W[4775] + W[922] * W[4370] + W[1327] * W[3965] + W[1732] * W[3560]
+            + W[2137] * W[3155] + W[2542] * W[2750] + W[2947] * W[2345] + W[3352] * W[1940] + W[3757] * W[1535]
+            + W[4162] * W[1130] + W[4567] * W[725] + W[4972] * W[320];
+    W[5199] = W[107] * W[5184] + W[512] * W[4779] + W[917] * W[4374] + W[1322] * W[3969] + W[1727] * W[3564]
+            + W[2132] * W[3159] + W[2537] * W[2754] + W[2942] * W[2349] + W[3347] * W[1944] + W[3752] * W[1539]
+            + W[4157] * W[1134] + W[4562] * W[729] + W[4967] * W[324];
+    W[5213] = W[115] * W[5212] + W[520] * W[4807] + W[925] * W[4402] + W[1330] * W[3997] + W[1735] * W[3592]
+            + W[2140] * W[3187] + W[2545] * W[2782] + W[2950] * W[2377] + W[3355] * W[1972] + W[3760] * W[1567]
+            + W[4165] * W[1162] + W[4570] * W[757] + W[4975] * W[352];
+    W[5225] = W[117] * W[5212] + W[522] * W[4807] + W[927] * W[4402] + W[1332] * W[3997] + W[1737] * W[3592]
+            + W[2142] * W[3187] + W[2547] * W[2782] + W[2952] * W[2377] + W[3357] * W[1972] + W[3762] * W[1567]
+            + W[4167] * W[1162] + W[4572] * W[757] + W[4977] * W[352];
+    W[5014] = W[151] * W[5013];
+    W[5018] = W[155] * W[5017];
+    W[5023] = W[160] * W[5022];
+    W[5028] = W[165] * W[5027];
+    W[5033] = W[170] * W[5032];
+    W[5038] = W[175] * W[5037];
+    W[5042] = W[151] * W[5041];
+    W[5044] = W[155] * W[5043];
+    W[5047] = W[160] * W[5046];
+    W[5050] = W[165] * W[5049];
+    W[5053] = W[170] * W[5052];
+    W[5056] = W[175] * W[5055];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 12, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_229(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5062] = W[199] * W[5061];
+    W[5066] = W[203] * W[5065];
+    W[5071] = W[208] * W[5070];
+    W[5076] = W[213] * W[5075];
+    W[5081] = W[218] * W[5080];
+    W[5084] = W[127] * W[5037];
+    W[5087] = W[199] * W[5086];
+    W[5089] = W[203] * W[5088];
+    W[5092] = W[208] * W[5091];
+    W[5095] = W[213] * W[5094];
+    W[5098] = W[218] * W[5097];
+    W[5101] = W[127] * W[5055];
+    W[5106] = W[243] * W[5105];
+    W[5110] = W[247] * W[5109];
+    W[5115] = W[252] * W[5114];
+    W[5120] = W[257] * W[5119];
+    W[5123] = W[133] * W[5080];
+    W[5125] = W[128] * W[5032];
+    W[5128] = W[243] * W[5127];
+    W[5130] = W[247] * W[5129];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 12, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_231(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5193] = W[135] * W[5070];
+    W[5195] = W[130] * W[5022];
+    W[5198] = W[319] * W[5197];
+    W[5200] = W[323] * W[5199];
+    W[5203] = W[142] * W[5169];
+    W[5205] = W[139] * W[5132];
+    W[5207] = W[135] * W[5091];
+    W[5209] = W[130] * W[5046];
+    W[5214] = W[147] * W[5213];
+    W[5215] = W[145] * W[5185];
+    W[5217] = W[143] * W[5149];
+    W[5219] = W[140] * W[5109];
+    W[5221] = W[136] * W[5065];
+    W[5223] = W[131] * W[5017];
+    W[5226] = W[147] * W[5225];
+    W[5227] = W[145] * W[5199];
+    W[5229] = W[143] * W[5166];
+    W[5231] = W[140] * W[5129];
+    W[5233] = W[136] * W[5088];
+    W[5235] = W[131] * W[5043];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 12, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_233(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5116] = W[5111] + W[5115];
+    W[5134] = W[5131] + W[5133];
+    W[5156] = W[5151] + W[5155];
+    W[5171] = W[5168] + W[5170];
+    W[5188] = W[3] * W[5187];
+    W[5202] = W[3] * W[5201];
+    W[5218] = W[5216] - W[5217];
+    W[5230] = W[5228] - W[5229];
+    W[5239] = W[5146] + W[5238];
+    W[5246] = W[5165] + W[5245];
+    W[5029] = W[5024] + W[5028];
+    W[5051] = W[5048] + W[5050];
+    W[5077] = W[5072] + W[5076];
+    W[5096] = W[5093] + W[5095];
+    W[5121] = W[5116] + W[5120];
+    W[5137] = W[5134] + W[5136];
+    W[5157] = W[3] * W[5156];
+    W[5172] = W[3] * W[5171];
+    W[5190] = W[5188] - W[5189];
+    W[5204] = W[5202] - W[5203];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 12, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_235(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5083] = W[3] * W[5082];
+    W[5100] = W[3] * W[5099];
+    W[5124] = W[5122] - W[5123];
+    W[5140] = W[5138] - W[5139];
+    W[5161] = W[5159] - W[5160];
+    W[5176] = W[5174] - W[5175];
+    W[5194] = W[5192] - W[5193];
+    W[5208] = W[5206] - W[5207];
+    W[5224] = W[5222] - W[5223];
+    W[5236] = W[5234] - W[5235];
+    W[5242] = W[5014] + W[5241];
+    W[5249] = W[5042] + W[5248];
+    W[5040] = W[3] * W[5039];
+    W[5058] = W[3] * W[5057];
+    W[5085] = W[5083] - W[5084];
+    W[5102] = W[5100] - W[5101];
+    W[5126] = W[5124] - W[5125];
+    W[5142] = W[5140] - W[5141];
+    W[5163] = W[5161] - W[5162];
+    W[5178] = W[5176] - W[5177];
+    return 0;
+}
+
+/* Lines 340 .. 351 of taylor_run's order 12, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_237(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[380] = -W[5085] / W[121] / 13.0;
+    X[381] = -W[5102] / W[121] / 13.0;
+    X[382] = -W[5126] / W[122] / 13.0;
+    X[383] = -W[5142] / W[122] / 13.0;
+    X[384] = -W[5163] / W[123] / 13.0;
+    X[385] = -W[5178] / W[123] / 13.0;
+    X[386] = -W[5196] / W[124] / 13.0;
+    X[387] = -W[5210] / W[124] / 13.0;
+    X[388] = -W[5224] / W[125] / 13.0;
+    X[389] = -W[5236] / W[125] / 13.0;
+    X[390] = -W[5243] / W[126] / 13.0;
+    X[391] = -W[5250] / W[126] / 13.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_238(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5267] = X[364] - X[366];
+    W[5272] = X[365] - X[367];
+    W[5276] = X[364] - X[368];
+    W[5279] = X[365] - X[369];
+    W[5283] = X[364] - X[370];
+    W[5286] = X[365] - X[371];
+    W[5290] = X[364] - X[372];
+    W[5293] = X[365] - X[373];
+    W[5297] = X[364] - X[374];
+    W[5300] = X[365] - X[375];
+    W[5304] = X[364] - X[376];
+    W[5307] = X[365] - X[377];
+    W[5310] = X[366] - X[368];
+    W[5312] = X[367] - X[369];
+    W[5315] = X[366] - X[370];
+    W[5317] = X[367] - X[371];
+    W[5320] = X[366] - X[372];
+    W[5322] = X[367] - X[373];
+    W[5325] = X[366] - X[374];
+    W[5327] = X[367] - X[375];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_240(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5380] = X[374] - X[376];
+    W[5382] = X[375] - X[377];
+    W[5269] = (W[2] * W[5267] + W[407] * W[4862] + W[812] * W[4457] + W[1217] * W[4052] + W[1622] * W[3647]
+            + W[2027] * W[3242] + W[2432] * W[2837]) * 2.0;
+    W[5273] = (W[7] * W[5272] + W[412] * W[4867] + W[817] * W[4462] + W[1222] * W[4057] + W[1627] * W[3652]
+            + W[2032] * W[3247] + W[2437] * W[2842]) * 2.0;
+    W[5277] = (W[11] * W[5276] + W[416] * W[4871] + W[821] * W[4466] + W[1226] * W[4061] + W[1631] * W[3656]
+            + W[2036] * W[3251] + W[2441] * W[2846]) * 2.0;
+    W[5280] = (W[14] * W[5279] + W[419] * W[4874] + W[824] * W[4469] + W[1229] * W[4064] + W[1634] * W[3659]
+            + W[2039] * W[3254] + W[2444] * W[2849]) * 2.0;
+    W[5284] = (W[18] * W[5283] + W[423] * W[4878] + W[828] * W[4473] + W[1233] * W[4068] + W[1638] * W[3663]
+            + W[2043] * W[3258] + W[2448] * W[2853]) * 2.0;
+    W[5287] = (W[21] * W[5286] + W[426] * W[4881] + W[831] * W[4476] + W[1236] * W[4071] + W[1641] * W[3666]
+            + W[2046] * W[3261] + W[2451] * W[2856]) * 2.0;
+    W[5291] = (W[25] * W[5290] + W[430] * W[4885] + W[835] * W[4480] + W[1240] * W[4075] + W[1645] * W[3670]
+            + W[2050] * W[3265] + W[2455] * W[2860]) * 2.0;
+    W[5294] = (W[28] * W[5293] + W[433] * W[4888] + W[838] * W[4483] + W[1243] * W[4078] + W[1648] * W[3673]
+            + W[2053] * W[3268] + W[2458] * W[2863]) * 2.0;
+    W[5298] = (W[32] * W[5297] + W[437] * W[4892] + W[842] * W[4487] + W[1247] * W[4082] + W[1652] * W[3677]
+            + W[2057] * W[3272] + W[2462] * W[2867]) * 2.0;
+    W[5301] = (W[35] * W[5300] + W[440] * W[4895] + W[845] * W[4490] + W[1250] * W[4085] + W[1655] * W[3680]
+            + W[2060] * W[3275] + W[2465] * W[2870]) * 2.0;
+    W[5305] = (W[39] * W[5304] + W[444] * W[4899] + W[849] * W[4494] + W[1254] * W[4089] + W[1659] * W[3684]
+            + W[2064] * W[3279] + W[2469] * W[2874]) * 2.0;
+    W[5308] = (W[42] * W[5307] + W[447] * W[4902] + W[852] * W[4497] + W[1257] * W[4092] + W[1662] * W[3687]
+            + W[2067] * W[3282] + W[2472] * W[2877]) * 2.0;
+    W[5311] = (W[45] * W[5310] + W[450] * W[4905] + W[855] * W[4500] + W[1260] * W[4095] + W[1665] * W[3690]
+            + W[2070] * W[3285] + W[2475] * W[2880]) * 2.0;
+    W[5313] = (W[47] * W[5312] + W[452] * W[4907] + W[857] * W[4502] + W[1262] * W[4097] + W[1667] * W[3692]
+            + W[2072] * W[3287] + W[2477] * W[2882]) * 2.0;
+    W[5316] = (W[50] * W[5315] + W[455] * W[4910] + W[860] * W[4505] + W[1265] * W[4100] + W[1670] * W[3695]
+            + W[2075] * W[3290] + W[2480] * W[2885]) * 2.0;
+    W[5318] = (W[52] * W[5317] + W[457] * W[4912] + W[862] * W[4507] + W[1267] * W[4102] + W[1672] * W[3697]
+            + W[2077] * W[3292] + W[2482] * W[2887]) * 2.0;
+    W[5321] = (W[55] * W[5320] + W[460] * W[4915] + W[865] * W[4510] + W[1270] * W[4105] + W[1675] * W[3700]
+            + W[2080] * W[3295] + W[2485] * W[2890]) * 2.0;
+    W[5323] = (W[57] * W[5322] + W[462] * W[4917] + W[867] * W[4512] + W[1272] * W[4107] + W[1677] * W[3702]
+            + W[2082] * W[3297] + W[2487] * W[2892]) * 2.0;
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_242(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5376] = (W[110] * W[5375] + W[515] * W[4970] + W[920] * W[4565] + W[1325] * W[4160] + W[1730] * W[3755]
+            + W[2135] * W[3350] + W[2540] * W[2945]) * 2.0;
+    W[5378] = (W[112] * W[5377] + W[517] * W[4972] + W[922] * W[4567] + W[1327] * W[4162] + W[1732] * W[3757]
+            + W[2137] * W[3352] + W[2542] * W[2947]) * 2.0;
+    W[5381] = (W[115] * W[5380] + W[520] * W[4975] + W[925] * W[4570] + W[1330] * W[4165] + W[1735] * W[3760]
+            + W[2140] * W[3355] + W[2545] * W[2950]) * 2.0;
+    W[5383] = (W[117] * W[5382] + W[522] * W[4977] + W[927] * W[4572] + W[1332] * W[4167] + W[1737] * W[3762]
+            + W[2142] * W[3357] + W[2547] * W[2952]) * 2.0;
+    W[5274] = W[5269] + W[5273];
+    W[5281] = W[5277] + W[5280];
+    W[5288] = W[5284] + W[5287];
+    W[5295] = W[5291] + W[5294];
+    W[5302] = W[5298] + W[5301];
+    W[5309] = W[5305] + W[5308];
+    W[5314] = W[5311] + W[5313];
+    W[5319] = W[5316] + W[5318];
+    W[5324] = W[5321] + W[5323];
+    W[5329] = W[5326] + W[5328];
+    W[5334] = W[5331] + W[5333];
+    W[5339] = W[5336] + W[5338];
+    W[5344] = W[5341] + W[5343];
+    W[5349] = W[5346] + W[5348];
+    W[5354] = W[5351] + W[5353];
+    W[5359] = W[5356] + W[5358];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_244(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5549] = (-19.5 * W[5369] * W[284] - 19.0 * W[4964] * W[689] - 18.5 * W[4559] * W[1094] - 18.0 * W[4154] * W[1499]
+            - 17.5 * W[3749] * W[1904] - 17.0 * W[3344] * W[2309] - 16.5 * W[2939] * W[2714] - 16.0 * W[2534] * W[3119]
+            - 15.5 * W[2129] * W[3524] - 15.0 * W[1724] * W[3929] - 14.5 * W[1319] * W[4334] - 14.0 * W[914] * W[4739]
+            - 13.5 * W[509] * W[5144]) / (13.0 * W[104]);
+    W[5553] = (-19.5 * W[5364] * W[288] - 19.0 * W[4959] * W[693] - 18.5 * W[4554] * W[1098] - 18.0 * W[4149] * W[1503]
+            - 17.5 * W[3744] * W[1908] - 17.0 * W[3339] * W[2313] - 16.5 * W[2934] * W[2718] - 16.0 * W[2529] * W[3123]
+            - 15.5 * W[2124] * W[3528] - 15.0 * W[1719] * W[3933] - 14.5 * W[1314] * W[4338] - 14.0 * W[909] * W[4743]
+            - 13.5 * W[504] * W[5148]) / (13.0 * W[99]);
+    W[5558] = (-19.5 * W[5359] * W[293] - 19.0 * W[4954] * W[698] - 18.5 * W[4549] * W[1103] - 18.0 * W[4144] * W[1508]
+            - 17.5 * W[3739] * W[1913] - 17.0 * W[3334] * W[2318] - 16.5 * W[2929] * W[2723] - 16.0 * W[2524] * W[3128]
+            - 15.5 * W[2119] * W[3533] - 15.0 * W[1714] * W[3938] - 14.5 * W[1309] * W[4343] - 14.0 * W[904] * W[4748]
+            - 13.5 * W[499] * W[5153]) / (13.0 * W[94]);
+    W[5585] = (-19.5 * W[5379] * W[320] - 19.0 * W[4974] * W[725] - 18.5 * W[4569] * W[1130] - 18.0 * W[4164] * W[1535]
+            - 17.5 * W[3759] * W[1940] - 17.0 * W[3354] * W[2345] - 16.5 * W[2949] * W[2750] - 16.0 * W[2544] * W[3155]
+            - 15.5 * W[2139] * W[3560] - 15.0 * W[1734] * W[3965] - 14.5 * W[1329] * W[4370] - 14.0 * W[924] * W[4775]
+            - 13.5 * W[519] * W[5180]) / (13.0 * W[114]);
+    W[5589] = (-19.5 * W[5374] * W[324] - 19.0 * W[4969] * W[729] - 18.5 * W[4564] * W[1134] - 18.0 * W[4159] * W[1539]
+            - 17.5 * W[3754] * W[1944] - 17.0 * W[3349] * W[2349] - 16.5 * W[2944] * W[2754] - 16.0 * W[2539] * W[3159]
+            - 15.5 * W[2134] * W[3564] - 15.0 * W[1729] * W[3969] - 14.5 * W[1324] * W[4374] - 14.0 * W[919] * W[4779]
+            - 13.5 * W[514] * W[5184]) / (13.0 * W[109]);
+    W[5617] = (-19.5 * W[5384] * W[352] - 19.0 * W[4979] * W[757] - 18.5 * W[4574] * W[1162] - 18.0 * W[4169] * W[1567]
+            - 17.5 * W[3764] * W[1972] - 17.0 * W[3359] * W[2377] - 16.5 * W[2954] * W[2782] - 16.0 * W[2549] * W[3187]
+            - 15.5 * W[2144] * W[3592] - 15.0 * W[1739] * W[3997] - 14.5 * W[1334] * W[4402] - 14.0 * W[929] * W[4807]
+            - 13.5 * W[524] * W[5212]) / (13.0 * W[119]);
+    W[5418] = W[39] * W[5417] + W[444] * W[5012] + W[849] * W[4607] + W[1254] * W[4202] + W[1659] * W[3797]
+            + W[2064] * W[3392] + W[2469] * W[2987] + W[2874] * W[2582] + W[3279] * W[2177] + W[3684] * W[1772]
+            + W[4089] * W[1367] + W[4494] * W[962] + W[4899] * W[557] + W[5304] * W[152];
+    W[5422] = W[32] * W[5421] + W[437] * W[5016] + W[842] * W[4611] + W[1247] * W[4206] + W[1652] * W[3801]
+            + W[2057] * W[3396] + W[2462] * W[2991] + W[2867] * W[2586] + W[3272] * W[2181] + W[3677] * W[1776]
+            + W[4082] * W[1371] + W[4487] * W[966] + W[4892] * W[561] + W[5297] * W[156];
+    W[5427] = W[25] * W[5426] + W[430] * W[5021] + W[835] * W[4616] + W[1240] * W[4211] + W[1645] * W[3806]
+            + W[2050] * W[3401] + W[2455] * W[2996] + W[2860] * W[2591] + W[3265] * W[2186] + W[3670] * W[1781]
+            + W[4075] * W[1376] + W[4480] * W[971] + W[4885] * W[566] + W[5290] * W[161];
+    W[5432] = W[18] * W[5431] + W[423] * W[5026] + W[828] * W[4621] + W[1233] * W[4216] + W[1638] * W[3811]
+            + W[2043] * W[3406] + W[2448] * W[3001] + W[2853] * W[2596] + W[3258] * W[2191] + W[3663] * W[1786]
+            + W[4068] * W[1381] + W[4473] * W[976] + W[4878] * W[571] + W[5283] * W[166];
+    W[5437] = W[11] * W[5436] + W[416] * W[5031] + W[821] * W[4626] + W[1226] * W[4221] + W[1631] * W[3816]
+            + W[2036] * W[3411] + W[2441] * W[3006] + W[2846] * W[2601] + W[3251] * W[2196] + W[3656] * W[1791]
+            + W[4061] * W[1386] + W[4466] * W[981] + W[4871] * W[576] + W[5276] * W[171];
+    W[5442] = W[2] * W[5441] + W[407] * W[5036] + W[812] * W[4631] + W[1217] * W[4226] + W[1622] * W[3821]
+            + W[2027] * W[3416] + W[2432] * W[3011] + W[2837] * W[2606] + W[3242] * W[2201] + W[3647] * W[1796]
+            + W[4052] * W[1391] + W[4457] * W[986] + W[4862] * W[581] + W[5267] * W[176];
+    W[5446] = W[42] * W[5417] + W[447] * W[5012] + W[852] * W[4607] + W[1257] * W[4202] + W[1662] * W[3797]
+            + W[2067] * W[3392] + W[2472] * W[2987] + W[2877] * W[2582] + W[3282] * W[2177] + W[3687] * W[1772]
+            + W[4092] * W[1367] + W[4497] * W[962] + W[4902] * W[557] + W[5307] * W[152];
+    W[5448] = W[35] * W[5421] + W[440] * W[5016] + W[845] * W[4611] + W[1250] * W[4206] + W[1655] * W[3801]
+            + W[2060] * W[3396] + W[2465] * W[2991] + W[2870] * W[2586] + W[3275] * W[2181] + W[3680] * W[1776]
+            + W[4085] * W[1371] + W[4490] * W[966] + W[4895] * W[561] + W[5300] * W[156];
+    W[5451] = W[28] * W[5426] + W[433] * W[5021] + W[838] * W[4616] + W[1243] * W[4211] + W[1648] * W[3806]
+            + W[2053] * W[3401] + W[2458] * W[2996] + W[2863] * W[2591] + W[3268] * W[2186] + W[3673] * W[1781]
+            + W[4078] * W[1376] + W[4483] * W[971] + W[4888] * W[566] + W[5293] * W[161];
+    W[5454] = W[21] * W[5431] + W[426] * W[5026] + W[831] * W[4621] + W[1236] * W[4216] + W[1641] * W[3811]
+            + W[2046] * W[3406] + W[2451] * W[3001] + W[2856] * W[2596] + W[3261] * W[2191] + W[3666] * W[1786]
+            + W[4071] * W[1381] + W[4476] * W[976] + W[4881] * W[571] + W[5286] * W[166];
+    W[5457] = W[14] * W[5436] + W[419] * W[5031] + W[824] * W[4626] + W[1229] * W[4221] + W[1634] * W[3816]
+            + W[2039] * W[3411] + W[2444] * W[3006] + W[2849] * W[2601] + W[3254] * W[2196] + W[3659] * W[1791]
+            + W[4064] * W[1386] + W[4469] * W[981] + W[4874] * W[576] + W[5279] * W[171];
+    W[5460] = W[7] * W[5441] + W[412] * W[5036] + W[817] * W[4631] + W[1222] * W[4226] + W[1627] * W[3821]
+            + W[2032] * W[3416] + W[2437] * W[3011] + W[2842] * W[2606] + W[3247] * W[2201] + W[3652] * W[1796]
+            + W[4057] * W[1391] + W[4462] * W[986] + W[4867] * W[581] + W[5272] * W[176];
+    W[5466] = W[65] * W[5465] + W[470] * W[5060] + W[875] * W[4655] + W[1280] * W[4250] + W[1685] * W[3845]
+            + W[2090] * W[3440] + W[2495] * W[3035] + W[2900] * W[2630] + W[3305] * W[2225] + W[3710] * W[1820]
+            + W[4115] * W[1415] + W[4520] * W[1010] + W[4925] * W[605] + W[5330] * W[200];
+    W[5470] = W[60] * W[5469] + W[465] * W[5064] + W[870] * W[4659] + W[1275] * W[4254] + W[1680] * W[3849]
+            + W[2085] * W[3444] + W[2490] * W[3039] + W[2895] * W[2634] + W[3300] * W[2229] + W[3705] * W[1824]
+            + W[4110] * W[1419] + W[4515] * W[1014] + W[4920] * W[609] + W[5325] * W[204];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_246(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5571] = W[97] * W[5553] + W[502] * W[5148] + W[907] * W[4743] + W[1312] * W[4338] + W[1717] * W[3933]
+            + W[2122] * W[3528] + W[2527] * W[3123] + W[2932] * W[2718] + W[3337] * W[2313] + W[3742] * W[1908]
+            + W[4147] * W[1503] + W[4552] * W[1098] + W[4957] * W[693] + W[5362] * W[288];
+    W[5574] = W[92] * W[5558] + W[497] * W[5153] + W[902] * W[4748] + W[1307] * W[4343] + W[1712] * W[3938]
+            + W[2117] * W[3533] + W[2522] * W[3128] + W[2927] * W[2723] + W[3332] * W[2318] + W[3737] * W[1913]
+            + W[4142] * W[1508] + W[4547] * W[1103] + W[4952] * W[698] + W[5357] * W[293];
+    W[5586] = W[110] * W[5585] + W[515] * W[5180] + W[920] * W[4775] + W[1325] * W[4370] + W[1730] * W[3965]
+            + W[2135] * W[3560] + W[2540] * W[3155] + W[2945] * W[2750] + W[3350] * W[2345] + W[3755] * W[1940]
+            + W[4160] * W[1535] + W[4565] * W[1130] + W[4970] * W[725] + W[5375] * W[320];
+    W[5590] = W[105] * W[5589] + W[510] * W[5184] + W[915] * W[4779] + W[1320] * W[4374] + W[1725] * W[3969]
+            + W[2130] * W[3564] + W[2535] * W[3159] + W[2940] * W[2754] + W[3345] * W[2349] + W[3750] * W[1944]
+            + W[4155] * W[1539] + W[4560] * W[1134] + W[4965] * W[729] + W[5370] * W[324];
+    W[5602] = W[112] * W[5585] + W[517] * W[5180] + W[922] * W[4775] + W[1327] * W[4370] + W[1732] * W[3965]
+            + W[2137] * W[3560] + W[2542] * W[3155] + W[2947] * W[2750] + W[3352] * W[2345] + W[3757] * W[1940]
+            + W[4162] * W[1535] + W[4567] * W[1130] + W[4972] * W[725] + W[5377] * W[320];
+    W[5604] = W[107] * W[5589] + W[512] * W[5184] + W[917] * W[4779] + W[1322] * W[4374] + W[1727] * W[3969]
+            + W[2132] * W[3564] + W[2537] * W[3159] + W[2942] * W[2754] + W[3347] * W[2349] + W[3752] * W[1944]
+            + W[4157] * W[1539] + W[4562] * W[1134] + W[4967] * W[729] + W[5372] * W[324];
+    W[5618] = W[115] * W[5617] + W[520] * W[5212] + W[925] * W[4807] + W[1330] * W[4402] + W[1735] * W[3997]
+            + W[2140] * W[3592] + W[2545] * W[3187] + W[2950] * W[2782] + W[3355] * W[2377] + W[3760] * W[1972]
+            + W[4165] * W[1567] + W[4570] * W[1162] + W[4975] * W[757] + W[5380] * W[352];
+    W[5630] = W[117] * W[5617] + W[522] * W[5212] + W[927] * W[4807] + W[1332] * W[4402] + W[1737] * W[3997]
+            + W[2142] * W[3592] + W[2547] * W[3187] + W[2952] * W[2782] + W[3357] * W[2377] + W[3762] * W[1972]
+            + W[4167] * W[1567] + W[4572] * W[1162] + W[4977] * W[757] + W[5382] * W[352];
+    W[5419] = W[151] * W[5418];
+    W[5423] = W[155] * W[5422];
+    W[5428] = W[160] * W[5427];
+    W[5433] = W[165] * W[5432];
+    W[5438] = W[170] * W[5437];
+    W[5443] = W[175] * W[5442];
+    W[5447] = W[151] * W[5446];
+    W[5449] = W[155] * W[5448];
+    W[5452] = W[160] * W[5451];
+    W[5455] = W[165] * W[5454];
+    W[5458] = W[170] * W[5457];
+    W[5461] = W[175] * W[5460];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_247(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5467] = W[199] * W[5466];
+    W[5471] = W[203] * W[5470];
+    W[5476] = W[208] * W[5475];
+    W[5481] = W[213] * W[5480];
+    W[5486] = W[218] * W[5485];
+    W[5489] = W[127] * W[5442];
+    W[5492] = W[199] * W[5491];
+    W[5494] = W[203] * W[5493];
+    W[5497] = W[208] * W[5496];
+    W[5500] = W[213] * W[5499];
+    W[5503] = W[218] * W[5502];
+    W[5506] = W[127] * W[5460];
+    W[5511] = W[243] * W[5510];
+    W[5515] = W[247] * W[5514];
+    W[5520] = W[252] * W[5519];
+    W[5525] = W[257] * W[5524];
+    W[5528] = W[133] * W[5485];
+    W[5530] = W[128] * W[5437];
+    W[5533] = W[243] * W[5532];
+    W[5535] = W[247] * W[5534];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_249(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5598] = W[135] * W[5475];
+    W[5600] = W[130] * W[5427];
+    W[5603] = W[319] * W[5602];
+    W[5605] = W[323] * W[5604];
+    W[5608] = W[142] * W[5574];
+    W[5610] = W[139] * W[5537];
+    W[5612] = W[135] * W[5496];
+    W[5614] = W[130] * W[5451];
+    W[5619] = W[147] * W[5618];
+    W[5620] = W[145] * W[5590];
+    W[5622] = W[143] * W[5554];
+    W[5624] = W[140] * W[5514];
+    W[5626] = W[136] * W[5470];
+    W[5628] = W[131] * W[5422];
+    W[5631] = W[147] * W[5630];
+    W[5632] = W[145] * W[5604];
+    W[5634] = W[143] * W[5571];
+    W[5636] = W[140] * W[5534];
+    W[5638] = W[136] * W[5493];
+    W[5640] = W[131] * W[5448];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_251(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5521] = W[5516] + W[5520];
+    W[5539] = W[5536] + W[5538];
+    W[5561] = W[5556] + W[5560];
+    W[5576] = W[5573] + W[5575];
+    W[5593] = W[3] * W[5592];
+    W[5607] = W[3] * W[5606];
+    W[5623] = W[5621] - W[5622];
+    W[5635] = W[5633] - W[5634];
+    W[5644] = W[5551] + W[5643];
+    W[5651] = W[5570] + W[5650];
+    W[5434] = W[5429] + W[5433];
+    W[5456] = W[5453] + W[5455];
+    W[5482] = W[5477] + W[5481];
+    W[5501] = W[5498] + W[5500];
+    W[5526] = W[5521] + W[5525];
+    W[5542] = W[5539] + W[5541];
+    W[5562] = W[3] * W[5561];
+    W[5577] = W[3] * W[5576];
+    W[5595] = W[5593] - W[5594];
+    W[5609] = W[5607] - W[5608];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_253(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5488] = W[3] * W[5487];
+    W[5505] = W[3] * W[5504];
+    W[5529] = W[5527] - W[5528];
+    W[5545] = W[5543] - W[5544];
+    W[5566] = W[5564] - W[5565];
+    W[5581] = W[5579] - W[5580];
+    W[5599] = W[5597] - W[5598];
+    W[5613] = W[5611] - W[5612];
+    W[5629] = W[5627] - W[5628];
+    W[5641] = W[5639] - W[5640];
+    W[5647] = W[5419] + W[5646];
+    W[5654] = W[5447] + W[5653];
+    W[5445] = W[3] * W[5444];
+    W[5463] = W[3] * W[5462];
+    W[5490] = W[5488] - W[5489];
+    W[5507] = W[5505] - W[5506];
+    W[5531] = W[5529] - W[5530];
+    W[5547] = W[5545] - W[5546];
+    W[5568] = W[5566] - W[5567];
+    W[5583] = W[5581] - W[5582];
+    return 0;
+}
+
+/* Lines 340 .. 351 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_255(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[408] = -W[5490] / W[121] / 14.0;
+    X[409] = -W[5507] / W[121] / 14.0;
+    X[410] = -W[5531] / W[122] / 14.0;
+    X[411] = -W[5547] / W[122] / 14.0;
+    X[412] = -W[5568] / W[123] / 14.0;
+    X[413] = -W[5583] / W[123] / 14.0;
+    X[414] = -W[5601] / W[124] / 14.0;
+    X[415] = -W[5615] / W[124] / 14.0;
+    X[416] = -W[5629] / W[125] / 14.0;
+    X[417] = -W[5641] / W[125] / 14.0;
+    X[418] = -W[5648] / W[126] / 14.0;
+    X[419] = -W[5655] / W[126] / 14.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_256(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5672] = X[392] - X[394];
+    W[5677] = X[393] - X[395];
+    W[5681] = X[392] - X[396];
+    W[5684] = X[393] - X[397];
+    W[5688] = X[392] - X[398];
+    W[5691] = X[393] - X[399];
+    W[5695] = X[392] - X[400];
+    W[5698] = X[393] - X[401];
+    W[5702] = X[392] - X[402];
+    W[5705] = X[393] - X[403];
+    W[5709] = X[392] - X[404];
+    W[5712] = X[393] - X[405];
+    W[5715] = X[394] - X[396];
+    W[5717] = X[395] - X[397];
+    W[5720] = X[394] - X[398];
+    W[5722] = X[395] - X[399];
+    W[5725] = X[394] - X[400];
+    W[5727] = X[395] - X[401];
+    W[5730] = X[394] - X[402];
+    W[5732] = X[395] - X[403];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_258(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5785] = X[402] - X[404];
+    W[5787] = X[403] - X[405];
+    W[5674] = (W[2] * W[5672] + W[407] * W[5267] + W[812] * W[4862] + W[1217] * W[4457] + W[1622] * W[4052]
+            + W[2027] * W[3647] + W[2432] * W[3242]) * 2.0 + W[2837] * W[2837];
+    W[5678] = (W[7] * W[5677] + W[412] * W[5272] + W[817] * W[4867] + W[1222] * W[4462] + W[1627] * W[4057]
+            + W[2032] * W[3652] + W[2437] * W[3247]) * 2.0 + W[2842] * W[2842];
+    W[5682] = (W[11] * W[5681] + W[416] * W[5276] + W[821] * W[4871] + W[1226] * W[4466] + W[1631] * W[4061]
+            + W[2036] * W[3656] + W[2441] * W[3251]) * 2.0 + W[2846] * W[2846];
+    W[5685] = (W[14] * W[5684] + W[419] * W[5279] + W[824] * W[4874] + W[1229] * W[4469] + W[1634] * W[4064]
+            + W[2039] * W[3659] + W[2444] * W[3254]) * 2.0 + W[2849] * W[2849];
+    W[5689] = (W[18] * W[5688] + W[423] * W[5283] + W[828] * W[4878] + W[1233] * W[4473] + W[1638] * W[4068]
+            + W[2043] * W[3663] + W[2448] * W[3258]) * 2.0 + W[2853] * W[2853];
+    W[5692] = (W[21] * W[5691] + W[426] * W[5286] + W[831] * W[4881] + W[1236] * W[4476] + W[1641] * W[4071]
+            + W[2046] * W[3666] + W[2451] * W[3261]) * 2.0 + W[2856] * W[2856];
+    W[5696] = (W[25] * W[5695] + W[430] * W[5290] + W[835] * W[4885] + W[1240] * W[4480] + W[1645] * W[4075]
+            + W[2050] * W[3670] + W[2455] * W[3265]) * 2.0 + W[2860] * W[2860];
+    W[5699] = (W[28] * W[5698] + W[433] * W[5293] + W[838] * W[4888] + W[1243] * W[4483] + W[1648] * W[4078]
+            + W[2053] * W[3673] + W[2458] * W[3268]) * 2.0 + W[2863] * W[2863];
+    W[5703] = (W[32] * W[5702] + W[437] * W[5297] + W[842] * W[4892] + W[1247] * W[4487] + W[1652] * W[4082]
+            + W[2057] * W[3677] + W[2462] * W[3272]) * 2.0 + W[2867] * W[2867];
+    W[5706] = (W[35] * W[5705] + W[440] * W[5300] + W[845] * W[4895] + W[1250] * W[4490] + W[1655] * W[4085]
+            + W[2060] * W[3680] + W[2465] * W[3275]) * 2.0 + W[2870] * W[2870];
+    W[5710] = (W[39] * W[5709] + W[444] * W[5304] + W[849] * W[4899] + W[1254] * W[4494] + W[1659] * W[4089]
+            + W[2064] * W[3684] + W[2469] * W[3279]) * 2.0 + W[2874] * W[2874];
+    W[5713] = (W[42] * W[5712] + W[447] * W[5307] + W[852] * W[4902] + W[1257] * W[4497] + W[1662] * W[4092]
+            + W[2067] * W[3687] + W[2472] * W[3282]) * 2.0 + W[2877] * W[2877];
+    W[5716] = (W[45] * W[5715] + W[450] * W[5310] + W[855] * W[4905] + W[1260] * W[4500] + W[1665] * W[4095]
+            + W[2070] * W[3690] + W[2475] * W[3285]) * 2.0 + W[2880] * W[2880];
+    W[5718] = (W[47] * W[5717] + W[452] * W[5312] + W[857] * W[4907] + W[1262] * W[4502] + W[1667] * W[4097]
+            + W[2072] * W[3692] + W[2477] * W[3287]) * 2.0 + W[2882] * W[2882];
+    W[5721] = (W[50] * W[5720] + W[455] * W[5315] + W[860] * W[4910] + W[1265] * W[4505] + W[1670] * W[4100]
+            + W[2075] * W[3695] + W[2480] * W[3290]) * 2.0 + W[2885] * W[2885];
+    W[5723] = (W[52] * W[5722] + W[457] * W[5317] + W[862] * W[4912] + W[1267] * W[4507] + W[1672] * W[4102]
+            + W[2077] * W[3697] + W[2482] * W[3292]) * 2.0 + W[2887] * W[2887];
+    W[5726] = (W[55] * W[5725] + W[460] * W[5320] + W[865] * W[4915] + W[1270] * W[4510] + W[1675] * W[4105]
+            + W[2080] * W[3700] + W[2485] * W[3295]) * 2.0 + W[2890] * W[2890];
+    W[5728] = (W[57] * W[5727] + W[462] * W[5322] + W[867] * W[4917] + W[1272] * W[4512] + W[1677] * W[4107]
+            + W[2082] * W[3702] + W[2487] * W[3297]) * 2.0 + W[2892] * W[2892];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_260(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5781] = (W[110] * W[5780] + W[515] * W[5375] + W[920] * W[4970] + W[1325] * W[4565] + W[1730] * W[4160]
+            + W[2135] * W[3755] + W[2540] * W[3350]) * 2.0 + W[2945] * W[2945];
+    W[5783] = (W[112] * W[5782] + W[517] * W[5377] + W[922] * W[4972] + W[1327] * W[4567] + W[1732] * W[4162]
+            + W[2137] * W[3757] + W[2542] * W[3352]) * 2.0 + W[2947] * W[2947];
+    W[5786] = (W[115] * W[5785] + W[520] * W[5380] + W[925] * W[4975] + W[1330] * W[4570] + W[1735] * W[4165]
+            + W[2140] * W[3760] + W[2545] * W[3355]) * 2.0 + W[2950] * W[2950];
+    W[5788] = (W[117] * W[5787] + W[522] * W[5382] + W[927] * W[4977] + W[1332] * W[4572] + W[1737] * W[4167]
+            + W[2142] * W[3762] + W[2547] * W[3357]) * 2.0 + W[2952] * W[2952];
+    W[5679] = W[5674] + W[5678];
+    W[5686] = W[5682] + W[5685];
+    W[5693] = W[5689] + W[5692];
+    W[5700] = W[5696] + W[5699];
+    W[5707] = W[5703] + W[5706];
+    W[5714] = W[5710] + W[5713];
+    W[5719] = W[5716] + W[5718];
+    W[5724] = W[5721] + W[5723];
+    W[5729] = W[5726] + W[5728];
+    W[5734] = W[5731] + W[5733];
+    W[5739] = W[5736] + W[5738];
+    W[5744] = W[5741] + W[5743];
+    W[5749] = W[5746] + W[5748];
+    W[5754] = W[5751] + W[5753];
+    W[5759] = W[5756] + W[5758];
+    W[5764] = W[5761] + W[5763];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_262(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5954] = (-21.0 * W[5774] * W[284] - 20.5 * W[5369] * W[689] - 20.0 * W[4964] * W[1094] - 19.5 * W[4559] * W[1499]
+            - 19.0 * W[4154] * W[1904] - 18.5 * W[3749] * W[2309] - 18.0 * W[3344] * W[2714] - 17.5 * W[2939] * W[3119]
+            - 17.0 * W[2534] * W[3524] - 16.5 * W[2129] * W[3929] - 16.0 * W[1724] * W[4334] - 15.5 * W[1319] * W[4739]
+            - 15.0 * W[914] * W[5144] - 14.5 * W[509] * W[5549]) / (14.0 * W[104]);
+    W[5958] = (-21.0 * W[5769] * W[288] - 20.5 * W[5364] * W[693] - 20.0 * W[4959] * W[1098] - 19.5 * W[4554] * W[1503]
+            - 19.0 * W[4149] * W[1908] - 18.5 * W[3744] * W[2313] - 18.0 * W[3339] * W[2718] - 17.5 * W[2934] * W[3123]
+            - 17.0 * W[2529] * W[3528] - 16.5 * W[2124] * W[3933] - 16.0 * W[1719] * W[4338] - 15.5 * W[1314] * W[4743]
+            - 15.0 * W[909] * W[5148] - 14.5 * W[504] * W[5553]) / (14.0 * W[99]);
+    W[5963] = (-21.0 * W[5764] * W[293] - 20.5 * W[5359] * W[698] - 20.0 * W[4954] * W[1103] - 19.5 * W[4549] * W[1508]
+            - 19.0 * W[4144] * W[1913] - 18.5 * W[3739] * W[2318] - 18.0 * W[3334] * W[2723] - 17.5 * W[2929] * W[3128]
+            - 17.0 * W[2524] * W[3533] - 16.5 * W[2119] * W[3938] - 16.0 * W[1714] * W[4343] - 15.5 * W[1309] * W[4748]
+            - 15.0 * W[904] * W[5153] - 14.5 * W[499] * W[5558]) / (14.0 * W[94]);
+    W[5990] = (-21.0 * W[5784] * W[320] - 20.5 * W[5379] * W[725] - 20.0 * W[4974] * W[1130] - 19.5 * W[4569] * W[1535]
+            - 19.0 * W[4164] * W[1940] - 18.5 * W[3759] * W[2345] - 18.0 * W[3354] * W[2750] - 17.5 * W[2949] * W[3155]
+            - 17.0 * W[2544] * W[3560] - 16.5 * W[2139] * W[3965] - 16.0 * W[1734] * W[4370] - 15.5 * W[1329] * W[4775]
+            - 15.0 * W[924] * W[5180] - 14.5 * W[519] * W[5585]) / (14.0 * W[114]);
+    W[5994] = (-21.0 * W[5779] * W[324] - 20.5 * W[5374] * W[729] - 20.0 * W[4969] * W[1134] - 19.5 * W[4564] * W[1539]
+            - 19.0 * W[4159] * W[1944] - 18.5 * W[3754] * W[2349] - 18.0 * W[3349] * W[2754] - 17.5 * W[2944] * W[3159]
+            - 17.0 * W[2539] * W[3564] - 16.5 * W[2134] * W[3969] - 16.0 * W[1729] * W[4374] - 15.5 * W[1324] * W[4779]
+            - 15.0 * W[919] * W[5184] - 14.5 * W[514] * W[5589]) / (14.0 * W[109]);
+    W[6022] = (-21.0 * W[5789] * W[352] - 20.5 * W[5384] * W[757] - 20.0 * W[4979] * W[1162] - 19.5 * W[4574] * W[1567]
+            - 19.0 * W[4169] * W[1972] - 18.5 * W[3764] * W[2377] - 18.0 * W[3359] * W[2782] - 17.5 * W[2954] * W[3187]
+            - 17.0 * W[2549] * W[3592] - 16.5 * W[2144] * W[3997] - 16.0 * W[1739] * W[4402] - 15.5 * W[1334] * W[4807]
+            - 15.0 * W[929] * W[5212] - 14.5 * W[524] * W[5617]) / (14.0 * W[119]);
+    W[5823] = W[39] * W[5822] + W[444] * W[5417] + W[849] * W[5012] + W[1254] * W[4607] + W[1659] * W[4202]
+            + W[2064] * W[3797] + W[2469] * W[3392] + W[2874] * W[2987] + W[3279] * W[2582] + W[3684] * W[2177]
+            + W[4089] * W[1772] + W[4494] * W[1367] + W[4899] * W[962] + W[5304] * W[557] + W[5709] * W[152];
+    W[5827] = W[32] * W[5826] + W[437] * W[5421] + W[842] * W[5016] + W[1247] * W[4611] + W[1652] * W[4206]
+            + W[2057] * W[3801] + W[2462] * W[3396] + W[2867] * W[2991] + W[3272] * W[2586] + W[3677] * W[2181]
+            + W[4082] * W[1776] + W[4487] * W[1371] + W[4892] * W[966] + W[5297] * W[561] + W[5702] * W[156];
+    W[5832] = W[25] * W[5831] + W[430] * W[5426] + W[835] * W[5021] + W[1240] * W[4616] + W[1645] * W[4211]
+            + W[2050] * W[3806] + W[2455] * W[3401] + W[2860] * W[2996] + W[3265] * W[2591] + W[3670] * W[2186]
+            + W[4075] * W[1781] + W[4480] * W[1376] + W[4885] * W[971] + W[5290] * W[566] + W[5695] * W[161];
+    W[5837] = W[18] * W[5836] + W[423] * W[5431] + W[828] * W[5026] + W[1233] * W[4621] + W[1638] * W[4216]
+            + W[2043] * W[3811] + W[2448] * W[3406] + W[2853] * W[3001] + W[3258] * W[2596] + W[3663] * W[2191]
+            + W[4068] * W[1786] + W[4473] * W[1381] + W[4878] * W[976] + W[5283] * W[571] + W[5688] * W[166];
+    W[5842] = W[11] * W[5841] + W[416] * W[5436] + W[821] * W[5031] + W[1226] * W[4626] + W[1631] * W[4221]
+            + W[2036] * W[3816] + W[2441] * W[3411] + W[2846] * W[3006] + W[3251] * W[2601] + W[3656] * W[2196]
+            + W[4061] * W[1791] + W[4466] * W[1386] + W[4871] * W[981] + W[5276] * W[576] + W[5681] * W[171];
+    W[5847] = W[2] * W[5846] + W[407] * W[5441] + W[812] * W[5036] + W[1217] * W[4631] + W[1622] * W[4226]
+            + W[2027] * W[3821] + W[2432] * W[3416] + W[2837] * W[3011] + W[3242] * W[2606] + W[3647] * W[2201]
+            + W[4052] * W[1796] + W[4457] * W[1391] + W[4862] * W[986] + W[5267] * W[581] + W[5672] * W[176];
+    W[5851] = W[42] * W[5822] + W[447] * W[5417] + W[852] * W[5012] + W[1257] * W[4607] + W[1662] * W[4202]
+            + W[2067] * W[3797] + W[2472] * W[3392] + W[2877] * W[2987] + W[3282] * W[2582] + W[3687] * W[2177]
+            + W[4092] * W[1772] + W[4497] * W[1367] + W[4902] * W[962] + W[5307] * W[557] + W[5712] * W[152];
+    W[5853] = W[35] * W[5826] + W[440] * W[5421] + W[845] * W[5016] + W[1250] * W[4611] + W[1655] * W[4206]
+            + W[2060] * W[3801] + W[2465] * W[3396] + W[2870] * W[2991] + W[3275] * W[2586] + W[3680] * W[2181]
+            + W[4085] * W[1776] + W[4490] * W[1371] + W[4895] * W[966] + W[5300] * W[561] + W[5705] * W[156];
+    W[5856] = W[28] * W[5831] + W[433] * W[5426] + W[838] * W[5021] + W[1243] * W[4616] + W[1648] * W[4211]
+            + W[2053] * W[3806] + W[2458] * W[3401] + W[2863] * W[2996] + W[3268] * W[2591] + W[3673] * W[2186]
+            + W[4078] * W[1781] + W[4483] * W[1376] + W[4888] * W[971] + W[5293] * W[566] + W[5698] * W[161];
+    W[5859] = W[21] * W[5836] + W[426] * W[5431] + W[831] * W[5026] + W[1236] * W[4621] + W[1641] * W[4216]
+            + W[2046] * W[3811] + W[2451] * W[3406] + W[2856] * W[3001] + W[3261] * W[2596] + W[3666] * W[2191]
+            + W[4071] * W[1786] + W[4476] * W[1381] + W[4881] * W[976] + W[5286] * W[571] + W[5691] * W[166];
+    W[5862] = W[14] * W[5841] + W[419] * W[5436] + W[824] * W[5031] + W[1229] * W[4626] + W[1634] * W[4221]
+            + W[2039] * W[3816] + W[2444] * W[3411] + W[2849] * W[3006] + W[3254] * W[2601] + W[3659] * W[2196]
+            + W[4064] * W[1791] + W[4469] * W[1386] + W[4874] * W[981] + W[5279] * W[576] + W[5684] * W[171];
+    W[5865] = W[7] * W[5846] + W[412] * W[5441] + W[817] * W[5036] + W[1222] * W[4631] + W[1627] * W[4226]
+            + W[2032] * W[3821] + W[2437] * W[3416] + W[2842] * W[3011] + W[3247] * W[2606] + W[3652] * W[2201]
+            + W[4057] * W[1796] + W[4462] * W[1391] + W[4867] * W[986] + W[5272] * W[581] + W[5677] * W[176];
+    W[5871] = W[65] * W[5870] + W[470] * W[5465] + W[875] * W[5060] + W[1280] * W[4655] + W[1685] * W[4250]
+            + W[2090] * W[3845] + W[2495] * W[3440] + W[2900] * W[3035] + W[3305] * W[2630] + W[3710] * W[2225]
+            + W[4115] * W[1820] + W[4520] * W[1415] + W[4925] * W[1010] + W[5330] * W[605] + W[5735] * W[200];
+    W[5875] = W[60] * W[5874] + W[465] * W[5469] + W[870] * W[5064] + W[1275] * W[4659] + W[1680] * W[4254]
+            + W[2085] * W[3849] + W[2490] * W[3444] + W[2895] * W[3039] + W[3300] * W[2634] + W[3705] * W[2229]
+            + W[4110] * W[1824] + W[4515] * W[1419] + W[4920] * W[1014] + W[5325] * W[609] + W[5730] * W[204];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_264(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5976] = W[97] * W[5958] + W[502] * W[5553] + W[907] * W[5148] + W[1312] * W[4743] + W[1717] * W[4338]
+            + W[2122] * W[3933] + W[2527] * W[3528] + W[2932] * W[3123] + W[3337] * W[2718] + W[3742] * W[2313]
+            + W[4147] * W[1908] + W[4552] * W[1503] + W[4957] * W[1098] + W[5362] * W[693] + W[5767] * W[288];
+    W[5979] = W[92] * W[5963] + W[497] * W[5558] + W[902] * W[5153] + W[1307] * W[4748] + W[1712] * W[4343]
+            + W[2117] * W[3938] + W[2522] * W[3533] + W[2927] * W[3128] + W[3332] * W[2723] + W[3737] * W[2318]
+            + W[4142] * W[1913] + W[4547] * W[1508] + W[4952] * W[1103] + W[5357] * W[698] + W[5762] * W[293];
+    W[5991] = W[110] * W[5990] + W[515] * W[5585] + W[920] * W[5180] + W[1325] * W[4775] + W[1730] * W[4370]
+            + W[2135] * W[3965] + W[2540] * W[3560] + W[2945] * W[3155] + W[3350] * W[2750] + W[3755] * W[2345]
+            + W[4160] * W[1940] + W[4565] * W[1535] + W[4970] * W[1130] + W[5375] * W[725] + W[5780] * W[320];
+    W[5995] = W[105] * W[5994] + W[510] * W[5589] + W[915] * W[5184] + W[1320] * W[4779] + W[1725] * W[4374]
+            + W[2130] * W[3969] + W[2535] * W[3564] + W[2940] * W[3159] + W[3345] * W[2754] + W[3750] * W[2349]
+            + W[4155] * W[1944] + W[4560] * W[1539] + W[4965] * W[1134] + W[5370] * W[729] + W[5775] * W[324];
+    W[6007] = W[112] * W[5990] + W[517] * W[5585] + W[922] * W[5180] + W[1327] * W[4775] + W[1732] * W[4370]
+            + W[2137] * W[3965] + W[2542] * W[3560] + W[2947] * W[3155] + W[3352] * W[2750] + W[3757] * W[2345]
+            + W[4162] * W[1940] + W[4567] * W[1535] + W[4972] * W[1130] + W[5377] * W[725] + W[5782] * W[320];
+    W[6009] = W[107] * W[5994] + W[512] * W[5589] + W[917] * W[5184] + W[1322] * W[4779] + W[1727] * W[4374]
+            + W[2132] * W[3969] + W[2537] * W[3564] + W[2942] * W[3159] + W[3347] * W[2754] + W[3752] * W[2349]
+            + W[4157] * W[1944] + W[4562] * W[1539] + W[4967] * W[1134] + W[5372] * W[729] + W[5777] * W[324];
+    W[6023] = W[115] * W[6022] + W[520] * W[5617] + W[925] * W[5212] + W[1330] * W[4807] + W[1735] * W[4402]
+            + W[2140] * W[3997] + W[2545] * W[3592] + W[2950] * W[3187] + W[3355] * W[2782] + W[3760] * W[2377]
+            + W[4165] * W[1972] + W[4570] * W[1567] + W[4975] * W[1162] + W[5380] * W[757] + W[5785] * W[352];
+    W[6035] = W[117] * W[6022] + W[522] * W[5617] + W[927] * W[5212] + W[1332] * W[4807] + W[1737] * W[4402]
+            + W[2142] * W[3997] + W[2547] * W[3592] + W[2952] * W[3187] + W[3357] * W[2782] + W[3762] * W[2377]
+            + W[4167] * W[1972] + W[4572] * W[1567] + W[4977] * W[1162] + W[5382] * W[757] + W[5787] * W[352];
+    W[5824] = W[151] * W[5823];
+    W[5828] = W[155] * W[5827];
+    W[5833] = W[160] * W[5832];
+    W[5838] = W[165] * W[5837];
+    W[5843] = W[170] * W[5842];
+    W[5848] = W[175] * W[5847];
+    W[5852] = W[151] * W[5851];
+    W[5854] = W[155] * W[5853];
+    W[5857] = W[160] * W[5856];
+    W[5860] = W[165] * W[5859];
+    W[5863] = W[170] * W[5862];
+    W[5866] = W[175] * W[5865];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_265(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5872] = W[199] * W[5871];
+    W[5876] = W[203] * W[5875];
+    W[5881] = W[208] * W[5880];
+    W[5886] = W[213] * W[5885];
+    W[5891] = W[218] * W[5890];
+    W[5894] = W[127] * W[5847];
+    W[5897] = W[199] * W[5896];
+    W[5899] = W[203] * W[5898];
+    W[5902] = W[208] * W[5901];
+    W[5905] = W[213] * W[5904];
+    W[5908] = W[218] * W[5907];
+    W[5911] = W[127] * W[5865];
+    W[5916] = W[243] * W[5915];
+    W[5920] = W[247] * W[5919];
+    W[5925] = W[252] * W[5924];
+    W[5930] = W[257] * W[5929];
+    W[5933] = W[133] * W[5890];
+    W[5935] = W[128] * W[5842];
+    W[5938] = W[243] * W[5937];
+    W[5940] = W[247] * W[5939];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_267(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6003] = W[135] * W[5880];
+    W[6005] = W[130] * W[5832];
+    W[6008] = W[319] * W[6007];
+    W[6010] = W[323] * W[6009];
+    W[6013] = W[142] * W[5979];
+    W[6015] = W[139] * W[5942];
+    W[6017] = W[135] * W[5901];
+    W[6019] = W[130] * W[5856];
+    W[6024] = W[147] * W[6023];
+    W[6025] = W[145] * W[5995];
+    W[6027] = W[143] * W[5959];
+    W[6029] = W[140] * W[5919];
+    W[6031] = W[136] * W[5875];
+    W[6033] = W[131] * W[5827];
+    W[6036] = W[147] * W[6035];
+    W[6037] = W[145] * W[6009];
+    W[6039] = W[143] * W[5976];
+    W[6041] = W[140] * W[5939];
+    W[6043] = W[136] * W[5898];
+    W[6045] = W[131] * W[5853];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_269(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5926] = W[5921] + W[5925];
+    W[5944] = W[5941] + W[5943];
+    W[5966] = W[5961] + W[5965];
+    W[5981] = W[5978] + W[5980];
+    W[5998] = W[3] * W[5997];
+    W[6012] = W[3] * W[6011];
+    W[6028] = W[6026] - W[6027];
+    W[6040] = W[6038] - W[6039];
+    W[6049] = W[5956] + W[6048];
+    W[6056] = W[5975] + W[6055];
+    W[5839] = W[5834] + W[5838];
+    W[5861] = W[5858] + W[5860];
+    W[5887] = W[5882] + W[5886];
+    W[5906] = W[5903] + W[5905];
+    W[5931] = W[5926] + W[5930];
+    W[5947] = W[5944] + W[5946];
+    W[5967] = W[3] * W[5966];
+    W[5982] = W[3] * W[5981];
+    W[6000] = W[5998] - W[5999];
+    W[6014] = W[6012] - W[6013];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_271(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[5893] = W[3] * W[5892];
+    W[5910] = W[3] * W[5909];
+    W[5934] = W[5932] - W[5933];
+    W[5950] = W[5948] - W[5949];
+    W[5971] = W[5969] - W[5970];
+    W[5986] = W[5984] - W[5985];
+    W[6004] = W[6002] - W[6003];
+    W[6018] = W[6016] - W[6017];
+    W[6034] = W[6032] - W[6033];
+    W[6046] = W[6044] - W[6045];
+    W[6052] = W[5824] + W[6051];
+    W[6059] = W[5852] + W[6058];
+    W[5850] = W[3] * W[5849];
+    W[5868] = W[3] * W[5867];
+    W[5895] = W[5893] - W[5894];
+    W[5912] = W[5910] - W[5911];
+    W[5936] = W[5934] - W[5935];
+    W[5952] = W[5950] - W[5951];
+    W[5973] = W[5971] - W[5972];
+    W[5988] = W[5986] - W[5987];
+    return 0;
+}
+
+/* Lines 340 .. 351 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_273(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[436] = -W[5895] / W[121] / 15.0;
+    X[437] = -W[5912] / W[121] / 15.0;
+    X[438] = -W[5936] / W[122] / 15.0;
+    X[439] = -W[5952] / W[122] / 15.0;
+    X[440] = -W[5973] / W[123] / 15.0;
+    X[441] = -W[5988] / W[123] / 15.0;
+    X[442] = -W[6006] / W[124] / 15.0;
+    X[443] = -W[6020] / W[124] / 15.0;
+    X[444] = -W[6034] / W[125] / 15.0;
+    X[445] = -W[6046] / W[125] / 15.0;
+    X[446] = -W[6053] / W[126] / 15.0;
+    X[447] = -W[6060] / W[126] / 15.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_274(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6077] = X[420] - X[422];
+    W[6082] = X[421] - X[423];
+    W[6086] = X[420] - X[424];
+    W[6089] = X[421] - X[425];
+    W[6093] = X[420] - X[426];
+    W[6096] = X[421] - X[427];
+    W[6100] = X[420] - X[428];
+    W[6103] = X[421] - X[429];
+    W[6107] = X[420] - X[430];
+    W[6110] = X[421] - X[431];
+    W[6114] = X[420] - X[432];
+    W[6117] = X[421] - X[433];
+    W[6120] = X[422] - X[424];
+    W[6122] = X[423] - X[425];
+    W[6125] = X[422] - X[426];
+    W[6127] = X[423] - X[427];
+    W[6130] = X[422] - X[428];
+    W[6132] = X[423] - X[429];
+    W[6135] = X[422] - X[430];
+    W[6137] = X[423] - X[431];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_276(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6190] = X[430] - X[432];
+    W[6192] = X[431] - X[433];
+    W[6079] = (W[2] * W[6077] + W[407] * W[5672] + W[812] * W[5267] + W[1217] * W[4862] + W[1622] * W[4457]
+            + W[2027] * W[4052] + W[2432] * W[3647] + W[2837] * W[3242]) * 2.0;
+    W[6083] = (W[7] * W[6082] + W[412] * W[5677] + W[817] * W[5272] + W[1222] * W[4867] + W[1627] * W[4462]
+            + W[2032] * W[4057] + W[2437] * W[3652] + W[2842] * W[3247]) * 2.0;
+    W[6087] = (W[11] * W[6086] + W[416] * W[5681] + W[821] * W[5276] + W[1226] * W[4871] + W[1631] * W[4466]
+            + W[2036] * W[4061] + W[2441] * W[3656] + W[2846] * W[3251]) * 2.0;
+    W[6090] = (W[14] * W[6089] + W[419] * W[5684] + W[824] * W[5279] + W[1229] * W[4874] + W[1634] * W[4469]
+            + W[2039] * W[4064] + W[2444] * W[3659] + W[2849] * W[3254]) * 2.0;
+    W[6094] = (W[18] * W[6093] + W[423] * W[5688] + W[828] * W[5283] + W[1233] * W[4878] + W[1638] * W[4473]
+            + W[2043] * W[4068] + W[2448] * W[3663] + W[2853] * W[3258]) * 2.0;
+    W[6097] = (W[21] * W[6096] + W[426] * W[5691] + W[831] * W[5286] + W[1236] * W[4881] + W[1641] * W[4476]
+            + W[2046] * W[4071] + W[2451] * W[3666] + W[2856] * W[3261]) * 2.0;
+    W[6101] = (W[25] * W[6100] + W[430] * W[5695] + W[835] * W[5290] + W[1240] * W[4885] + W[1645] * W[4480]
+            + W[2050] * W[4075] + W[2455] * W[3670] + W[2860] * W[3265]) * 2.0;
+    W[6104] = (W[28] * W[6103] + W[433] * W[5698] + W[838] * W[5293] + W[1243] * W[4888] + W[1648] * W[4483]
+            + W[2053] * W[4078] + W[2458] * W[3673] + W[2863] * W[3268]) * 2.0;
+    W[6108] = (W[32] * W[6107] + W[437] * W[5702] + W[842] * W[5297] + W[1247] * W[4892] + W[1652] * W[4487]
+            + W[2057] * W[4082] + W[2462] * W[3677] + W[2867] * W[3272]) * 2.0;
+    W[6111] = (W[35] * W[6110] + W[440] * W[5705] + W[845] * W[5300] + W[1250] * W[4895] + W[1655] * W[4490]
+            + W[2060] * W[4085] + W[2465] * W[3680] + W[2870] * W[3275]) * 2.0;
+    W[6115] = (W[39] * W[6114] + W[444] * W[5709] + W[849] * W[5304] + W[1254] * W[4899] + W[1659] * W[4494]
+            + W[2064] * W[4089] + W[2469] * W[3684] + W[2874] * W[3279]) * 2.0;
+    W[6118] = (W[42] * W[6117] + W[447] * W[5712] + W[852] * W[5307] + W[1257] * W[4902] + W[1662] * W[4497]
+            + W[2067] * W[4092] + W[2472] * W[3687] + W[2877] * W[3282]) * 2.0;
+    W[6121] = (W[45] * W[6120] + W[450] * W[5715] + W[855] * W[5310] + W[1260] * W[4905] + W[1665] * W[4500]
+            + W[2070] * W[4095] + W[2475] * W[3690] + W[2880] * W[3285]) * 2.0;
+    W[6123] = (W[47] * W[6122] + W[452] * W[5717] + W[857] * W[5312] + W[1262] * W[4907] + W[1667] * W[4502]
+            + W[2072] * W[4097] + W[2477] * W[3692] + W[2882] * W[3287]) * 2.0;
+    W[6126] = (W[50] * W[6125] + W[455] * W[5720] + W[860] * W[5315] + W[1265] * W[4910] + W[1670] * W[4505]
+            + W[2075] * W[4100] + W[2480] * W[3695] + W[2885] * W[3290]) * 2.0;
+    W[6128] = (W[52] * W[6127] + W[457] * W[5722] + W[862] * W[5317] + W[1267] * W[4912] + W[1672] * W[4507]
+            + W[2077] * W[4102] + W[2482] * W[3697] + W[2887] * W[3292]) * 2.0;
+    W[6131] = (W[55] * W[6130] + W[460] * W[5725] + W[865] * W[5320] + W[1270] * W[4915] + W[1675] * W[4510]
+            + W[2080] * W[4105] + W[2485] * W[3700] + W[2890] * W[3295]) * 2.0;
+    W[6133] = (W[57] * W[6132] + W[462] * W[5727] + W[867] * W[5322] + W[1272] * W[4917] + W[1677] * W[4512]
+            + W[2082] * W[4107] + W[2487] * W[3702] + W[2892] * W[3297]) * 2.0;
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_278(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6186] = (W[110] * W[6185] + W[515] * W[5780] + W[920] * W[5375] + W[1325] * W[4970] + W[1730] * W[4565]
+            + W[2135] * W[4160] + W[2540] * W[3755] + W[2945] * W[3350]) * 2.0;
+    W[6188] = (W[112] * W[6187] + W[517] * W[5782] + W[922] * W[5377] + W[1327] * W[4972] + W[1732] * W[4567]
+            + W[2137] * W[4162] + W[2542] * W[3757] + W[2947] * W[3352]) * 2.0;
+    W[6191] = (W[115] * W[6190] + W[520] * W[5785] + W[925] * W[5380] + W[1330] * W[4975] + W[1735] * W[4570]
+            + W[2140] * W[4165] + W[2545] * W[3760] + W[2950] * W[3355]) * 2.0;
+    W[6193] = (W[117] * W[6192] + W[522] * W[5787] + W[927] * W[5382] + W[1332] * W[4977] + W[1737] * W[4572]
+            + W[2142] * W[4167] + W[2547] * W[3762] + W[2952] * W[3357]) * 2.0;
+    W[6084] = W[6079] + W[6083];
+    W[6091] = W[6087] + W[6090];
+    W[6098] = W[6094] + W[6097];
+    W[6105] = W[6101] + W[6104];
+    W[6112] = W[6108] + W[6111];
+    W[6119] = W[6115] + W[6118];
+    W[6124] = W[6121] + W[6123];
+    W[6129] = W[6126] + W[6128];
+    W[6134] = W[6131] + W[6133];
+    W[6139] = W[6136] + W[6138];
+    W[6144] = W[6141] + W[6143];
+    W[6149] = W[6146] + W[6148];
+    W[6154] = W[6151] + W[6153];
+    W[6159] = W[6156] + W[6158];
+    W[6164] = W[6161] + W[6163];
+    W[6169] = W[6166] + W[6168];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_280(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6359] = (-22.5 * W[6179] * W[284] - 22.0 * W[5774] * W[689] - 21.5 * W[5369] * W[1094] - 21.0 * W[4964] * W[1499]
+            - 20.5 * W[4559] * W[1904] - 20.0 * W[4154] * W[2309] - 19.5 * W[3749] * W[2714] - 19.0 * W[3344] * W[3119]
+            - 18.5 * W[2939] * W[3524] - 18.0 * W[2534] * W[3929] - 17.5 * W[2129] * W[4334] - 17.0 * W[1724] * W[4739]
+            - 16.5 * W[1319] * W[5144] - 16.0 * W[914] * W[5549] - 15.5 * W[509] * W[5954]) / (15.0 * W[104]);
+    W[6363] = (-22.5 * W[6174] * W[288] - 22.0 * W[5769] * W[693] - 21.5 * W[5364] * W[1098] - 21.0 * W[4959] * W[1503]
+            - 20.5 * W[4554] * W[1908] - 20.0 * W[4149] * W[2313] - 19.5 * W[3744] * W[2718] - 19.0 * W[3339] * W[3123]
+            - 18.5 * W[2934] * W[3528] - 18.0 * W[2529] * W[3933] - 17.5 * W[2124] * W[4338] - 17.0 * W[1719] * W[4743]
+            - 16.5 * W[1314] * W[5148] - 16.0 * W[909] * W[5553] - 15.5 * W[504] * W[5958]) / (15.0 * W[99]);
+    W[6368] = (-22.5 * W[6169] * W[293] - 22.0 * W[5764] * W[698] - 21.5 * W[5359] * W[1103] - 21.0 * W[4954] * W[1508]
+            - 20.5 * W[4549] * W[1913] - 20.0 * W[4144] * W[2318] - 19.5 * W[3739] * W[2723] - 19.0 * W[3334] * W[3128]
+            - 18.5 * W[2929] * W[3533] - 18.0 * W[2524] * W[3938] - 17.5 * W[2119] * W[4343] - 17.0 * W[1714] * W[4748]
+            - 16.5 * W[1309] * W[5153] - 16.0 * W[904] * W[5558] - 15.5 * W[499] * W[5963]) / (15.0 * W[94]);
+    W[6395] = (-22.5 * W[6189] * W[320] - 22.0 * W[5784] * W[725] - 21.5 * W[5379] * W[1130] - 21.0 * W[4974] * W[1535]
+            - 20.5 * W[4569] * W[1940] - 20.0 * W[4164] * W[2345] - 19.5 * W[3759] * W[2750] - 19.0 * W[3354] * W[3155]
+            - 18.5 * W[2949] * W[3560] - 18.0 * W[2544] * W[3965] - 17.5 * W[2139] * W[4370] - 17.0 * W[1734] * W[4775]
+            - 16.5 * W[1329] * W[5180] - 16.0 * W[924] * W[5585] - 15.5 * W[519] * W[5990]) / (15.0 * W[114]);
+    W[6399] = (-22.5 * W[6184] * W[324] - 22.0 * W[5779] * W[729] - 21.5 * W[5374] * W[1134] - 21.0 * W[4969] * W[1539]
+            - 20.5 * W[4564] * W[1944] - 20.0 * W[4159] * W[2349] - 19.5 * W[3754] * W[2754] - 19.0 * W[3349] * W[3159]
+            - 18.5 * W[2944] * W[3564] - 18.0 * W[2539] * W[3969] - 17.5 * W[2134] * W[4374] - 17.0 * W[1729] * W[4779]
+            - 16.5 * W[1324] * W[5184] - 16.0 * W[919] * W[5589] - 15.5 * W[514] * W[5994]) / (15.0 * W[109]);
+    W[6427] = (-22.5 * W[6194] * W[352] - 22.0 * W[5789] * W[757] - 21.5 * W[5384] * W[1162] - 21.0 * W[4979] * W[1567]
+            - 20.5 * W[4574] * W[1972] - 20.0 * W[4169] * W[2377] - 19.5 * W[3764] * W[2782] - 19.0 * W[3359] * W[3187]
+            - 18.5 * W[2954] * W[3592] - 18.0 * W[2549] * W[3997] - 17.5 * W[2144] * W[4402] - 17.0 * W[1739] * W[4807]
+            - 16.5 * W[1334] * W[5212] - 16.0 * W[929] * W[5617] - 15.5 * W[524] * W[6022]) / (15.0 * W[119]);
+    W[6228] = W[39] * W[6227] + W[444] * W[5822] + W[849] * W[5417] + W[1254] * W[5012] + W[1659] * W[4607]
+            + W[2064] * W[4202] + W[2469] * W[3797] + W[2874] * W[3392] + W[3279] * W[2987] + W[3684] * W[2582]
+            + W[4089] * W[2177] + W[4494] * W[1772] + W[4899] * W[1367] + W[5304] * W[962] + W[5709] * W[557]
+            + W[6114] * W[152];
+    W[6232] = W[32] * W[6231] + W[437] * W[5826] + W[842] * W[5421] + W[1247] * W[5016] + W[1652] * W[4611]
+            + W[2057] * W[4206] + W[2462] * W[3801] + W[2867] * W[3396] + W[3272] * W[2991] + W[3677] * W[2586]
+            + W[4082] * W[2181] + W[4487] * W[1776] + W[4892] * W[1371] + W[5297] * W[966] + W[5702] * W[561]
+            + W[6107] * W[156];
+    W[6237] = W[25] * W[6236] + W[430] * W[5831] + W[835] * W[5426] + W[1240] * W[5021] + W[1645] * W[4616]
+            + W[2050] * W[4211] + W[2455] * W[3806] + W[2860] * W[3401] + W[3265] * W[2996] + W[3670] * W[2591]
+            + W[4075] * W[2186] + W[4480] * W[1781] + W[4885] * W[1376] + W[5290] * W[971] + W[5695] * W[566]
+            + W[6100] * W[161];
+    W[6242] = W[18] * W[6241] + W[423] * W[5836] + W[828] * W[5431] + W[1233] * W[5026] + W[1638] * W[4621]
+            + W[2043] * W[4216] + W[2448] * W[3811] + W[2853] * W[3406] + W[3258] * W[3001] + W[3663] * W[2596]
+            + W[4068] * W[2191] + W[4473] * W[1786] + W[4878] * W[1381] + W[5283] * W[976] + W[5688] * W[571]
+            + W[6093] * W[166];
+    W[6247] = W[11] * W[6246] + W[416] * W[5841] + W[821] * W[5436] + W[1226] * W[5031] + W[1631] * W[4626]
+            + W[2036] * W[4221] + W[2441] * W[3816] + W[2846] * W[3411] + W[3251] * W[3006] + W[3656] * W[2601]
+            + W[4061] * W[2196] + W[4466] * W[1791] + W[4871] * W[1386] + W[5276] * W[981] + W[5681] * W[576]
+            + W[6086] * W[171];
+    W[6252] = W[2] * W[6251] + W[407] * W[5846] + W[812] * W[5441] + W[1217] * W[5036] + W[1622] * W[4631]
+            + W[2027] * W[4226] + W[2432] * W[3821] + W[2837] * W[3416] + W[3242] * W[3011] + W[3647] * W[2606]
+            + W[4052] * W[2201] + W[4457] * W[1796] + W[4862] * W[1391] + W[5267] * W[986] + W[5672] * W[581]
+            + W[6077] * W[176];
+    W[6256] = W[42] * W[6227] + W[447] * W[5822] + W[852] * W[5417] + W[1257] * W[5012] + W[1662] * W[4607]
+            + W[2067] * W[4202] + W[2472] * W[3797] + W[2877] * W[3392] + W[3282] * W[2987] + W[3687] * W[2582]
+            + W[4092] * W[2177] + W[4497] * W[1772] + W[4902] * W[1367] + W[5307] * W[962] + W[5712] * W[557]
+            + W[6117] * W[152];
+    W[6258] = W[35] * W[6231] + W[440] * W[5826] + W[845] * W[5421] + W[1250] * W[5016] + W[1655] * W[4611]
+            + W[2060] * W[4206] + W[2465] * W[3801] + W[2870] * W[3396] + W[3275] * W[2991] + W[3680] * W[2586]
+            + W[4085] * W[2181] + W[4490] * W[1776] + W[4895] * W[1371] + W[5300] * W[966] + W[5705] * W[561]
+            + W[6110] * W[156];
+    W[6261] = W[28] * W[6236] + W[433] * W[5831] + W[838] * W[5426] + W[1243] * W[5021] + W[1648] * W[4616]
+            + W[2053] * W[4211] + W[2458] * W[3806] + W[2863] * W[3401] + W[3268] * W[2996] + W[3673] * W[2591]
+            + W[4078] * W[2186] + W[4483] * W[1781] + W[4888] * W[1376] + W[5293] * W[971] + W[5698] * W[566]
+            + W[6103] * W[161];
+    W[6264] = W[21] * W[6241] + W[426] * W[5836] + W[831] * W[5431] + W[1236] * W[5026] + W[1641] * W[4621]
+            + W[2046] * W[4216] + W[2451] * W[3811] + W[2856] * W[3406] + W[3261] * W[3001] + W[3666] * W[2596]
+            + W[4071] * W[2191] + W[4476] * W[1786] + W[4881] * W[1381] + W[5286] * W[976] + W[5691] * W[571]
+            + W[6096] * W[166];
+    W[6267] = W[14] * W[6246] + W[419] * W[5841] + W[824] * W[5436] + W[1229] * W[5031] + W[1634] * W[4626]
+            + W[2039] * W[4221] + W[2444] * W[3816] + W[2849] * W[3411] + W[3254] * W[3006] + W[3659] * W[2601]
+            + W[4064] * W[2196] + W[4469] * W[1791] + W[4874] * W[1386] + W[5279] * W[981] + W[5684] * W[576]
+            + W[6089] * W[171];
+    W[6270] = W[7] * W[6251] + W[412] * W[5846] + W[817] * W[5441] + W[1222] * W[5036] + W[1627] * W[4631]
+            + W[2032] * W[4226] + W[2437] * W[3821] + W[2842] * W[3416] + W[3247] * W[3011] + W[3652] * W[2606]
+            + W[4057] * W[2201] + W[4462] * W[1796] + W[4867] * W[1391] + W[5272] * W[986] + W[5677] * W[581]
+            + W[6082] * W[176];
+    W[6276] = W[65] * W[6275] + W[470] * W[5870] + W[875] * W[5465] + W[1280] * W[5060] + W[1685] * W[4655]
+            + W[2090] * W[4250] + W[2495] * W[3845] + W[2900] * W[3440] + W[3305] * W[3035] + W[3710] * W[2630]
+            + W[4115] * W[2225] + W[4520] * W[1820] + W[4925] * W[1415] + W[5330] * W[1010] + W[5735] * W[605]
+            + W[6140] * W[200];
+    W[6280] = W[60] * W[6279] + W[465] * W[5874] + W[870] * W[5469] + W[1275] * W[5064] + W[1680] * W[4659]
+            + W[2085] * W[4254] + W[2490] * W[3849] + W[2895] * W[3444] + W[3300] * W[3039] + W[3705] * W[2634]
+            + W[4110] * W[2229] + W[4515] * W[1824] + W[4920] * W[1419] + W[5325] * W[1014] + W[5730] * W[609]
+            + W[6135] * W[204];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_282(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6381] = W[97] * W[6363] + W[502] * W[5958] + W[907] * W[5553] + W[1312] * W[5148] + W[1717] * W[4743]
+            + W[2122] * W[4338] + W[2527] * W[3933] + W[2932] * W[3528] + W[3337] * W[3123] + W[3742] * W[2718]
+            + W[4147] * W[2313] + W[4552] * W[1908] + W[4957] * W[1503] + W[5362] * W[1098] + W[5767] * W[693]
+            + W[6172] * W[288];
+    W[6384] = W[92] * W[6368] + W[497] * W[5963] + W[902] * W[5558] + W[1307] * W[5153] + W[1712] * W[4748]
+            + W[2117] * W[4343] + W[2522] * W[3938] + W[2927] * W[3533] + W[3332] * W[3128] + W[3737] * W[2723]
+            + W[4142] * W[2318] + W[4547] * W[1913] + W[4952] * W[1508] + W[5357] * W[1103] + W[5762] * W[698]
+            + W[6167] * W[293];
+    W[6396] = W[110] * W[6395] + W[515] * W[5990] + W[920] * W[5585] + W[1325] * W[5180] + W[1730] * W[4775]
+            + W[2135] * W[4370] + W[2540] * W[3965] + W[2945] * W[3560] + W[3350] * W[3155] + W[3755] * W[2750]
+            + W[4160] * W[2345] + W[4565] * W[1940] + W[4970] * W[1535] + W[5375] * W[1130] + W[5780] * W[725]
+            + W[6185] * W[320];
+    W[6400] = W[105] * W[6399] + W[510] * W[5994] + W[915] * W[5589] + W[1320] * W[5184] + W[1725] * W[4779]
+            + W[2130] * W[4374] + W[2535] * W[3969] + W[2940] * W[3564] + W[3345] * W[3159] + W[3750] * W[2754]
+            + W[4155] * W[2349] + W[4560] * W[1944] + W[4965] * W[1539] + W[5370] * W[1134] + W[5775] * W[729]
+            + W[6180] * W[324];
+    W[6412] = W[112] * W[6395] + W[517] * W[5990] + W[922] * W[5585] + W[1327] * W[5180] + W[1732] * W[4775]
+            + W[2137] * W[4370] + W[2542] * W[3965] + W[2947] * W[3560] + W[3352] * W[3155] + W[3757] * W[2750]
+            + W[4162] * W[2345] + W[4567] * W[1940] + W[4972] * W[1535] + W[5377] * W[1130] + W[5782] * W[725]
+            + W[6187] * W[320];
+    W[6414] = W[107] * W[6399] + W[512] * W[5994] + W[917] * W[5589] + W[1322] * W[5184] + W[1727] * W[4779]
+            + W[2132] * W[4374] + W[2537] * W[3969] + W[2942] * W[3564] + W[3347] * W[3159] + W[3752] * W[2754]
+            + W[4157] * W[2349] + W[4562] * W[1944] + W[4967] * W[1539] + W[5372] * W[1134] + W[5777] * W[729]
+            + W[6182] * W[324];
+    W[6428] = W[115] * W[6427] + W[520] * W[6022] + W[925] * W[5617] + W[1330] * W[5212] + W[1735] * W[4807]
+            + W[2140] * W[4402] + W[2545] * W[3997] + W[2950] * W[3592] + W[3355] * W[3187] + W[3760] * W[2782]
+            + W[4165] * W[2377] + W[4570] * W[1972] + W[4975] * W[1567] + W[5380] * W[1162] + W[5785] * W[757]
+            + W[6190] * W[352];
+    W[6440] = W[117] * W[6427] + W[522] * W[6022] + W[927] * W[5617] + W[1332] * W[5212] + W[1737] * W[4807]
+            + W[2142] * W[4402] + W[2547] * W[3997] + W[2952] * W[3592] + W[3357] * W[3187] + W[3762] * W[2782]
+            + W[4167] * W[2377] + W[4572] * W[1972] + W[4977] * W[1567] + W[5382] * W[1162] + W[5787] * W[757]
+            + W[6192] * W[352];
+    W[6229] = W[151] * W[6228];
+    W[6233] = W[155] * W[6232];
+    W[6238] = W[160] * W[6237];
+    W[6243] = W[165] * W[6242];
+    W[6248] = W[170] * W[6247];
+    W[6253] = W[175] * W[6252];
+    W[6257] = W[151] * W[6256];
+    W[6259] = W[155] * W[6258];
+    W[6262] = W[160] * W[6261];
+    W[6265] = W[165] * W[6264];
+    W[6268] = W[170] * W[6267];
+    W[6271] = W[175] * W[6270];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_283(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6277] = W[199] * W[6276];
+    W[6281] = W[203] * W[6280];
+    W[6286] = W[208] * W[6285];
+    W[6291] = W[213] * W[6290];
+    W[6296] = W[218] * W[6295];
+    W[6299] = W[127] * W[6252];
+    W[6302] = W[199] * W[6301];
+    W[6304] = W[203] * W[6303];
+    W[6307] = W[208] * W[6306];
+    W[6310] = W[213] * W[6309];
+    W[6313] = W[218] * W[6312];
+    W[6316] = W[127] * W[6270];
+    W[6321] = W[243] * W[6320];
+    W[6325] = W[247] * W[6324];
+    W[6330] = W[252] * W[6329];
+    W[6335] = W[257] * W[6334];
+    W[6338] = W[133] * W[6295];
+    W[6340] = W[128] * W[6247];
+    W[6343] = W[243] * W[6342];
+    W[6345] = W[247] * W[6344];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_285(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6408] = W[135] * W[6285];
+    W[6410] = W[130] * W[6237];
+    W[6413] = W[319] * W[6412];
+    W[6415] = W[323] * W[6414];
+    W[6418] = W[142] * W[6384];
+    W[6420] = W[139] * W[6347];
+    W[6422] = W[135] * W[6306];
+    W[6424] = W[130] * W[6261];
+    W[6429] = W[147] * W[6428];
+    W[6430] = W[145] * W[6400];
+    W[6432] = W[143] * W[6364];
+    W[6434] = W[140] * W[6324];
+    W[6436] = W[136] * W[6280];
+    W[6438] = W[131] * W[6232];
+    W[6441] = W[147] * W[6440];
+    W[6442] = W[145] * W[6414];
+    W[6444] = W[143] * W[6381];
+    W[6446] = W[140] * W[6344];
+    W[6448] = W[136] * W[6303];
+    W[6450] = W[131] * W[6258];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_287(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6331] = W[6326] + W[6330];
+    W[6349] = W[6346] + W[6348];
+    W[6371] = W[6366] + W[6370];
+    W[6386] = W[6383] + W[6385];
+    W[6403] = W[3] * W[6402];
+    W[6417] = W[3] * W[6416];
+    W[6433] = W[6431] - W[6432];
+    W[6445] = W[6443] - W[6444];
+    W[6454] = W[6361] + W[6453];
+    W[6461] = W[6380] + W[6460];
+    W[6244] = W[6239] + W[6243];
+    W[6266] = W[6263] + W[6265];
+    W[6292] = W[6287] + W[6291];
+    W[6311] = W[6308] + W[6310];
+    W[6336] = W[6331] + W[6335];
+    W[6352] = W[6349] + W[6351];
+    W[6372] = W[3] * W[6371];
+    W[6387] = W[3] * W[6386];
+    W[6405] = W[6403] - W[6404];
+    W[6419] = W[6417] - W[6418];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_288(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6435] = W[6433] - W[6434];
+    W[6447] = W[6445] - W[6446];
+    W[6455] = W[6321] + W[6454];
+    W[6462] = W[6343] + W[6461];
+    W[6249] = W[6244] + W[6248];
+    W[6269] = W[6266] + W[6268];
+    W[6297] = W[6292] + W[6296];
+    W[6314] = W[6311] + W[6313];
+    W[6337] = W[3] * W[6336];
+    W[6353] = W[3] * W[6352];
+    W[6374] = W[6372] - W[6373];
+    W[6389] = W[6387] - W[6388];
+    W[6407] = W[6405] - W[6406];
+    W[6421] = W[6419] - W[6420];
+    W[6437] = W[6435] - W[6436];
+    W[6449] = W[6447] - W[6448];
+    W[6456] = W[6277] + W[6455];
+    W[6463] = W[6302] + W[6462];
+    W[6254] = W[6249] + W[6253];
+    W[6272] = W[6269] + W[6271];
+    return 0;
+}
+
+/* Lines 340 .. 351 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_291(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[464] = -W[6300] / W[121] / 16.0;
+    X[465] = -W[6317] / W[121] / 16.0;
+    X[466] = -W[6341] / W[122] / 16.0;
+    X[467] = -W[6357] / W[122] / 16.0;
+    X[468] = -W[6378] / W[123] / 16.0;
+    X[469] = -W[6393] / W[123] / 16.0;
+    X[470] = -W[6411] / W[124] / 16.0;
+    X[471] = -W[6425] / W[124] / 16.0;
+    X[472] = -W[6439] / W[125] / 16.0;
+    X[473] = -W[6451] / W[125] / 16.0;
+    X[474] = -W[6458] / W[126] / 16.0;
+    X[475] = -W[6465] / W[126] / 16.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 16, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_292(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6482] = X[448] - X[450];
+    W[6487] = X[449] - X[451];
+    W[6491] = X[448] - X[452];
+    W[6494] = X[449] - X[453];
+    W[6498] = X[448] - X[454];
+    W[6501] = X[449] - X[455];
+    W[6505] = X[448] - X[456];
+    W[6508] = X[449] - X[457];
+    W[6512] = X[448] - X[458];
+    W[6515] = X[449] - X[459];
+    W[6519] = X[448] - X[460];
+    W[6522] = X[449] - X[461];
+    W[6525] = X[450] - X[452];
+    W[6527] = X[451] - X[453];
+    W[6530] = X[450] - X[454];
+    W[6532] = X[451] - X[455];
+    W[6535] = X[450] - X[456];
+    W[6537] = X[451] - X[457];
+    W[6540] = X[450] - X[458];
+    W[6542] = X[451] - X[459];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 16, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_294(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6595] = X[458] - X[460];
+    W[6597] = X[459] - X[461];
+    W[6484] = (W[2] * W[6482] + W[407] * W[6077] + W[812] * W[5672] + W[1217] * W[5267] + W[1622] * W[4862]
+            + W[2027] * W[4457] + W[2432] * W[4052] + W[2837] * W[3647]) * 2.0 + W[3242] * W[3242];
+    W[6488] = (W[7] * W[6487] + W[412] * W[6082] + W[817] * W[5677] + W[1222] * W[5272] + W[1627] * W[4867]
+            + W[2032] * W[4462] + W[2437] * W[4057] + W[2842] * W[3652]) * 2.0 + W[3247] * W[3247];
+    W[6492] = (W[11] * W[6491] + W[416] * W[6086] + W[821] * W[5681] + W[1226] * W[5276] + W[1631] * W[4871]
+            + W[2036] * W[4466] + W[2441] * W[4061] + W[2846] * W[3656]) * 2.0 + W[3251] * W[3251];
+    W[6495] = (W[14] * W[6494] + W[419] * W[6089] + W[824] * W[5684] + W[1229] * W[5279] + W[1634] * W[4874]
+            + W[2039] * W[4469] + W[2444] * W[4064] + W[2849] * W[3659]) * 2.0 + W[3254] * W[3254];
+    W[6499] = (W[18] * W[6498] + W[423] * W[6093] + W[828] * W[5688] + W[1233] * W[5283] + W[1638] * W[4878]
+            + W[2043] * W[4473] + W[2448] * W[4068] + W[2853] * W[3663]) * 2.0 + W[3258] * W[3258];
+    W[6502] = (W[21] * W[6501] + W[426] * W[6096] + W[831] * W[5691] + W[1236] * W[5286] + W[1641] * W[4881]
+            + W[2046] * W[4476] + W[2451] * W[4071] + W[2856] * W[3666]) * 2.0 + W[3261] * W[3261];
+    W[6506] = (W[25] * W[6505] + W[430] * W[6100] + W[835] * W[5695] + W[1240] * W[5290] + W[1645] * W[4885]
+            + W[2050] * W[4480] + W[2455] * W[4075] + W[2860] * W[3670]) * 2.0 + W[3265] * W[3265];
+    W[6509] = (W[28] * W[6508] + W[433] * W[6103] + W[838] * W[5698] + W[1243] * W[5293] + W[1648] * W[4888]
+            + W[2053] * W[4483] + W[2458] * W[4078] + W[2863] * W[3673]) * 2.0 + W[3268] * W[3268];
+    W[6513] = (W[32] * W[6512] + W[437] * W[6107] + W[842] * W[5702] + W[1247] * W[5297] + W[1652] * W[4892]
+            + W[2057] * W[4487] + W[2462] * W[4082] + W[2867] * W[3677]) * 2.0 + W[3272] * W[3272];
+    W[6516] = (W[35] * W[6515] + W[440] * W[6110] + W[845] * W[5705] + W[1250] * W[5300] + W[1655] * W[4895]
+            + W[2060] * W[4490] + W[2465] * W[4085] + W[2870] * W[3680]) * 2.0 + W[3275] * W[3275];
+    W[6520] = (W[39] * W[6519] + W[444] * W[6114] + W[849] * W[5709] + W[1254] * W[5304] + W[1659] * W[4899]
+            + W[2064] * W[4494] + W[2469] * W[4089] + W[2874] * W[3684]) * 2.0 + W[3279] * W[3279];
+    W[6523] = (W[42] * W[6522] + W[447] * W[6117] + W[852] * W[5712] + W[1257] * W[5307] + W[1662] * W[4902]
+            + W[2067] * W[4497] + W[2472] * W[4092] + W[2877] * W[3687]) * 2.0 + W[3282] * W[3282];
+    W[6526] = (W[45] * W[6525] + W[450] * W[6120] + W[855] * W[5715] + W[1260] * W[5310] + W[1665] * W[4905]
+            + W[2070] * W[4500] + W[2475] * W[4095] + W[2880] * W[3690]) * 2.0 + W[3285] * W[3285];
+    W[6528] = (W[47] * W[6527] + W[452] * W[6122] + W[857] * W[5717] + W[1262] * W[5312] + W[1667] * W[4907]
+            + W[2072] * W[4502] + W[2477] * W[4097] + W[2882] * W[3692]) * 2.0 + W[3287] * W[3287];
+    W[6531] = (W[50] * W[6530] + W[455] * W[6125] + W[860] * W[5720] + W[1265] * W[5315] + W[1670] * W[4910]
+            + W[2075] * W[4505] + W[2480] * W[4100] + W[2885] * W[3695]) * 2.0 + W[3290] * W[3290];
+    W[6533] = (W[52] * W[6532] + W[457] * W[6127] + W[862] * W[5722] + W[1267] * W[5317] + W[1672] * W[4912]
+            + W[2077] * W[4507] + W[2482] * W[4102] + W[2887] * W[3697]) * 2.0 + W[3292] * W[3292];
+    W[6536] = (W[55] * W[6535] + W[460] * W[6130] + W[865] * W[5725] + W[1270] * W[5320] + W[1675] * W[4915]
+            + W[2080] * W[4510] + W[2485] * W[4105] + W[2890] * W[3700]) * 2.0 + W[3295] * W[3295];
+    W[6538] = (W[57] * W[6537] + W[462] * W[6132] + W[867] * W[5727] + W[1272] * W[5322] + W[1677] * W[4917]
+            + W[2082] * W[4512] + W[2487] * W[4107] + W[2892] * W[3702]) * 2.0 + W[3297] * W[3297];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 16, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_296(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6591] = (W[110] * W[6590] + W[515] * W[6185] + W[920] * W[5780] + W[1325] * W[5375] + W[1730] * W[4970]
+            + W[2135] * W[4565] + W[2540] * W[4160] + W[2945] * W[3755]) * 2.0 + W[3350] * W[3350];
+    W[6593] = (W[112] * W[6592] + W[517] * W[6187] + W[922] * W[5782] + W[1327] * W[5377] + W[1732] * W[4972]
+            + W[2137] * W[4567] + W[2542] * W[4162] + W[2947] * W[3757]) * 2.0 + W[3352] * W[3352];
+    W[6596] = (W[115] * W[6595] + W[520] * W[6190] + W[925] * W[5785] + W[1330] * W[5380] + W[1735] * W[4975]
+            + W[2140] * W[4570] + W[2545] * W[4165] + W[2950] * W[3760]) * 2.0 + W[3355] * W[3355];
+    W[6598] = (W[117] * W[6597] + W[522] * W[6192] + W[927] * W[5787] + W[1332] * W[5382] + W[1737] * W[4977]
+            + W[2142] * W[4572] + W[2547] * W[4167] + W[2952] * W[3762]) * 2.0 + W[3357] * W[3357];
+    W[6489] = W[6484] + W[6488];
+    W[6496] = W[6492] + W[6495];
+    W[6503] = W[6499] + W[6502];
+    W[6510] = W[6506] + W[6509];
+    W[6517] = W[6513] + W[6516];
+    W[6524] = W[6520] + W[6523];
+    W[6529] = W[6526] + W[6528];
+    W[6534] = W[6531] + W[6533];
+    W[6539] = W[6536] + W[6538];
+    W[6544] = W[6541] + W[6543];
+    W[6549] = W[6546] + W[6548];
+    W[6554] = W[6551] + W[6553];
+    W[6559] = W[6556] + W[6558];
+    W[6564] = W[6561] + W[6563];
+    W[6569] = W[6566] + W[6568];
+    W[6574] = W[6571] + W[6573];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 16, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_298(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6764] = (-24.0 * W[6584] * W[284] - 23.5 * W[6179] * W[689] - 23.0 * W[5774] * W[1094] - 22.5 * W[5369] * W[1499]
+            - 22.0 * W[4964] * W[1904] - 21.5 * W[4559] * W[2309] - 21.0 * W[4154] * W[2714] - 20.5 * W[3749] * W[3119]
+            - 20.0 * W[3344] * W[3524] - 19.5 * W[2939] * W[3929] - 19.0 * W[2534] * W[4334] - 18.5 * W[2129] * W[4739]
+            - 18.0 * W[1724] * W[5144] - 17.5 * W[1319] * W[5549] - 17.0 * W[914] * W[5954] - 16.5 * W[509] * W[6359]) / (16.0 * W[104]);
+    W[6768] = (-24.0 * W[6579] * W[288] - 23.5 * W[6174] * W[693] - 23.0 * W[5769] * W[1098] - 22.5 * W[5364] * W[1503]
+            - 22.0 * W[4959] * W[1908] - 21.5 * W[4554] * W[2313] - 21.0 * W[4149] * W[2718] - 20.5 * W[3744] * W[3123]
+            - 20.0 * W[3339] * W[3528] - 19.5 * W[2934] * W[3933] - 19.0 * W[2529] * W[4338] - 18.5 * W[2124] * W[4743]
+            - 18.0 * W[1719] * W[5148] - 17.5 * W[1314] * W[5553] - 17.0 * W[909] * W[5958] - 16.5 * W[504] * W[6363]) / (16.0 * W[99]);
+    W[6773] = (-24.0 * W[6574] * W[293] - 23.5 * W[6169] * W[698] - 23.0 * W[5764] * W[1103] - 22.5 * W[5359] * W[1508]
+            - 22.0 * W[4954] * W[1913] - 21.5 * W[4549] * W[2318] - 21.0 * W[4144] * W[2723] - 20.5 * W[3739] * W[3128]
+            - 20.0 * W[3334] * W[3533] - 19.5 * W[2929] * W[3938] - 19.0 * W[2524] * W[4343] - 18.5 * W[2119] * W[4748]
+            - 18.0 * W[1714] * W[5153] - 17.5 * W[1309] * W[5558] - 17.0 * W[904] * W[5963] - 16.5 * W[499] * W[6368]) / (16.0 * W[94]);
+    W[6800] = (-24.0 * W[6594] * W[320] - 23.5 * W[6189] * W[725] - 23.0 * W[5784] * W[1130] - 22.5 * W[5379] * W[1535]
+            - 22.0 * W[4974] * W[1940] - 21.5 * W[4569] * W[2345] - 21.0 * W[4164] * W[2750] - 20.5 * W[3759] * W[3155]
+            - 20.0 * W[3354] * W[3560] - 19.5 * W[2949] * W[3965] - 19.0 * W[2544] * W[4370] - 18.5 * W[2139] * W[4775]
+            - 18.0 * W[1734] * W[5180] - 17.5 * W[1329] * W[5585] - 17.0 * W[924] * W[5990] - 16.5 * W[519] * W[6395]) / (16.0 * W[114]);
+    W[6804] = (-24.0 * W[6589] * W[324] - 23.5 * W[6184] * W[729] - 23.0 * W[5779] * W[1134] - 22.5 * W[5374] * W[1539]
+            - 22.0 * W[4969] * W[1944] - 21.5 * W[4564] * W[2349] - 21.0 * W[4159] * W[2754] - 20.5 * W[3754] * W[3159]
+            - 20.0 * W[3349] * W[3564] - 19.5 * W[2944] * W[3969] - 19.0 * W[2539] * W[4374] - 18.5 * W[2134] * W[4779]
+            - 18.0 * W[1729] * W[5184] - 17.5 * W[1324] * W[5589] - 17.0 * W[919] * W[5994] - 16.5 * W[514] * W[6399]) / (16.0 * W[109]);
+    W[6832] = (-24.0 * W[6599] * W[352] - 23.5 * W[6194] * W[757] - 23.0 * W[5789] * W[1162] - 22.5 * W[5384] * W[1567]
+            - 22.0 * W[4979] * W[1972] - 21.5 * W[4574] * W[2377] - 21.0 * W[4169] * W[2782] - 20.5 * W[3764] * W[3187]
+            - 20.0 * W[3359] * W[3592] - 19.5 * W[2954] * W[3997] - 19.0 * W[2549] * W[4402] - 18.5 * W[2144] * W[4807]
+            - 18.0 * W[1739] * W[5212] - 17.5 * W[1334] * W[5617] - 17.0 * W[929] * W[6022] - 16.5 * W[524] * W[6427]) / (16.0 * W[119]);
+    W[6633] = W[39] * W[6632] + W[444] * W[6227] + W[849] * W[5822] + W[1254] * W[5417] + W[1659] * W[5012]
+            + W[2064] * W[4607] + W[2469] * W[4202] + W[2874] * W[3797] + W[3279] * W[3392] + W[3684] * W[2987]
+            + W[4089] * W[2582] + W[4494] * W[2177] + W[4899] * W[1772] + W[5304] * W[1367] + W[5709] * W[962]
+            + W[6114] * W[557] + W[6519] * W[152];
+    W[6637] = W[32] * W[6636] + W[437] * W[6231] + W[842] * W[5826] + W[1247] * W[5421] + W[1652] * W[5016]
+            + W[2057] * W[4611] + W[2462] * W[4206] + W[2867] * W[3801] + W[3272] * W[3396] + W[3677] * W[2991]
+            + W[4082] * W[2586] + W[4487] * W[2181] + W[4892] * W[1776] + W[5297] * W[1371] + W[5702] * W[966]
+            + W[6107] * W[561] + W[6512] * W[156];
+    W[6642] = W[25] * W[6641] + W[430] * W[6236] + W[835] * W[5831] + W[1240] * W[5426] + W[1645] * W[5021]
+            + W[2050] * W[4616] + W[2455] * W[4211] + W[2860] * W[3806] + W[3265] * W[3401] + W[3670] * W[2996]
+            + W[4075] * W[2591] + W[4480] * W[2186] + W[4885] * W[1781] + W[5290] * W[1376] + W[5695] * W[971]
+            + W[6100] * W[566] + W[6505] * W[161];
+    W[6647] = W[18] * W[6646] + W[423] * W[6241] + W[828] * W[5836] + W[1233] * W[5431] + W[1638] * W[5026]
+            + W[2043] * W[4621] + W[2448] * W[4216] + W[2853] * W[3811] + W[3258] * W[3406] + W[3663] * W[3001]
+            + W[4068] * W[2596] + W[4473] * W[2191] + W[4878] * W[1786] + W[5283] * W[1381] + W[5688] * W[976]
+            + W[6093] * W[571] + W[6498] * W[166];
+    W[6652] = W[11] * W[6651] + W[416] * W[6246] + W[821] * W[5841] + W[1226] * W[5436] + W[1631] * W[5031]
+            + W[2036] * W[4626] + W[2441] * W[4221] + W[2846] * W[3816] + W[3251] * W[3411] + W[3656] * W[3006]
+            + W[4061] * W[2601] + W[4466] * W[2196] + W[4871] * W[1791] + W[5276] * W[1386] + W[5681] * W[981]
+            + W[6086] * W[576] + W[6491] * W[171];
+    W[6657] = W[2] * W[6656] + W[407] * W[6251] + W[812] * W[5846] + W[1217] * W[5441] + W[1622] * W[5036]
+            + W[2027] * W[4631] + W[2432] * W[4226] + W[2837] * W[3821] + W[3242] * W[3416] + W[3647] * W[3011]
+            + W[4052] * W[2606] + W[4457] * W[2201] + W[4862] * W[1796] + W[5267] * W[1391] + W[5672] * W[986]
+            + W[6077] * W[581] + W[6482] * W[176];
+    W[6661] = W[42] * W[6632] + W[447] * W[6227] + W[852] * W[5822] + W[1257] * W[5417] + W[1662] * W[5012]
+            + W[2067] * W[4607] + W[2472] * W[4202] + W[2877] * W[3797] + W[3282] * W[3392] + W[3687] * W[2987]
+            + W[4092] * W[2582] + W[4497] * W[2177] + W[4902] * W[1772] + W[5307] * W[1367] + W[5712] * W[962]
+            + W[6117] * W[557] + W[6522] * W[152];
+    W[6663] = W[35] * W[6636] + W[440] * W[6231] + W[845] * W[5826] + W[1250] * W[5421] + W[1655] * W[5016]
+            + W[2060] * W[4611] + W[2465] * W[4206] + W[2870] * W[3801] + W[3275] * W[3396] + W[3680] * W[2991]
+            + W[4085] * W[2586] + W[4490] * W[2181] + W[4895] * W[1776] + W[5300] * W[1371] + W[5705] * W[966]
+            + W[6110] * W[561] + W[6515] * W[156];
+    W[6666] = W[28] * W[6641] + W[433] * W[6236] + W[838] * W[5831] + W[1243] * W[5426] + W[1648] * W[5021]
+            + W[2053] * W[4616] + W[2458] * W[4211] + W[2863] * W[3806] + W[3268] * W[3401] + W[3673] * W[2996]
+            + W[4078] * W[2591] + W[4483] * W[2186] + W[4888] * W[1781] + W[5293] * W[1376] + W[5698] * W[971]
+            + W[6103] * W[566] + W[6508] * W[161];
+    W[6669] = W[21] * W[6646] + W[426] * W[6241] + W[831] * W[5836] + W[1236] * W[5431] + W[1641] * W[5026]
+            + W[2046] * W[4621] + W[2451] * W[4216] + W[2856] * W[3811] + W[3261] * W[3406] + W[3666] * W[3001]
+            + W[4071] * W[2596] + W[4476] * W[2191] + W[4881] * W[1786] + W[5286] * W[1381] + W[5691] * W[976]
+            + W[6096] * W[571] + W[6501] * W[166];
+    W[6672] = W[14] * W[6651] + W[419] * W[6246] + W[824] * W[5841] + W[1229] * W[5436] + W[1634] * W[5031]
+            + W[2039] * W[4626] + W[2444] * W[4221] + W[2849] * W[3816] + W[3254] * W[3411] + W[3659] * W[3006]
+            + W[4064] * W[2601] + W[4469] * W[2196] + W[4874] * W[1791] + W[5279] * W[1386] + W[5684] * W[981]
+            + W[6089] * W[576] + W[6494] * W[171];
+    W[6675] = W[7] * W[6656] + W[412] * W[6251] + W[817] * W[5846] + W[1222] * W[5441] + W[1627] * W[5036]
+            + W[2032] * W[4631] + W[2437] * W[4226] + W[2842] * W[3821] + W[3247] * W[3416] + W[3652] * W[3011]
+            + W[4057] * W[2606] + W[4462] * W[2201] + W[4867] * W[1796] + W[5272] * W[1391] + W[5677] * W[986]
+            + W[6082] * W[581] + W[6487] * W[176];
+    W[6681] = W[65] * W[6680] + W[470] * W[6275] + W[875] * W[5870] + W[1280] * W[5465] + W[1685] * W[5060]
+            + W[2090] * W[4655] + W[2495] * W[4250] + W[2900] * W[3845] + W[3305] * W[3440] + W[3710] * W[3035]
+            + W[4115] * W[2630] + W[4520] * W[2225] + W[4925] * W[1820] + W[5330] * W[1415] + W[5735] * W[1010]
+            + W[6140] * W[605] + W[6545] * W[200];
+    W[6685] = W[60] * W[6684] + W[465] * W[6279] + W[870] * W[5874] + W[1275] * W[5469] + W[1680] * W[5064]
+            + W[2085] * W[4659] + W[2490] * W[4254] + W[2895] * W[3849] + W[3300] * W[3444] + W[3705] * W[3039]
+            + W[4110] * W[2634] + W[4515] * W[2229] + W[4920] * W[1824] + W[5325] * W[1419] + W[5730] * W[1014]
+            + W[6135] * W[609] + W[6540] * W[204];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 16, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_300(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6786] = W[97] * W[6768] + W[502] * W[6363] + W[907] * W[5958] + W[1312] * W[5553] + W[1717] * W[5148]
+            + W[2122] * W[4743] + W[2527] * W[4338] + W[2932] * W[3933] + W[3337] * W[3528] + W[3742] * W[3123]
+            + W[4147] * W[2718] + W[4552] * W[2313] + W[4957] * W[1908] + W[5362] * W[1503] + W[5767] * W[1098]
+            + W[6172] * W[693] + W[6577] * W[288];
+    W[6789] = W[92] * W[6773] + W[497] * W[6368] + W[902] * W[5963] + W[1307] * W[5558] + W[1712] * W[5153]
+            + W[2117] * W[4748] + W[2522] * W[4343] + W[2927] * W[3938] + W[3332] * W[3533] + W[3737] * W[3128]
+            + W[4142] * W[2723] + W[4547] * W[2318] + W[4952] * W[1913] + W[5357] * W[1508] + W[5762] * W[1103]
+            + W[6167] * W[698] + W[6572] * W[293];
+    W[6801] = W[110] * W[6800] + W[515] * W[6395] + W[920] * W[5990] + W[1325] * W[5585] + W[1730] * W[5180]
+            + W[2135] * W[4775] + W[2540] * W[4370] + W[2945] * W[3965] + W[3350] * W[3560] + W[3755] * W[3155]
+            + W[4160] * W[2750] + W[4565] * W[2345] + W[4970] * W[1940] + W[5375] * W[1535] + W[5780] * W[1130]
+            + W[6185] * W[725] + W[6590] * W[320];
+    W[6805] = W[105] * W[6804] + W[510] * W[6399] + W[915] * W[5994] + W[1320] * W[5589] + W[1725] * W[5184]
+            + W[2130] * W[4779] + W[2535] * W[4374] + W[2940] * W[3969] + W[3345] * W[3564] + W[3750] * W[3159]
+            + W[4155] * W[2754] + W[4560] * W[2349] + W[4965] * W[1944] + W[5370] * W[1539] + W[5775] * W[1134]
+            + W[6180] * W[729] + W[6585] * W[324];
+    W[6817] = W[112] * W[6800] + W[517] * W[6395] + W[922] * W[5990] + W[1327] * W[5585] + W[1732] * W[5180]
+            + W[2137] * W[4775] + W[2542] * W[4370] + W[2947] * W[3965] + W[3352] * W[3560] + W[3757] * W[3155]
+            + W[4162] * W[2750] + W[4567] * W[2345] + W[4972] * W[1940] + W[5377] * W[1535] + W[5782] * W[1130]
+            + W[6187] * W[725] + W[6592] * W[320];
+    W[6819] = W[107] * W[6804] + W[512] * W[6399] + W[917] * W[5994] + W[1322] * W[5589] + W[1727] * W[5184]
+            + W[2132] * W[4779] + W[2537] * W[4374] + W[2942] * W[3969] + W[3347] * W[3564] + W[3752] * W[3159]
+            + W[4157] * W[2754] + W[4562] * W[2349] + W[4967] * W[1944] + W[5372] * W[1539] + W[5777] * W[1134]
+            + W[6182] * W[729] + W[6587] * W[324];
+    W[6833] = W[115] * W[6832] + W[520] * W[6427] + W[925] * W[6022] + W[1330] * W[5617] + W[1735] * W[5212]
+            + W[2140] * W[4807] + W[2545] * W[4402] + W[2950] * W[3997] + W[3355] * W[3592] + W[3760] * W[3187]
+            + W[4165] * W[2782] + W[4570] * W[2377] + W[4975] * W[1972] + W[5380] * W[1567] + W[5785] * W[1162]
+            + W[6190] * W[757] + W[6595] * W[352];
+    W[6845] = W[117] * W[6832] + W[522] * W[6427] + W[927] * W[6022] + W[1332] * W[5617] + W[1737] * W[5212]
+            + W[2142] * W[4807] + W[2547] * W[4402] + W[2952] * W[3997] + W[3357] * W[3592] + W[3762] * W[3187]
+            + W[4167] * W[2782] + W[4572] * W[2377] + W[4977] * W[1972] + W[5382] * W[1567] + W[5787] * W[1162]
+            + W[6192] * W[757] + W[6597] * W[352];
+    W[6634] = W[151] * W[6633];
+    W[6638] = W[155] * W[6637];
+    W[6643] = W[160] * W[6642];
+    W[6648] = W[165] * W[6647];
+    W[6653] = W[170] * W[6652];
+    W[6658] = W[175] * W[6657];
+    W[6662] = W[151] * W[6661];
+    W[6664] = W[155] * W[6663];
+    W[6667] = W[160] * W[6666];
+    W[6670] = W[165] * W[6669];
+    W[6673] = W[170] * W[6672];
+    W[6676] = W[175] * W[6675];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 16, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_301(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6682] = W[199] * W[6681];
+    W[6686] = W[203] * W[6685];
+    W[6691] = W[208] * W[6690];
+    W[6696] = W[213] * W[6695];
+    W[6701] = W[218] * W[6700];
+    W[6704] = W[127] * W[6657];
+    W[6707] = W[199] * W[6706];
+    W[6709] = W[203] * W[6708];
+    W[6712] = W[208] * W[6711];
+    W[6715] = W[213] * W[6714];
+    W[6718] = W[218] * W[6717];
+    W[6721] = W[127] * W[6675];
+    W[6726] = W[243] * W[6725];
+    W[6730] = W[247] * W[6729];
+    W[6735] = W[252] * W[6734];
+    W[6740] = W[257] * W[6739];
+    W[6743] = W[133] * W[6700];
+    W[6745] = W[128] * W[6652];
+    W[6748] = W[243] * W[6747];
+    W[6750] = W[247] * W[6749];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 16, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_302(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6753] = W[252] * W[6752];
+    W[6756] = W[257] * W[6755];
+    W[6759] = W[133] * W[6717];
+    W[6761] = W[128] * W[6672];
+    W[6766] = W[283] * W[6765];
+    W[6770] = W[287] * W[6769];
+    W[6775] = W[292] * W[6774];
+    W[6778] = W[138] * W[6739];
+    W[6780] = W[134] * W[6695];
+    W[6782] = W[129] * W[6647];
+    W[6785] = W[283] * W[6784];
+    W[6787] = W[287] * W[6786];
+    W[6790] = W[292] * W[6789];
+    W[6793] = W[138] * W[6755];
+    W[6795] = W[134] * W[6714];
+    W[6797] = W[129] * W[6669];
+    W[6802] = W[319] * W[6801];
+    W[6806] = W[323] * W[6805];
+    W[6809] = W[142] * W[6774];
+    W[6811] = W[139] * W[6734];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 16, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_304(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6857] = W[351] * W[6833];
+    W[6864] = W[351] * W[6845];
+    W[6639] = W[6634] + W[6638];
+    W[6665] = W[6662] + W[6664];
+    W[6687] = W[6682] + W[6686];
+    W[6710] = W[6707] + W[6709];
+    W[6731] = W[6726] + W[6730];
+    W[6751] = W[6748] + W[6750];
+    W[6771] = W[6766] + W[6770];
+    W[6788] = W[6785] + W[6787];
+    W[6807] = W[6802] + W[6806];
+    W[6821] = W[6818] + W[6820];
+    W[6836] = W[6834] - W[6835];
+    W[6848] = W[6846] - W[6847];
+    W[6858] = W[6802] + W[6857];
+    W[6865] = W[6818] + W[6864];
+    W[6644] = W[6639] + W[6643];
+    W[6668] = W[6665] + W[6667];
+    W[6692] = W[6687] + W[6691];
+    W[6713] = W[6710] + W[6712];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 16, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_306(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6840] = W[6838] - W[6839];
+    W[6852] = W[6850] - W[6851];
+    W[6860] = W[6726] + W[6859];
+    W[6867] = W[6748] + W[6866];
+    W[6654] = W[6649] + W[6653];
+    W[6674] = W[6671] + W[6673];
+    W[6702] = W[6697] + W[6701];
+    W[6719] = W[6716] + W[6718];
+    W[6742] = W[3] * W[6741];
+    W[6758] = W[3] * W[6757];
+    W[6779] = W[6777] - W[6778];
+    W[6794] = W[6792] - W[6793];
+    W[6812] = W[6810] - W[6811];
+    W[6826] = W[6824] - W[6825];
+    W[6842] = W[6840] - W[6841];
+    W[6854] = W[6852] - W[6853];
+    W[6861] = W[6682] + W[6860];
+    W[6868] = W[6707] + W[6867];
+    W[6659] = W[6654] + W[6658];
+    W[6677] = W[6674] + W[6676];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 16, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_308(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6816] = W[6814] - W[6815];
+    W[6830] = W[6828] - W[6829];
+    W[6863] = W[148] * W[6862];
+    W[6870] = W[148] * W[6869];
+    X[476] = X[462] / 17.0;
+    X[477] = X[463] / 17.0;
+    X[478] = X[464] / 17.0;
+    X[479] = X[465] / 17.0;
+    X[480] = X[466] / 17.0;
+    X[481] = X[467] / 17.0;
+    X[482] = X[468] / 17.0;
+    X[483] = X[469] / 17.0;
+    X[484] = X[470] / 17.0;
+    X[485] = X[471] / 17.0;
+    X[486] = X[472] / 17.0;
+    X[487] = X[473] / 17.0;
+    X[488] = X[474] / 17.0;
+    X[489] = X[475] / 17.0;
+    X[490] = -W[6660] / W[120] / 17.0;
+    X[491] = -W[6678] / W[120] / 17.0;
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_311(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6950] = X[478] - X[488];
+    W[6952] = X[479] - X[489];
+    W[6955] = X[480] - X[482];
+    W[6957] = X[481] - X[483];
+    W[6960] = X[480] - X[484];
+    W[6962] = X[481] - X[485];
+    W[6965] = X[480] - X[486];
+    W[6967] = X[481] - X[487];
+    W[6970] = X[480] - X[488];
+    W[6972] = X[481] - X[489];
+    W[6975] = X[482] - X[484];
+    W[6977] = X[483] - X[485];
+    W[6980] = X[482] - X[486];
+    W[6982] = X[483] - X[487];
+    W[6985] = X[482] - X[488];
+    W[6987] = X[483] - X[489];
+    W[6990] = X[484] - X[486];
+    W[6992] = X[485] - X[487];
+    W[6995] = X[484] - X[488];
+    W[6997] = X[485] - X[489];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_313(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6946] = (W[60] * W[6945] + W[465] * W[6540] + W[870] * W[6135] + W[1275] * W[5730] + W[1680] * W[5325]
+            + W[2085] * W[4920] + W[2490] * W[4515] + W[2895] * W[4110] + W[3300] * W[3705]) * 2.0;
+    W[6948] = (W[62] * W[6947] + W[467] * W[6542] + W[872] * W[6137] + W[1277] * W[5732] + W[1682] * W[5327]
+            + W[2087] * W[4922] + W[2492] * W[4517] + W[2897] * W[4112] + W[3302] * W[3707]) * 2.0;
+    W[6951] = (W[65] * W[6950] + W[470] * W[6545] + W[875] * W[6140] + W[1280] * W[5735] + W[1685] * W[5330]
+            + W[2090] * W[4925] + W[2495] * W[4520] + W[2900] * W[4115] + W[3305] * W[3710]) * 2.0;
+    W[6953] = (W[67] * W[6952] + W[472] * W[6547] + W[877] * W[6142] + W[1282] * W[5737] + W[1687] * W[5332]
+            + W[2092] * W[4927] + W[2497] * W[4522] + W[2902] * W[4117] + W[3307] * W[3712]) * 2.0;
+    W[6956] = (W[70] * W[6955] + W[475] * W[6550] + W[880] * W[6145] + W[1285] * W[5740] + W[1690] * W[5335]
+            + W[2095] * W[4930] + W[2500] * W[4525] + W[2905] * W[4120] + W[3310] * W[3715]) * 2.0;
+    W[6958] = (W[72] * W[6957] + W[477] * W[6552] + W[882] * W[6147] + W[1287] * W[5742] + W[1692] * W[5337]
+            + W[2097] * W[4932] + W[2502] * W[4527] + W[2907] * W[4122] + W[3312] * W[3717]) * 2.0;
+    W[6961] = (W[75] * W[6960] + W[480] * W[6555] + W[885] * W[6150] + W[1290] * W[5745] + W[1695] * W[5340]
+            + W[2100] * W[4935] + W[2505] * W[4530] + W[2910] * W[4125] + W[3315] * W[3720]) * 2.0;
+    W[6963] = (W[77] * W[6962] + W[482] * W[6557] + W[887] * W[6152] + W[1292] * W[5747] + W[1697] * W[5342]
+            + W[2102] * W[4937] + W[2507] * W[4532] + W[2912] * W[4127] + W[3317] * W[3722]) * 2.0;
+    W[6966] = (W[80] * W[6965] + W[485] * W[6560] + W[890] * W[6155] + W[1295] * W[5750] + W[1700] * W[5345]
+            + W[2105] * W[4940] + W[2510] * W[4535] + W[2915] * W[4130] + W[3320] * W[3725]) * 2.0;
+    W[6968] = (W[82] * W[6967] + W[487] * W[6562] + W[892] * W[6157] + W[1297] * W[5752] + W[1702] * W[5347]
+            + W[2107] * W[4942] + W[2512] * W[4537] + W[2917] * W[4132] + W[3322] * W[3727]) * 2.0;
+    W[6971] = (W[85] * W[6970] + W[490] * W[6565] + W[895] * W[6160] + W[1300] * W[5755] + W[1705] * W[5350]
+            + W[2110] * W[4945] + W[2515] * W[4540] + W[2920] * W[4135] + W[3325] * W[3730]) * 2.0;
+    W[6973] = (W[87] * W[6972] + W[492] * W[6567] + W[897] * W[6162] + W[1302] * W[5757] + W[1707] * W[5352]
+            + W[2112] * W[4947] + W[2517] * W[4542] + W[2922] * W[4137] + W[3327] * W[3732]) * 2.0;
+    W[6976] = (W[90] * W[6975] + W[495] * W[6570] + W[900] * W[6165] + W[1305] * W[5760] + W[1710] * W[5355]
+            + W[2115] * W[4950] + W[2520] * W[4545] + W[2925] * W[4140] + W[3330] * W[3735]) * 2.0;
+    W[6978] = (W[92] * W[6977] + W[497] * W[6572] + W[902] * W[6167] + W[1307] * W[5762] + W[1712] * W[5357]
+            + W[2117] * W[4952] + W[2522] * W[4547] + W[2927] * W[4142] + W[3332] * W[3737]) * 2.0;
+    W[6981] = (W[95] * W[6980] + W[500] * W[6575] + W[905] * W[6170] + W[1310] * W[5765] + W[1715] * W[5360]
+            + W[2120] * W[4955] + W[2525] * W[4550] + W[2930] * W[4145] + W[3335] * W[3740]) * 2.0;
+    W[6983] = (W[97] * W[6982] + W[502] * W[6577] + W[907] * W[6172] + W[1312] * W[5767] + W[1717] * W[5362]
+            + W[2122] * W[4957] + W[2527] * W[4552] + W[2932] * W[4147] + W[3337] * W[3742]) * 2.0;
+    W[6986] = (W[100] * W[6985] + W[505] * W[6580] + W[910] * W[6175] + W[1315] * W[5770] + W[1720] * W[5365]
+            + W[2125] * W[4960] + W[2530] * W[4555] + W[2935] * W[4150] + W[3340] * W[3745]) * 2.0;
+    W[6988] = (W[102] * W[6987] + W[507] * W[6582] + W[912] * W[6177] + W[1317] * W[5772] + W[1722] * W[5367]
+            + W[2127] * W[4962] + W[2532] * W[4557] + W[2937] * W[4152] + W[3342] * W[3747]) * 2.0;
+    W[6991] = (W[105] * W[6990] + W[510] * W[6585] + W[915] * W[6180] + W[1320] * W[5775] + W[1725] * W[5370]
+            + W[2130] * W[4965] + W[2535] * W[4560] + W[2940] * W[4155] + W[3345] * W[3750]) * 2.0;
+    W[6993] = (W[107] * W[6992] + W[512] * W[6587] + W[917] * W[6182] + W[1322] * W[5777] + W[1727] * W[5372]
+            + W[2132] * W[4967] + W[2537] * W[4562] + W[2942] * W[4157] + W[3347] * W[3752]) * 2.0;
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_315(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[6984] = W[6981] + W[6983];
+    W[6989] = W[6986] + W[6988];
+    W[6994] = W[6991] + W[6993];
+    W[6999] = W[6996] + W[6998];
+    W[7004] = W[7001] + W[7003];
+    W[7037] = (-25.5 * W[6929] * W[152] - 25.0 * W[6524] * W[557] - 24.5 * W[6119] * W[962] - 24.0 * W[5714] * W[1367]
+            - 23.5 * W[5309] * W[1772] - 23.0 * W[4904] * W[2177] - 22.5 * W[4499] * W[2582] - 22.0 * W[4094] * W[2987]
+            - 21.5 * W[3689] * W[3392] - 21.0 * W[3284] * W[3797] - 20.5 * W[2879] * W[4202] - 20.0 * W[2474] * W[4607]
+            - 19.5 * W[2069] * W[5012] - 19.0 * W[1664] * W[5417] - 18.5 * W[1259] * W[5822] - 18.0 * W[854] * W[6227]
+            - 17.5 * W[449] * W[6632]) / (17.0 * W[44]);
+    W[7041] = (-25.5 * W[6922] * W[156] - 25.0 * W[6517] * W[561] - 24.5 * W[6112] * W[966] - 24.0 * W[5707] * W[1371]
+            - 23.5 * W[5302] * W[1776] - 23.0 * W[4897] * W[2181] - 22.5 * W[4492] * W[2586] - 22.0 * W[4087] * W[2991]
+            - 21.5 * W[3682] * W[3396] - 21.0 * W[3277] * W[3801] - 20.5 * W[2872] * W[4206] - 20.0 * W[2467] * W[4611]
+            - 19.5 * W[2062] * W[5016] - 19.0 * W[1657] * W[5421] - 18.5 * W[1252] * W[5826] - 18.0 * W[847] * W[6231]
+            - 17.5 * W[442] * W[6636]) / (17.0 * W[37]);
+    W[7046] = (-25.5 * W[6915] * W[161] - 25.0 * W[6510] * W[566] - 24.5 * W[6105] * W[971] - 24.0 * W[5700] * W[1376]
+            - 23.5 * W[5295] * W[1781] - 23.0 * W[4890] * W[2186] - 22.5 * W[4485] * W[2591] - 22.0 * W[4080] * W[2996]
+            - 21.5 * W[3675] * W[3401] - 21.0 * W[3270] * W[3806] - 20.5 * W[2865] * W[4211] - 20.0 * W[2460] * W[4616]
+            - 19.5 * W[2055] * W[5021] - 19.0 * W[1650] * W[5426] - 18.5 * W[1245] * W[5831] - 18.0 * W[840] * W[6236]
+            - 17.5 * W[435] * W[6641]) / (17.0 * W[30]);
+    W[7051] = (-25.5 * W[6908] * W[166] - 25.0 * W[6503] * W[571] - 24.5 * W[6098] * W[976] - 24.0 * W[5693] * W[1381]
+            - 23.5 * W[5288] * W[1786] - 23.0 * W[4883] * W[2191] - 22.5 * W[4478] * W[2596] - 22.0 * W[4073] * W[3001]
+            - 21.5 * W[3668] * W[3406] - 21.0 * W[3263] * W[3811] - 20.5 * W[2858] * W[4216] - 20.0 * W[2453] * W[4621]
+            - 19.5 * W[2048] * W[5026] - 19.0 * W[1643] * W[5431] - 18.5 * W[1238] * W[5836] - 18.0 * W[833] * W[6241]
+            - 17.5 * W[428] * W[6646]) / (17.0 * W[23]);
+    W[7056] = (-25.5 * W[6901] * W[171] - 25.0 * W[6496] * W[576] - 24.5 * W[6091] * W[981] - 24.0 * W[5686] * W[1386]
+            - 23.5 * W[5281] * W[1791] - 23.0 * W[4876] * W[2196] - 22.5 * W[4471] * W[2601] - 22.0 * W[4066] * W[3006]
+            - 21.5 * W[3661] * W[3411] - 21.0 * W[3256] * W[3816] - 20.5 * W[2851] * W[4221] - 20.0 * W[2446] * W[4626]
+            - 19.5 * W[2041] * W[5031] - 19.0 * W[1636] * W[5436] - 18.5 * W[1231] * W[5841] - 18.0 * W[826] * W[6246]
+            - 17.5 * W[421] * W[6651]) / (17.0 * W[16]);
+    W[7061] = (-25.5 * W[6894] * W[176] - 25.0 * W[6489] * W[581] - 24.5 * W[6084] * W[986] - 24.0 * W[5679] * W[1391]
+            - 23.5 * W[5274] * W[1796] - 23.0 * W[4869] * W[2201] - 22.5 * W[4464] * W[2606] - 22.0 * W[4059] * W[3011]
+            - 21.5 * W[3654] * W[3416] - 21.0 * W[3249] * W[3821] - 20.5 * W[2844] * W[4226] - 20.0 * W[2439] * W[4631]
+            - 19.5 * W[2034] * W[5036] - 19.0 * W[1629] * W[5441] - 18.5 * W[1224] * W[5846] - 18.0 * W[819] * W[6251]
+            - 17.5 * W[414] * W[6656]) / (17.0 * W[9]);
+    W[7085] = (-25.5 * W[6954] * W[200] - 25.0 * W[6549] * W[605] - 24.5 * W[6144] * W[1010] - 24.0 * W[5739] * W[1415]
+            - 23.5 * W[5334] * W[1820] - 23.0 * W[4929] * W[2225] - 22.5 * W[4524] * W[2630] - 22.0 * W[4119] * W[3035]
+            - 21.5 * W[3714] * W[3440] - 21.0 * W[3309] * W[3845] - 20.5 * W[2904] * W[4250] - 20.0 * W[2499] * W[4655]
+            - 19.5 * W[2094] * W[5060] - 19.0 * W[1689] * W[5465] - 18.5 * W[1284] * W[5870] - 18.0 * W[879] * W[6275]
+            - 17.5 * W[474] * W[6680]) / (17.0 * W[69]);
+    W[7089] = (-25.5 * W[6949] * W[204] - 25.0 * W[6544] * W[609] - 24.5 * W[6139] * W[1014] - 24.0 * W[5734] * W[1419]
+            - 23.5 * W[5329] * W[1824] - 23.0 * W[4924] * W[2229] - 22.5 * W[4519] * W[2634] - 22.0 * W[4114] * W[3039]
+            - 21.5 * W[3709] * W[3444] - 21.0 * W[3304] * W[3849] - 20.5 * W[2899] * W[4254] - 20.0 * W[2494] * W[4659]
+            - 19.5 * W[2089] * W[5064] - 19.0 * W[1684] * W[5469] - 18.5 * W[1279] * W[5874] - 18.0 * W[874] * W[6279]
+            - 17.5 * W[469] * W[6684]) / (17.0 * W[64]);
+    W[7094] = (-25.5 * W[6944] * W[209] - 25.0 * W[6539] * W[614] - 24.5 * W[6134] * W[1019] - 24.0 * W[5729] * W[1424]
+            - 23.5 * W[5324] * W[1829] - 23.0 * W[4919] * W[2234] - 22.5 * W[4514] * W[2639] - 22.0 * W[4109] * W[3044]
+            - 21.5 * W[3704] * W[3449] - 21.0 * W[3299] * W[3854] - 20.5 * W[2894] * W[4259] - 20.0 * W[2489] * W[4664]
+            - 19.5 * W[2084] * W[5069] - 19.0 * W[1679] * W[5474] - 18.5 * W[1274] * W[5879] - 18.0 * W[869] * W[6284]
+            - 17.5 * W[464] * W[6689]) / (17.0 * W[59]);
+    W[7099] = (-25.5 * W[6939] * W[214] - 25.0 * W[6534] * W[619] - 24.5 * W[6129] * W[1024] - 24.0 * W[5724] * W[1429]
+            - 23.5 * W[5319] * W[1834] - 23.0 * W[4914] * W[2239] - 22.5 * W[4509] * W[2644] - 22.0 * W[4104] * W[3049]
+            - 21.5 * W[3699] * W[3454] - 21.0 * W[3294] * W[3859] - 20.5 * W[2889] * W[4264] - 20.0 * W[2484] * W[4669]
+            - 19.5 * W[2079] * W[5074] - 19.0 * W[1674] * W[5479] - 18.5 * W[1269] * W[5884] - 18.0 * W[864] * W[6289]
+            - 17.5 * W[459] * W[6694]) / (17.0 * W[54]);
+    W[7104] = (-25.5 * W[6934] * W[219] - 25.0 * W[6529] * W[624] - 24.5 * W[6124] * W[1029] - 24.0 * W[5719] * W[1434]
+            - 23.5 * W[5314] * W[1839] - 23.0 * W[4909] * W[2244] - 22.5 * W[4504] * W[2649] - 22.0 * W[4099] * W[3054]
+            - 21.5 * W[3694] * W[3459] - 21.0 * W[3289] * W[3864] - 20.5 * W[2884] * W[4269] - 20.0 * W[2479] * W[4674]
+            - 19.5 * W[2074] * W[5079] - 19.0 * W[1669] * W[5484] - 18.5 * W[1264] * W[5889] - 18.0 * W[859] * W[6294]
+            - 17.5 * W[454] * W[6699]) / (17.0 * W[49]);
+    W[7129] = (-25.5 * W[6974] * W[244] - 25.0 * W[6569] * W[649] - 24.5 * W[6164] * W[1054] - 24.0 * W[5759] * W[1459]
+            - 23.5 * W[5354] * W[1864] - 23.0 * W[4949] * W[2269] - 22.5 * W[4544] * W[2674] - 22.0 * W[4139] * W[3079]
+            - 21.5 * W[3734] * W[3484] - 21.0 * W[3329] * W[3889] - 20.5 * W[2924] * W[4294] - 20.0 * W[2519] * W[4699]
+            - 19.5 * W[2114] * W[5104] - 19.0 * W[1709] * W[5509] - 18.5 * W[1304] * W[5914] - 18.0 * W[899] * W[6319]
+            - 17.5 * W[494] * W[6724]) / (17.0 * W[89]);
+    W[7133] = (-25.5 * W[6969] * W[248] - 25.0 * W[6564] * W[653] - 24.5 * W[6159] * W[1058] - 24.0 * W[5754] * W[1463]
+            - 23.5 * W[5349] * W[1868] - 23.0 * W[4944] * W[2273] - 22.5 * W[4539] * W[2678] - 22.0 * W[4134] * W[3083]
+            - 21.5 * W[3729] * W[3488] - 21.0 * W[3324] * W[3893] - 20.5 * W[2919] * W[4298] - 20.0 * W[2514] * W[4703]
+            - 19.5 * W[2109] * W[5108] - 19.0 * W[1704] * W[5513] - 18.5 * W[1299] * W[5918] - 18.0 * W[894] * W[6323]
+            - 17.5 * W[489] * W[6728]) / (17.0 * W[84]);
+    W[7138] = (-25.5 * W[6964] * W[253] - 25.0 * W[6559] * W[658] - 24.5 * W[6154] * W[1063] - 24.0 * W[5749] * W[1468]
+            - 23.5 * W[5344] * W[1873] - 23.0 * W[4939] * W[2278] - 22.5 * W[4534] * W[2683] - 22.0 * W[4129] * W[3088]
+            - 21.5 * W[3724] * W[3493] - 21.0 * W[3319] * W[3898] - 20.5 * W[2914] * W[4303] - 20.0 * W[2509] * W[4708]
+            - 19.5 * W[2104] * W[5113] - 19.0 * W[1699] * W[5518] - 18.5 * W[1294] * W[5923] - 18.0 * W[889] * W[6328]
+            - 17.5 * W[484] * W[6733]) / (17.0 * W[79]);
+    W[7143] = (-25.5 * W[6959] * W[258] - 25.0 * W[6554] * W[663] - 24.5 * W[6149] * W[1068] - 24.0 * W[5744] * W[1473]
+            - 23.5 * W[5339] * W[1878] - 23.0 * W[4934] * W[2283] - 22.5 * W[4529] * W[2688] - 22.0 * W[4124] * W[3093]
+            - 21.5 * W[3719] * W[3498] - 21.0 * W[3314] * W[3903] - 20.5 * W[2909] * W[4308] - 20.0 * W[2504] * W[4713]
+            - 19.5 * W[2099] * W[5118] - 19.0 * W[1694] * W[5523] - 18.5 * W[1289] * W[5928] - 18.0 * W[884] * W[6333]
+            - 17.5 * W[479] * W[6738]) / (17.0 * W[74]);
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_317(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7095] = W[55] * W[7094] + W[460] * W[6689] + W[865] * W[6284] + W[1270] * W[5879] + W[1675] * W[5474]
+            + W[2080] * W[5069] + W[2485] * W[4664] + W[2890] * W[4259] + W[3295] * W[3854] + W[3700] * W[3449]
+            + W[4105] * W[3044] + W[4510] * W[2639] + W[4915] * W[2234] + W[5320] * W[1829] + W[5725] * W[1424]
+            + W[6130] * W[1019] + W[6535] * W[614] + W[6940] * W[209];
+    W[7100] = W[50] * W[7099] + W[455] * W[6694] + W[860] * W[6289] + W[1265] * W[5884] + W[1670] * W[5479]
+            + W[2075] * W[5074] + W[2480] * W[4669] + W[2885] * W[4264] + W[3290] * W[3859] + W[3695] * W[3454]
+            + W[4100] * W[3049] + W[4505] * W[2644] + W[4910] * W[2239] + W[5315] * W[1834] + W[5720] * W[1429]
+            + W[6125] * W[1024] + W[6530] * W[619] + W[6935] * W[214];
+    W[7105] = W[45] * W[7104] + W[450] * W[6699] + W[855] * W[6294] + W[1260] * W[5889] + W[1665] * W[5484]
+            + W[2070] * W[5079] + W[2475] * W[4674] + W[2880] * W[4269] + W[3285] * W[3864] + W[3690] * W[3459]
+            + W[4095] * W[3054] + W[4500] * W[2649] + W[4905] * W[2244] + W[5310] * W[1839] + W[5715] * W[1434]
+            + W[6120] * W[1029] + W[6525] * W[624] + W[6930] * W[219];
+    W[7111] = W[67] * W[7085] + W[472] * W[6680] + W[877] * W[6275] + W[1282] * W[5870] + W[1687] * W[5465]
+            + W[2092] * W[5060] + W[2497] * W[4655] + W[2902] * W[4250] + W[3307] * W[3845] + W[3712] * W[3440]
+            + W[4117] * W[3035] + W[4522] * W[2630] + W[4927] * W[2225] + W[5332] * W[1820] + W[5737] * W[1415]
+            + W[6142] * W[1010] + W[6547] * W[605] + W[6952] * W[200];
+    W[7113] = W[62] * W[7089] + W[467] * W[6684] + W[872] * W[6279] + W[1277] * W[5874] + W[1682] * W[5469]
+            + W[2087] * W[5064] + W[2492] * W[4659] + W[2897] * W[4254] + W[3302] * W[3849] + W[3707] * W[3444]
+            + W[4112] * W[3039] + W[4517] * W[2634] + W[4922] * W[2229] + W[5327] * W[1824] + W[5732] * W[1419]
+            + W[6137] * W[1014] + W[6542] * W[609] + W[6947] * W[204];
+    W[7116] = W[57] * W[7094] + W[462] * W[6689] + W[867] * W[6284] + W[1272] * W[5879] + W[1677] * W[5474]
+            + W[2082] * W[5069] + W[2487] * W[4664] + W[2892] * W[4259] + W[3297] * W[3854] + W[3702] * W[3449]
+            + W[4107] * W[3044] + W[4512] * W[2639] + W[4917] * W[2234] + W[5322] * W[1829] + W[5727] * W[1424]
+            + W[6132] * W[1019] + W[6537] * W[614] + W[6942] * W[209];
+    W[7119] = W[52] * W[7099] + W[457] * W[6694] + W[862] * W[6289] + W[1267] * W[5884] + W[1672] * W[5479]
+            + W[2077] * W[5074] + W[2482] * W[4669] + W[2887] * W[4264] + W[3292] * W[3859] + W[3697] * W[3454]
+            + W[4102] * W[3049] + W[4507] * W[2644] + W[4912] * W[2239] + W[5317] * W[1834] + W[5722] * W[1429]
+            + W[6127] * W[1024] + W[6532] * W[619] + W[6937] * W[214];
+    W[7122] = W[47] * W[7104] + W[452] * W[6699] + W[857] * W[6294] + W[1262] * W[5889] + W[1667] * W[5484]
+            + W[2072] * W[5079] + W[2477] * W[4674] + W[2882] * W[4269] + W[3287] * W[3864] + W[3692] * W[3459]
+            + W[4097] * W[3054] + W[4502] * W[2649] + W[4907] * W[2244] + W[5312] * W[1839] + W[5717] * W[1434]
+            + W[6122] * W[1029] + W[6527] * W[624] + W[6932] * W[219];
+    W[7130] = W[85] * W[7129] + W[490] * W[6724] + W[895] * W[6319] + W[1300] * W[5914] + W[1705] * W[5509]
+            + W[2110] * W[5104] + W[2515] * W[4699] + W[2920] * W[4294] + W[3325] * W[3889] + W[3730] * W[3484]
+            + W[4135] * W[3079] + W[4540] * W[2674] + W[4945] * W[2269] + W[5350] * W[1864] + W[5755] * W[1459]
+            + W[6160] * W[1054] + W[6565] * W[649] + W[6970] * W[244];
+    W[7134] = W[80] * W[7133] + W[485] * W[6728] + W[890] * W[6323] + W[1295] * W[5918] + W[1700] * W[5513]
+            + W[2105] * W[5108] + W[2510] * W[4703] + W[2915] * W[4298] + W[3320] * W[3893] + W[3725] * W[3488]
+            + W[4130] * W[3083] + W[4535] * W[2678] + W[4940] * W[2273] + W[5345] * W[1868] + W[5750] * W[1463]
+            + W[6155] * W[1058] + W[6560] * W[653] + W[6965] * W[248];
+    W[7139] = W[75] * W[7138] + W[480] * W[6733] + W[885] * W[6328] + W[1290] * W[5923] + W[1695] * W[5518]
+            + W[2100] * W[5113] + W[2505] * W[4708] + W[2910] * W[4303] + W[3315] * W[3898] + W[3720] * W[3493]
+            + W[4125] * W[3088] + W[4530] * W[2683] + W[4935] * W[2278] + W[5340] * W[1873] + W[5745] * W[1468]
+            + W[6150] * W[1063] + W[6555] * W[658] + W[6960] * W[253];
+    W[7144] = W[70] * W[7143] + W[475] * W[6738] + W[880] * W[6333] + W[1285] * W[5928] + W[1690] * W[5523]
+            + W[2095] * W[5118] + W[2500] * W[4713] + W[2905] * W[4308] + W[3310] * W[3903] + W[3715] * W[3498]
+            + W[4120] * W[3093] + W[4525] * W[2688] + W[4930] * W[2283] + W[5335] * W[1878] + W[5740] * W[1473]
+            + W[6145] * W[1068] + W[6550] * W[663] + W[6955] * W[258];
+    W[7152] = W[87] * W[7129] + W[492] * W[6724] + W[897] * W[6319] + W[1302] * W[5914] + W[1707] * W[5509]
+            + W[2112] * W[5104] + W[2517] * W[4699] + W[2922] * W[4294] + W[3327] * W[3889] + W[3732] * W[3484]
+            + W[4137] * W[3079] + W[4542] * W[2674] + W[4947] * W[2269] + W[5352] * W[1864] + W[5757] * W[1459]
+            + W[6162] * W[1054] + W[6567] * W[649] + W[6972] * W[244];
+    W[7154] = W[82] * W[7133] + W[487] * W[6728] + W[892] * W[6323] + W[1297] * W[5918] + W[1702] * W[5513]
+            + W[2107] * W[5108] + W[2512] * W[4703] + W[2917] * W[4298] + W[3322] * W[3893] + W[3727] * W[3488]
+            + W[4132] * W[3083] + W[4537] * W[2678] + W[4942] * W[2273] + W[5347] * W[1868] + W[5752] * W[1463]
+            + W[6157] * W[1058] + W[6562] * W[653] + W[6967] * W[248];
+    W[7157] = W[77] * W[7138] + W[482] * W[6733] + W[887] * W[6328] + W[1292] * W[5923] + W[1697] * W[5518]
+            + W[2102] * W[5113] + W[2507] * W[4708] + W[2912] * W[4303] + W[3317] * W[3898] + W[3722] * W[3493]
+            + W[4127] * W[3088] + W[4532] * W[2683] + W[4937] * W[2278] + W[5342] * W[1873] + W[5747] * W[1468]
+            + W[6152] * W[1063] + W[6557] * W[658] + W[6962] * W[253];
+    W[7160] = W[72] * W[7143] + W[477] * W[6738] + W[882] * W[6333] + W[1287] * W[5928] + W[1692] * W[5523]
+            + W[2097] * W[5118] + W[2502] * W[4713] + W[2907] * W[4308] + W[3312] * W[3903] + W[3717] * W[3498]
+            + W[4122] * W[3093] + W[4527] * W[2688] + W[4932] * W[2283] + W[5337] * W[1878] + W[5742] * W[1473]
+            + W[6147] * W[1068] + W[6552] * W[663] + W[6957] * W[258];
+    W[7170] = W[100] * W[7169] + W[505] * W[6764] + W[910] * W[6359] + W[1315] * W[5954] + W[1720] * W[5549]
+            + W[2125] * W[5144] + W[2530] * W[4739] + W[2935] * W[4334] + W[3340] * W[3929] + W[3745] * W[3524]
+            + W[4150] * W[3119] + W[4555] * W[2714] + W[4960] * W[2309] + W[5365] * W[1904] + W[5770] * W[1499]
+            + W[6175] * W[1094] + W[6580] * W[689] + W[6985] * W[284];
+    W[7174] = W[95] * W[7173] + W[500] * W[6768] + W[905] * W[6363] + W[1310] * W[5958] + W[1715] * W[5553]
+            + W[2120] * W[5148] + W[2525] * W[4743] + W[2930] * W[4338] + W[3335] * W[3933] + W[3740] * W[3528]
+            + W[4145] * W[3123] + W[4550] * W[2718] + W[4955] * W[2313] + W[5360] * W[1908] + W[5765] * W[1503]
+            + W[6170] * W[1098] + W[6575] * W[693] + W[6980] * W[288];
+    W[7179] = W[90] * W[7178] + W[495] * W[6773] + W[900] * W[6368] + W[1305] * W[5963] + W[1710] * W[5558]
+            + W[2115] * W[5153] + W[2520] * W[4748] + W[2925] * W[4343] + W[3330] * W[3938] + W[3735] * W[3533]
+            + W[4140] * W[3128] + W[4545] * W[2723] + W[4950] * W[2318] + W[5355] * W[1913] + W[5760] * W[1508]
+            + W[6165] * W[1103] + W[6570] * W[698] + W[6975] * W[293];
+    W[7189] = W[102] * W[7169] + W[507] * W[6764] + W[912] * W[6359] + W[1317] * W[5954] + W[1722] * W[5549]
+            + W[2127] * W[5144] + W[2532] * W[4739] + W[2937] * W[4334] + W[3342] * W[3929] + W[3747] * W[3524]
+            + W[4152] * W[3119] + W[4557] * W[2714] + W[4962] * W[2309] + W[5367] * W[1904] + W[5772] * W[1499]
+            + W[6177] * W[1094] + W[6582] * W[689] + W[6987] * W[284];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_321(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7218] = W[135] * W[7095];
+    W[7220] = W[130] * W[7047];
+    W[7223] = W[319] * W[7222];
+    W[7225] = W[323] * W[7224];
+    W[7228] = W[142] * W[7194];
+    W[7230] = W[139] * W[7157];
+    W[7232] = W[135] * W[7116];
+    W[7234] = W[130] * W[7071];
+    W[7239] = W[147] * W[7238];
+    W[7240] = W[145] * W[7210];
+    W[7242] = W[143] * W[7174];
+    W[7244] = W[140] * W[7134];
+    W[7246] = W[136] * W[7090];
+    W[7248] = W[131] * W[7042];
+    W[7251] = W[147] * W[7250];
+    W[7252] = W[145] * W[7224];
+    W[7254] = W[143] * W[7191];
+    W[7256] = W[140] * W[7154];
+    W[7258] = W[136] * W[7113];
+    W[7260] = W[131] * W[7068];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_323(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7141] = W[7136] + W[7140];
+    W[7159] = W[7156] + W[7158];
+    W[7181] = W[7176] + W[7180];
+    W[7196] = W[7193] + W[7195];
+    W[7213] = W[3] * W[7212];
+    W[7227] = W[3] * W[7226];
+    W[7243] = W[7241] - W[7242];
+    W[7255] = W[7253] - W[7254];
+    W[7264] = W[7171] + W[7263];
+    W[7271] = W[7190] + W[7270];
+    W[7054] = W[7049] + W[7053];
+    W[7076] = W[7073] + W[7075];
+    W[7102] = W[7097] + W[7101];
+    W[7121] = W[7118] + W[7120];
+    W[7146] = W[7141] + W[7145];
+    W[7162] = W[7159] + W[7161];
+    W[7182] = W[3] * W[7181];
+    W[7197] = W[3] * W[7196];
+    W[7215] = W[7213] - W[7214];
+    W[7229] = W[7227] - W[7228];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_325(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7108] = W[3] * W[7107];
+    W[7125] = W[3] * W[7124];
+    W[7149] = W[7147] - W[7148];
+    W[7165] = W[7163] - W[7164];
+    W[7186] = W[7184] - W[7185];
+    W[7201] = W[7199] - W[7200];
+    W[7219] = W[7217] - W[7218];
+    W[7233] = W[7231] - W[7232];
+    W[7249] = W[7247] - W[7248];
+    W[7261] = W[7259] - W[7260];
+    W[7267] = W[7039] + W[7266];
+    W[7274] = W[7067] + W[7273];
+    W[7065] = W[3] * W[7064];
+    W[7083] = W[3] * W[7082];
+    W[7110] = W[7108] - W[7109];
+    W[7127] = W[7125] - W[7126];
+    W[7151] = W[7149] - W[7150];
+    W[7167] = W[7165] - W[7166];
+    W[7188] = W[7186] - W[7187];
+    W[7203] = W[7201] - W[7202];
+    return 0;
+}
+
+/* Lines 340 .. 351 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_327(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[520] = -W[7110] / W[121] / 18.0;
+    X[521] = -W[7127] / W[121] / 18.0;
+    X[522] = -W[7151] / W[122] / 18.0;
+    X[523] = -W[7167] / W[122] / 18.0;
+    X[524] = -W[7188] / W[123] / 18.0;
+    X[525] = -W[7203] / W[123] / 18.0;
+    X[526] = -W[7221] / W[124] / 18.0;
+    X[527] = -W[7235] / W[124] / 18.0;
+    X[528] = -W[7249] / W[125] / 18.0;
+    X[529] = -W[7261] / W[125] / 18.0;
+    X[530] = -W[7268] / W[126] / 18.0;
+    X[531] = -W[7275] / W[126] / 18.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_328(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7292] = X[504] - X[506];
+    W[7297] = X[505] - X[507];
+    W[7301] = X[504] - X[508];
+    W[7304] = X[505] - X[509];
+    W[7308] = X[504] - X[510];
+    W[7311] = X[505] - X[511];
+    W[7315] = X[504] - X[512];
+    W[7318] = X[505] - X[513];
+    W[7322] = X[504] - X[514];
+    W[7325] = X[505] - X[515];
+    W[7329] = X[504] - X[516];
+    W[7332] = X[505] - X[517];
+    W[7335] = X[506] - X[508];
+    W[7337] = X[507] - X[509];
+    W[7340] = X[506] - X[510];
+    W[7342] = X[507] - X[511];
+    W[7345] = X[506] - X[512];
+    W[7347] = X[507] - X[513];
+    W[7350] = X[506] - X[514];
+    W[7352] = X[507] - X[515];
+    return 0;
+}
+
+/* Lines 40 .. 59 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_330(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7405] = X[514] - X[516];
+    W[7407] = X[515] - X[517];
+    W[7294] = (W[2] * W[7292] + W[407] * W[6887] + W[812] * W[6482] + W[1217] * W[6077] + W[1622] * W[5672]
+            + W[2027] * W[5267] + W[2432] * W[4862] + W[2837] * W[4457] + W[3242] * W[4052]) * 2.0
+            + W[3647] * W[3647];
+    W[7298] = (W[7] * W[7297] + W[412] * W[6892] + W[817] * W[6487] + W[1222] * W[6082] + W[1627] * W[5677]
+            + W[2032] * W[5272] + W[2437] * W[4867] + W[2842] * W[4462] + W[3247] * W[4057]) * 2.0
+            + W[3652] * W[3652];
+    W[7302] = (W[11] * W[7301] + W[416] * W[6896] + W[821] * W[6491] + W[1226] * W[6086] + W[1631] * W[5681]
+            + W[2036] * W[5276] + W[2441] * W[4871] + W[2846] * W[4466] + W[3251] * W[4061]) * 2.0
+            + W[3656] * W[3656];
+    W[7305] = (W[14] * W[7304] + W[419] * W[6899] + W[824] * W[6494] + W[1229] * W[6089] + W[1634] * W[5684]
+            + W[2039] * W[5279] + W[2444] * W[4874] + W[2849] * W[4469] + W[3254] * W[4064]) * 2.0
+            + W[3659] * W[3659];
+    W[7309] = (W[18] * W[7308] + W[423] * W[6903] + W[828] * W[6498] + W[1233] * W[6093] + W[1638] * W[5688]
+            + W[2043] * W[5283] + W[2448] * W[4878] + W[2853] * W[4473] + W[3258] * W[4068]) * 2.0
+            + W[3663] * W[3663];
+    W[7312] = (W[21] * W[7311] + W[426] * W[6906] + W[831] * W[6501] + W[1236] * W[6096] + W[1641] * W[5691]
+            + W[2046] * W[5286] + W[2451] * W[4881] + W[2856] * W[4476] + W[3261] * W[4071]) * 2.0
+            + W[3666] * W[3666];
+    W[7316] = (W[25] * W[7315] + W[430] * W[6910] + W[835] * W[6505] + W[1240] * W[6100] + W[1645] * W[5695]
+            + W[2050] * W[5290] + W[2455] * W[4885] + W[2860] * W[4480] + W[3265] * W[4075]) * 2.0
+            + W[3670] * W[3670];
+    W[7319] = (W[28] * W[7318] + W[433] * W[6913] + W[838] * W[6508] + W[1243] * W[6103] + W[1648] * W[5698]
+            + W[2053] * W[5293] + W[2458] * W[4888] + W[2863] * W[4483] + W[3268] * W[4078]) * 2.0
+            + W[3673] * W[3673];
+    W[7323] = (W[32] * W[7322] + W[437] * W[6917] + W[842] * W[6512] + W[1247] * W[6107] + W[1652] * W[5702]
+            + W[2057] * W[5297] + W[2462] * W[4892] + W[2867] * W[4487] + W[3272] * W[4082]) * 2.0
+            + W[3677] * W[3677];
+    W[7326] = (W[35] * W[7325] + W[440] * W[6920] + W[845] * W[6515] + W[1250] * W[6110] + W[1655] * W[5705]
+            + W[2060] * W[5300] + W[2465] * W[4895] + W[2870] * W[4490] + W[3275] * W[4085]) * 2.0
+            + W[3680] * W[3680];
+    W[7330] = (W[39] * W[7329] + W[444] * W[6924] + W[849] * W[6519] + W[1254] * W[6114] + W[1659] * W[5709]
+            + W[2064] * W[5304] + W[2469] * W[4899] + W[2874] * W[4494] + W[3279] * W[4089]) * 2.0
+            + W[3684] * W[3684];
+    W[7333] = (W[42] * W[7332] + W[447] * W[6927] + W[852] * W[6522] + W[1257] * W[6117] + W[1662] * W[5712]
+            + W[2067] * W[5307] + W[2472] * W[4902] + W[2877] * W[4497] + W[3282] * W[4092]) * 2.0
+            + W[3687] * W[3687];
+    W[7336] = (W[45] * W[7335] + W[450] * W[6930] + W[855] * W[6525] + W[1260] * W[6120] + W[1665] * W[5715]
+            + W[2070] * W[5310] + W[2475] * W[4905] + W[2880] * W[4500] + W[3285] * W[4095]) * 2.0
+            + W[3690] * W[3690];
+    W[7338] = (W[47] * W[7337] + W[452] * W[6932] + W[857] * W[6527] + W[1262] * W[6122] + W[1667] * W[5717]
+            + W[2072] * W[5312] + W[2477] * W[4907] + W[2882] * W[4502] + W[3287] * W[4097]) * 2.0
+            + W[3692] * W[3692];
+    W[7341] = (W[50] * W[7340] + W[455] * W[6935] + W[860] * W[6530] + W[1265] * W[6125] + W[1670] * W[5720]
+            + W[2075] * W[5315] + W[2480] * W[4910] + W[2885] * W[4505] + W[3290] * W[4100]) * 2.0
+            + W[3695] * W[3695];
+    W[7343] = (W[52] * W[7342] + W[457] * W[6937] + W[862] * W[6532] + W[1267] * W[6127] + W[1672] * W[5722]
+            + W[2077] * W[5317] + W[2482] * W[4912] + W[2887] * W[4507] + W[3292] * W[4102]) * 2.0
+            + W[3697] * W[3697];
+    W[7346] = (W[55] * W[7345] + W[460] * W[6940] + W[865] * W[6535] + W[1270] * W[6130] + W[1675] * W[5725]
+            + W[2080] * W[5320] + W[2485] * W[4915] + W[2890] * W[4510] + W[3295] * W[4105]) * 2.0
+            + W[3700] * W[3700];
+    W[7348] = (W[57] * W[7347] + W[462] * W[6942] + W[867] * W[6537] + W[1272] * W[6132] + W[1677] * W[5727]
+            + W[2082] * W[5322] + W[2487] * W[4917] + W[2892] * W[4512] + W[3297] * W[4107]) * 2.0
+            + W[3702] * W[3702];
+    return 0;
+}
+
+/* Lines 80 .. 99 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_332(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7401] = (W[110] * W[7400] + W[515] * W[6995] + W[920] * W[6590] + W[1325] * W[6185] + W[1730] * W[5780]
+            + W[2135] * W[5375] + W[2540] * W[4970] + W[2945] * W[4565] + W[3350] * W[4160]) * 2.0
+            + W[3755] * W[3755];
+    W[7403] = (W[112] * W[7402] + W[517] * W[6997] + W[922] * W[6592] + W[1327] * W[6187] + W[1732] * W[5782]
+            + W[2137] * W[5377] + W[2542] * W[4972] + W[2947] * W[4567] + W[3352] * W[4162]) * 2.0
+            + W[3757] * W[3757];
+    W[7406] = (W[115] * W[7405] + W[520] * W[7000] + W[925] * W[6595] + W[1330] * W[6190] + W[1735] * W[5785]
+            + W[2140] * W[5380] + W[2545] * W[4975] + W[2950] * W[4570] + W[3355] * W[4165]) * 2.0
+            + W[3760] * W[3760];
+    W[7408] = (W[117] * W[7407] + W[522] * W[7002] + W[927] * W[6597] + W[1332] * W[6192] + W[1737] * W[5787]
+            + W[2142] * W[5382] + W[2547] * W[4977] + W[2952] * W[4572] + W[3357] * W[4167]) * 2.0
+            + W[3762] * W[3762];
+    W[7299] = W[7294] + W[7298];
+    W[7306] = W[7302] + W[7305];
+    W[7313] = W[7309] + W[7312];
+    W[7320] = W[7316] + W[7319];
+    W[7327] = W[7323] + W[7326];
+    W[7334] = W[7330] + W[7333];
+    W[7339] = W[7336] + W[7338];
+    W[7344] = W[7341] + W[7343];
+    W[7349] = W[7346] + W[7348];
+    W[7354] = W[7351] + W[7353];
+    W[7359] = W[7356] + W[7358];
+    W[7364] = W[7361] + W[7363];
+    W[7369] = W[7366] + W[7368];
+    W[7374] = W[7371] + W[7373];
+    W[7379] = W[7376] + W[7378];
+    W[7384] = W[7381] + W[7383];
+    return 0;
+}
+
+/* Lines 120 .. 139 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_334(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7574] = (-27.0 * W[7394] * W[284] - 26.5 * W[6989] * W[689] - 26.0 * W[6584] * W[1094] - 25.5 * W[6179] * W[1499]
+            - 25.0 * W[5774] * W[1904] - 24.5 * W[5369] * W[2309] - 24.0 * W[4964] * W[2714] - 23.5 * W[4559] * W[3119]
+            - 23.0 * W[4154] * W[3524] - 22.5 * W[3749] * W[3929] - 22.0 * W[3344] * W[4334] - 21.5 * W[2939] * W[4739]
+            - 21.0 * W[2534] * W[5144] - 20.5 * W[2129] * W[5549] - 20.0 * W[1724] * W[5954] - 19.5 * W[1319] * W[6359]
+            - 19.0 * W[914] * W[6764] - 18.5 * W[509] * W[7169]) / (18.0 * W[104]);
+    W[7578] = (-27.0 * W[7389] * W[288] - 26.5 * W[6984] * W[693] - 26.0 * W[6579] * W[1098] - 25.5 * W[6174] * W[1503]
+            - 25.0 * W[5769] * W[1908] - 24.5 * W[5364] * W[2313] - 24.0 * W[4959] * W[2718] - 23.5 * W[4554] * W[3123]
+            - 23.0 * W[4149] * W[3528] - 22.5 * W[3744] * W[3933] - 22.0 * W[3339] * W[4338] - 21.5 * W[2934] * W[4743]
+            - 21.0 * W[2529] * W[5148] - 20.5 * W[2124] * W[5553] - 20.0 * W[1719] * W[5958] - 19.5 * W[1314] * W[6363]
+            - 19.0 * W[909] * W[6768] - 18.5 * W[504] * W[7173]) / (18.0 * W[99]);
+    W[7583] = (-27.0 * W[7384] * W[293] - 26.5 * W[6979] * W[698] - 26.0 * W[6574] * W[1103] - 25.5 * W[6169] * W[1508]
+            - 25.0 * W[5764] * W[1913] - 24.5 * W[5359] * W[2318] - 24.0 * W[4954] * W[2723] - 23.5 * W[4549] * W[3128]
+            - 23.0 * W[4144] * W[3533] - 22.5 * W[3739] * W[3938] - 22.0 * W[3334] * W[4343] - 21.5 * W[2929] * W[4748]
+            - 21.0 * W[2524] * W[5153] - 20.5 * W[2119] * W[5558] - 20.0 * W[1714] * W[5963] - 19.5 * W[1309] * W[6368]
+            - 19.0 * W[904] * W[6773] - 18.5 * W[499] * W[7178]) / (18.0 * W[94]);
+    W[7610] = (-27.0 * W[7404] * W[320] - 26.5 * W[6999] * W[725] - 26.0 * W[6594] * W[1130] - 25.5 * W[6189] * W[1535]
+            - 25.0 * W[5784] * W[1940] - 24.5 * W[5379] * W[2345] - 24.0 * W[4974] * W[2750] - 23.5 * W[4569] * W[3155]
+            - 23.0 * W[4164] * W[3560] - 22.5 * W[3759] * W[3965] - 22.0 * W[3354] * W[4370] - 21.5 * W[2949] * W[4775]
+            - 21.0 * W[2544] * W[5180] - 20.5 * W[2139] * W[5585] - 20.0 * W[1734] * W[5990] - 19.5 * W[1329] * W[6395]
+            - 19.0 * W[924] * W[6800] - 18.5 * W[519] * W[7205]) / (18.0 * W[114]);
+    W[7614] = (-27.0 * W[7399] * W[324] - 26.5 * W[6994] * W[729] - 26.0 * W[6589] * W[1134] - 25.5 * W[6184] * W[1539]
+            - 25.0 * W[5779] * W[1944] - 24.5 * W[5374] * W[2349] - 24.0 * W[4969] * W[2754] - 23.5 * W[4564] * W[3159]
+            - 23.0 * W[4159] * W[3564] - 22.5 * W[3754] * W[3969] - 22.0 * W[3349] * W[4374] - 21.5 * W[2944] * W[4779]
+            - 21.0 * W[2539] * W[5184] - 20.5 * W[2134] * W[5589] - 20.0 * W[1729] * W[5994] - 19.5 * W[1324] * W[6399]
+            - 19.0 * W[919] * W[6804] - 18.5 * W[514] * W[7209]) / (18.0 * W[109]);
+    W[7642] = (-27.0 * W[7409] * W[352] - 26.5 * W[7004] * W[757] - 26.0 * W[6599] * W[1162] - 25.5 * W[6194] * W[1567]
+            - 25.0 * W[5789] * W[1972] - 24.5 * W[5384] * W[2377] - 24.0 * W[4979] * W[2782] - 23.5 * W[4574] * W[3187]
+            - 23.0 * W[4169] * W[3592] - 22.5 * W[3764] * W[3997] - 22.0 * W[3359] * W[4402] - 21.5 * W[2954] * W[4807]
+            - 21.0 * W[2549] * W[5212] - 20.5 * W[2144] * W[5617] - 20.0 * W[1739] * W[6022] - 19.5 * W[1334] * W[6427]
+            - 19.0 * W[929] * W[6832] - 18.5 * W[524] * W[7237]) / (18.0 * W[119]);
+    W[7443] = W[39] * W[7442] + W[444] * W[7037] + W[849] * W[6632] + W[1254] * W[6227] + W[1659] * W[5822]
+            + W[2064] * W[5417] + W[2469] * W[5012] + W[2874] * W[4607] + W[3279] * W[4202] + W[3684] * W[3797]
+            + W[4089] * W[3392] + W[4494] * W[2987] + W[4899] * W[2582] + W[5304] * W[2177] + W[5709] * W[1772]
+            + W[6114] * W[1367] + W[6519] * W[962] + W[6924] * W[557] + W[7329] * W[152];
+    W[7447] = W[32] * W[7446] + W[437] * W[7041] + W[842] * W[6636] + W[1247] * W[6231] + W[1652] * W[5826]
+            + W[2057] * W[5421] + W[2462] * W[5016] + W[2867] * W[4611] + W[3272] * W[4206] + W[3677] * W[3801]
+            + W[4082] * W[3396] + W[4487] * W[2991] + W[4892] * W[2586] + W[5297] * W[2181] + W[5702] * W[1776]
+            + W[6107] * W[1371] + W[6512] * W[966] + W[6917] * W[561] + W[7322] * W[156];
+    W[7452] = W[25] * W[7451] + W[430] * W[7046] + W[835] * W[6641] + W[1240] * W[6236] + W[1645] * W[5831]
+            + W[2050] * W[5426] + W[2455] * W[5021] + W[2860] * W[4616] + W[3265] * W[4211] + W[3670] * W[3806]
+            + W[4075] * W[3401] + W[4480] * W[2996] + W[4885] * W[2591] + W[5290] * W[2186] + W[5695] * W[1781]
+            + W[6100] * W[1376] + W[6505] * W[971] + W[6910] * W[566] + W[7315] * W[161];
+    W[7457] = W[18] * W[7456] + W[423] * W[7051] + W[828] * W[6646] + W[1233] * W[6241] + W[1638] * W[5836]
+            + W[2043] * W[5431] + W[2448] * W[5026] + W[2853] * W[4621] + W[3258] * W[4216] + W[3663] * W[3811]
+            + W[4068] * W[3406] + W[4473] * W[3001] + W[4878] * W[2596] + W[5283] * W[2191] + W[5688] * W[1786]
+            + W[6093] * W[1381] + W[6498] * W[976] + W[6903] * W[571] + W[7308] * W[166];
+    W[7462] = W[11] * W[7461] + W[416] * W[7056] + W[821] * W[6651] + W[1226] * W[6246] + W[1631] * W[5841]
+            + W[2036] * W[5436] + W[2441] * W[5031] + W[2846] * W[4626] + W[3251] * W[4221] + W[3656] * W[3816]
+            + W[4061] * W[3411] + W[4466] * W[3006] + W[4871] * W[2601] + W[5276] * W[2196] + W[5681] * W[1791]
+            + W[6086] * W[1386] + W[6491] * W[981] + W[6896] * W[576] + W[7301] * W[171];
+    W[7467] = W[2] * W[7466] + W[407] * W[7061] + W[812] * W[6656] + W[1217] * W[6251] + W[1622] * W[5846]
+            + W[2027] * W[5441] + W[2432] * W[5036] + W[2837] * W[4631] + W[3242] * W[4226] + W[3647] * W[3821]
+            + W[4052] * W[3416] + W[4457] * W[3011] + W[4862] * W[2606] + W[5267] * W[2201] + W[5672] * W[1796]
+            + W[6077] * W[1391] + W[6482] * W[986] + W[6887] * W[581] + W[7292] * W[176];
+    W[7471] = W[42] * W[7442] + W[447] * W[7037] + W[852] * W[6632] + W[1257] * W[6227] + W[1662] * W[5822]
+            + W[2067] * W[5417] + W[2472] * W[5012] + W[2877] * W[4607] + W[3282] * W[4202] + W[3687] * W[3797]
+            + W[4092] * W[3392] + W[4497] * W[2987] + W[4902] * W[2582] + W[5307] * W[2177] + W[5712] * W[1772]
+            + W[6117] * W[1367] + W[6522] * W[962] + W[6927] * W[557] + W[7332] * W[152];
+    W[7473] = W[35] * W[7446] + W[440] * W[7041] + W[845] * W[6636] + W[1250] * W[6231] + W[1655] * W[5826]
+            + W[2060] * W[5421] + W[2465] * W[5016] + W[2870] * W[4611] + W[3275] * W[4206] + W[3680] * W[3801]
+            + W[4085] * W[3396] + W[4490] * W[2991] + W[4895] * W[2586] + W[5300] * W[2181] + W[5705] * W[1776]
+            + W[6110] * W[1371] + W[6515] * W[966] + W[6920] * W[561] + W[7325] * W[156];
+    W[7476] = W[28] * W[7451] + W[433] * W[7046] + W[838] * W[6641] + W[1243] * W[6236] + W[1648] * W[5831]
+            + W[2053] * W[5426] + W[2458] * W[5021] + W[2863] * W[4616] + W[3268] * W[4211] + W[3673] * W[3806]
+            + W[4078] * W[3401] + W[4483] * W[2996] + W[4888] * W[2591] + W[5293] * W[2186] + W[5698] * W[1781]
+            + W[6103] * W[1376] + W[6508] * W[971] + W[6913] * W[566] + W[7318] * W[161];
+    W[7479] = W[21] * W[7456] + W[426] * W[7051] + W[831] * W[6646] + W[1236] * W[6241] + W[1641] * W[5836]
+            + W[2046] * W[5431] + W[2451] * W[5026] + W[2856] * W[4621] + W[3261] * W[4216] + W[3666] * W[3811]
+            + W[4071] * W[3406] + W[4476] * W[3001] + W[4881] * W[2596] + W[5286] * W[2191] + W[5691] * W[1786]
+            + W[6096] * W[1381] + W[6501] * W[976] + W[6906] * W[571] + W[7311] * W[166];
+    W[7482] = W[14] * W[7461] + W[419] * W[7056] + W[824] * W[6651] + W[1229] * W[6246] + W[1634] * W[5841]
+            + W[2039] * W[5436] + W[2444] * W[5031] + W[2849] * W[4626] + W[3254] * W[4221] + W[3659] * W[3816]
+            + W[4064] * W[3411] + W[4469] * W[3006] + W[4874] * W[2601] + W[5279] * W[2196] + W[5684] * W[1791]
+            + W[6089] * W[1386] + W[6494] * W[981] + W[6899] * W[576] + W[7304] * W[171];
+    W[7485] = W[7] * W[7466] + W[412] * W[7061] + W[817] * W[6656] + W[1222] * W[6251] + W[1627] * W[5846]
+            + W[2032] * W[5441] + W[2437] * W[5036] + W[2842] * W[4631] + W[3247] * W[4226] + W[3652] * W[3821]
+            + W[4057] * W[3416] + W[4462] * W[3011] + W[4867] * W[2606] + W[5272] * W[2201] + W[5677] * W[1796]
+            + W[6082] * W[1391] + W[6487] * W[986] + W[6892] * W[581] + W[7297] * W[176];
+    W[7491] = W[65] * W[7490] + W[470] * W[7085] + W[875] * W[6680] + W[1280] * W[6275] + W[1685] * W[5870]
+            + W[2090] * W[5465] + W[2495] * W[5060] + W[2900] * W[4655] + W[3305] * W[4250] + W[3710] * W[3845]
+            + W[4115] * W[3440] + W[4520] * W[3035] + W[4925] * W[2630] + W[5330] * W[2225] + W[5735] * W[1820]
+            + W[6140] * W[1415] + W[6545] * W[1010] + W[6950] * W[605] + W[7355] * W[200];
+    W[7495] = W[60] * W[7494] + W[465] * W[7089] + W[870] * W[6684] + W[1275] * W[6279] + W[1680] * W[5874]
+            + W[2085] * W[5469] + W[2490] * W[5064] + W[2895] * W[4659] + W[3300] * W[4254] + W[3705] * W[3849]
+            + W[4110] * W[3444] + W[4515] * W[3039] + W[4920] * W[2634] + W[5325] * W[2229] + W[5730] * W[1824]
+            + W[6135] * W[1419] + W[6540] * W[1014] + W[6945] * W[609] + W[7350] * W[204];
+    return 0;
+}
+
+/* Lines 160 .. 179 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_336(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7596] = W[97] * W[7578] + W[502] * W[7173] + W[907] * W[6768] + W[1312] * W[6363] + W[1717] * W[5958]
+            + W[2122] * W[5553] + W[2527] * W[5148] + W[2932] * W[4743] + W[3337] * W[4338] + W[3742] * W[3933]
+            + W[4147] * W[3528] + W[4552] * W[3123] + W[4957] * W[2718] + W[5362] * W[2313] + W[5767] * W[1908]
+            + W[6172] * W[1503] + W[6577] * W[1098] + W[6982] * W[693] + W[7387] * W[288];
+    W[7599] = W[92] * W[7583] + W[497] * W[7178] + W[902] * W[6773] + W[1307] * W[6368] + W[1712] * W[5963]
+            + W[2117] * W[5558] + W[2522] * W[5153] + W[2927] * W[4748] + W[3332] * W[4343] + W[3737] * W[3938]
+            + W[4142] * W[3533] + W[4547] * W[3128] + W[4952] * W[2723] + W[5357] * W[2318] + W[5762] * W[1913]
+            + W[6167] * W[1508] + W[6572] * W[1103] + W[6977] * W[698] + W[7382] * W[293];
+    W[7611] = W[110] * W[7610] + W[515] * W[7205] + W[920] * W[6800] + W[1325] * W[6395] + W[1730] * W[5990]
+            + W[2135] * W[5585] + W[2540] * W[5180] + W[2945] * W[4775] + W[3350] * W[4370] + W[3755] * W[3965]
+            + W[4160] * W[3560] + W[4565] * W[3155] + W[4970] * W[2750] + W[5375] * W[2345] + W[5780] * W[1940]
+            + W[6185] * W[1535] + W[6590] * W[1130] + W[6995] * W[725] + W[7400] * W[320];
+    W[7615] = W[105] * W[7614] + W[510] * W[7209] + W[915] * W[6804] + W[1320] * W[6399] + W[1725] * W[5994]
+            + W[2130] * W[5589] + W[2535] * W[5184] + W[2940] * W[4779] + W[3345] * W[4374] + W[3750] * W[3969]
+            + W[4155] * W[3564] + W[4560] * W[3159] + W[4965] * W[2754] + W[5370] * W[2349] + W[5775] * W[1944]
+            + W[6180] * W[1539] + W[6585] * W[1134] + W[6990] * W[729] + W[7395] * W[324];
+    W[7627] = W[112] * W[7610] + W[517] * W[7205] + W[922] * W[6800] + W[1327] * W[6395] + W[1732] * W[5990]
+            + W[2137] * W[5585] + W[2542] * W[5180] + W[2947] * W[4775] + W[3352] * W[4370] + W[3757] * W[3965]
+            + W[4162] * W[3560] + W[4567] * W[3155] + W[4972] * W[2750] + W[5377] * W[2345] + W[5782] * W[1940]
+            + W[6187] * W[1535] + W[6592] * W[1130] + W[6997] * W[725] + W[7402] * W[320];
+    W[7629] = W[107] * W[7614] + W[512] * W[7209] + W[917] * W[6804] + W[1322] * W[6399] + W[1727] * W[5994]
+            + W[2132] * W[5589] + W[2537] * W[5184] + W[2942] * W[4779] + W[3347] * W[4374] + W[3752] * W[3969]
+            + W[4157] * W[3564] + W[4562] * W[3159] + W[4967] * W[2754] + W[5372] * W[2349] + W[5777] * W[1944]
+            + W[6182] * W[1539] + W[6587] * W[1134] + W[6992] * W[729] + W[7397] * W[324];
+    W[7643] = W[115] * W[7642] + W[520] * W[7237] + W[925] * W[6832] + W[1330] * W[6427] + W[1735] * W[6022]
+            + W[2140] * W[5617] + W[2545] * W[5212] + W[2950] * W[4807] + W[3355] * W[4402] + W[3760] * W[3997]
+            + W[4165] * W[3592] + W[4570] * W[3187] + W[4975] * W[2782] + W[5380] * W[2377] + W[5785] * W[1972]
+            + W[6190] * W[1567] + W[6595] * W[1162] + W[7000] * W[757] + W[7405] * W[352];
+    W[7655] = W[117] * W[7642] + W[522] * W[7237] + W[927] * W[6832] + W[1332] * W[6427] + W[1737] * W[6022]
+            + W[2142] * W[5617] + W[2547] * W[5212] + W[2952] * W[4807] + W[3357] * W[4402] + W[3762] * W[3997]
+            + W[4167] * W[3592] + W[4572] * W[3187] + W[4977] * W[2782] + W[5382] * W[2377] + W[5787] * W[1972]
+            + W[6192] * W[1567] + W[6597] * W[1162] + W[7002] * W[757] + W[7407] * W[352];
+    W[7444] = W[151] * W[7443];
+    W[7448] = W[155] * W[7447];
+    W[7453] = W[160] * W[7452];
+    W[7458] = W[165] * W[7457];
+    W[7463] = W[170] * W[7462];
+    W[7468] = W[175] * W[7467];
+    W[7472] = W[151] * W[7471];
+    W[7474] = W[155] * W[7473];
+    W[7477] = W[160] * W[7476];
+    W[7480] = W[165] * W[7479];
+    W[7483] = W[170] * W[7482];
+    W[7486] = W[175] * W[7485];
+    return 0;
+}
+
+/* Lines 180 .. 199 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_337(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7492] = W[199] * W[7491];
+    W[7496] = W[203] * W[7495];
+    W[7501] = W[208] * W[7500];
+    W[7506] = W[213] * W[7505];
+    W[7511] = W[218] * W[7510];
+    W[7514] = W[127] * W[7467];
+    W[7517] = W[199] * W[7516];
+    W[7519] = W[203] * W[7518];
+    W[7522] = W[208] * W[7521];
+    W[7525] = W[213] * W[7524];
+    W[7528] = W[218] * W[7527];
+    W[7531] = W[127] * W[7485];
+    W[7536] = W[243] * W[7535];
+    W[7540] = W[247] * W[7539];
+    W[7545] = W[252] * W[7544];
+    W[7550] = W[257] * W[7549];
+    W[7553] = W[133] * W[7510];
+    W[7555] = W[128] * W[7462];
+    W[7558] = W[243] * W[7557];
+    W[7560] = W[247] * W[7559];
+    return 0;
+}
+
+/* Lines 200 .. 219 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_338(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7563] = W[252] * W[7562];
+    W[7566] = W[257] * W[7565];
+    W[7569] = W[133] * W[7527];
+    W[7571] = W[128] * W[7482];
+    W[7576] = W[283] * W[7575];
+    W[7580] = W[287] * W[7579];
+    W[7585] = W[292] * W[7584];
+    W[7588] = W[138] * W[7549];
+    W[7590] = W[134] * W[7505];
+    W[7592] = W[129] * W[7457];
+    W[7595] = W[283] * W[7594];
+    W[7597] = W[287] * W[7596];
+    W[7600] = W[292] * W[7599];
+    W[7603] = W[138] * W[7565];
+    W[7605] = W[134] * W[7524];
+    W[7607] = W[129] * W[7479];
+    W[7612] = W[319] * W[7611];
+    W[7616] = W[323] * W[7615];
+    W[7619] = W[142] * W[7584];
+    W[7621] = W[139] * W[7544];
+    return 0;
+}
+
+/* Lines 240 .. 259 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_340(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7667] = W[351] * W[7643];
+    W[7674] = W[351] * W[7655];
+    W[7449] = W[7444] + W[7448];
+    W[7475] = W[7472] + W[7474];
+    W[7497] = W[7492] + W[7496];
+    W[7520] = W[7517] + W[7519];
+    W[7541] = W[7536] + W[7540];
+    W[7561] = W[7558] + W[7560];
+    W[7581] = W[7576] + W[7580];
+    W[7598] = W[7595] + W[7597];
+    W[7617] = W[7612] + W[7616];
+    W[7631] = W[7628] + W[7630];
+    W[7646] = W[7644] - W[7645];
+    W[7658] = W[7656] - W[7657];
+    W[7668] = W[7612] + W[7667];
+    W[7675] = W[7628] + W[7674];
+    W[7454] = W[7449] + W[7453];
+    W[7478] = W[7475] + W[7477];
+    W[7502] = W[7497] + W[7501];
+    W[7523] = W[7520] + W[7522];
+    return 0;
+}
+
+/* Lines 280 .. 299 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_342(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7650] = W[7648] - W[7649];
+    W[7662] = W[7660] - W[7661];
+    W[7670] = W[7536] + W[7669];
+    W[7677] = W[7558] + W[7676];
+    W[7464] = W[7459] + W[7463];
+    W[7484] = W[7481] + W[7483];
+    W[7512] = W[7507] + W[7511];
+    W[7529] = W[7526] + W[7528];
+    W[7552] = W[3] * W[7551];
+    W[7568] = W[3] * W[7567];
+    W[7589] = W[7587] - W[7588];
+    W[7604] = W[7602] - W[7603];
+    W[7622] = W[7620] - W[7621];
+    W[7636] = W[7634] - W[7635];
+    W[7652] = W[7650] - W[7651];
+    W[7664] = W[7662] - W[7663];
+    W[7671] = W[7492] + W[7670];
+    W[7678] = W[7517] + W[7677];
+    W[7469] = W[7464] + W[7468];
+    W[7487] = W[7484] + W[7486];
+    return 0;
+}
+
+/* Lines 320 .. 339 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_344(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7626] = W[7624] - W[7625];
+    W[7640] = W[7638] - W[7639];
+    W[7673] = W[148] * W[7672];
+    W[7680] = W[148] * W[7679];
+    X[532] = X[518] / 19.0;
+    X[533] = X[519] / 19.0;
+    X[534] = X[520] / 19.0;
+    X[535] = X[521] / 19.0;
+    X[536] = X[522] / 19.0;
+    X[537] = X[523] / 19.0;
+    X[538] = X[524] / 19.0;
+    X[539] = X[525] / 19.0;
+    X[540] = X[526] / 19.0;
+    X[541] = X[527] / 19.0;
+    X[542] = X[528] / 19.0;
+    X[543] = X[529] / 19.0;
+    X[544] = X[530] / 19.0;
+    X[545] = X[531] / 19.0;
+    X[546] = -W[7470] / W[120] / 19.0;
+    X[547] = -W[7488] / W[120] / 19.0;
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 19, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_347(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7760] = X[534] - X[544];
+    W[7762] = X[535] - X[545];
+    W[7765] = X[536] - X[538];
+    W[7767] = X[537] - X[539];
+    W[7770] = X[536] - X[540];
+    W[7772] = X[537] - X[541];
+    W[7775] = X[536] - X[542];
+    W[7777] = X[537] - X[543];
+    W[7780] = X[536] - X[544];
+    W[7782] = X[537] - X[545];
+    W[7785] = X[538] - X[540];
+    W[7787] = X[539] - X[541];
+    W[7790] = X[538] - X[542];
+    W[7792] = X[539] - X[543];
+    W[7795] = X[538] - X[544];
+    W[7797] = X[539] - X[545];
+    W[7800] = X[540] - X[542];
+    W[7802] = X[541] - X[543];
+    W[7805] = X[540] - X[544];
+    W[7807] = X[541] - X[545];
+    return 0;
+}
+
+/* Lines 60 .. 79 of taylor_run's order 19, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_349(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7756] = (W[60] * W[7755] + W[465] * W[7350] + W[870] * W[6945] + W[1275] * W[6540] + W[1680] * W[6135]
+            + W[2085] * W[5730] + W[2490] * W[5325] + W[2895] * W[4920] + W[3300] * W[4515] + W[3705] * W[4110]) * 2.0;
+    W[7758] = (W[62] * W[7757] + W[467] * W[7352] + W[872] * W[6947] + W[1277] * W[6542] + W[1682] * W[6137]
+            + W[2087] * W[5732] + W[2492] * W[5327] + W[2897] * W[4922] + W[3302] * W[4517] + W[3707] * W[4112]) * 2.0;
+    W[7761] = (W[65] * W[7760] + W[470] * W[7355] + W[875] * W[6950] + W[1280] * W[6545] + W[1685] * W[6140]
+            + W[2090] * W[5735] + W[2495] * W[5330] + W[2900] * W[4925] + W[3305] * W[4520] + W[3710] * W[4115]) * 2.0;
+    W[7763] = (W[67] * W[7762] + W[472] * W[7357] + W[877] * W[6952] + W[1282] * W[6547] + W[1687] * W[6142]
+            + W[2092] * W[5737] + W[2497] * W[5332] + W[2902] * W[4927] + W[3307] * W[4522] + W[3712] * W[4117]) * 2.0;
+    W[7766] = (W[70] * W[7765] + W[475] * W[7360] + W[880] * W[6955] + W[1285] * W[6550] + W[1690] * W[6145]
+            + W[2095] * W[5740] + W[2500] * W[5335] + W[2905] * W[4930] + W[3310] * W[4525] + W[3715] * W[4120]) * 2.0;
+    W[7768] = (W[72] * W[7767] + W[477] * W[7362] + W[882] * W[6957] + W[1287] * W[6552] + W[1692] * W[6147]
+            + W[2097] * W[5742] + W[2502] * W[5337] + W[2907] * W[4932] + W[3312] * W[4527] + W[3717] * W[4122]) * 2.0;
+    W[7771] = (W[75] * W[7770] + W[480] * W[7365] + W[885] * W[6960] + W[1290] * W[6555] + W[1695] * W[6150]
+            + W[2100] * W[5745] + W[2505] * W[5340] + W[2910] * W[4935] + W[3315] * W[4530] + W[3720] * W[4125]) * 2.0;
+    W[7773] = (W[77] * W[7772] + W[482] * W[7367] + W[887] * W[6962] + W[1292] * W[6557] + W[1697] * W[6152]
+            + W[2102] * W[5747] + W[2507] * W[5342] + W[2912] * W[4937] + W[3317] * W[4532] + W[3722] * W[4127]) * 2.0;
+    W[7776] = (W[80] * W[7775] + W[485] * W[7370] + W[890] * W[6965] + W[1295] * W[6560] + W[1700] * W[6155]
+            + W[2105] * W[5750] + W[2510] * W[5345] + W[2915] * W[4940] + W[3320] * W[4535] + W[3725] * W[4130]) * 2.0;
+    W[7778] = (W[82] * W[7777] + W[487] * W[7372] + W[892] * W[6967] + W[1297] * W[6562] + W[1702] * W[6157]
+            + W[2107] * W[5752] + W[2512] * W[5347] + W[2917] * W[4942] + W[3322] * W[4537] + W[3727] * W[4132]) * 2.0;
+    W[7781] = (W[85] * W[7780] + W[490] * W[7375] + W[895] * W[6970] + W[1300] * W[6565] + W[1705] * W[6160]
+            + W[2110] * W[5755] + W[2515] * W[5350] + W[2920] * W[4945] + W[3325] * W[4540] + W[3730] * W[4135]) * 2.0;
+    W[7783] = (W[87] * W[7782] + W[492] * W[7377] + W[897] * W[6972] + W[1302] * W[6567] + W[1707] * W[6162]
+            + W[2112] * W[5757] + W[2517] * W[5352] + W[2922] * W[4947] + W[3327] * W[4542] + W[3732] * W[4137]) * 2.0;
+    W[7786] = (W[90] * W[7785] + W[495] * W[7380] + W[900] * W[6975] + W[1305] * W[6570] + W[1710] * W[6165]
+            + W[2115] * W[5760] + W[2520] * W[5355] + W[2925] * W[4950] + W[3330] * W[4545] + W[3735] * W[4140]) * 2.0;
+    W[7788] = (W[92] * W[7787] + W[497] * W[7382] + W[902] * W[6977] + W[1307] * W[6572] + W[1712] * W[6167]
+            + W[2117] * W[5762] + W[2522] * W[5357] + W[2927] * W[4952] + W[3332] * W[4547] + W[3737] * W[4142]) * 2.0;
+    W[7791] = (W[95] * W[7790] + W[500] * W[7385] + W[905] * W[6980] + W[1310] * W[6575] + W[1715] * W[6170]
+            + W[2120] * W[5765] + W[2525] * W[5360] + W[2930] * W[4955] + W[3335] * W[4550] + W[3740] * W[4145]) * 2.0;
+    W[7793] = (W[97] * W[7792] + W[502] * W[7387] + W[907] * W[6982] + W[1312] * W[6577] + W[1717] * W[6172]
+            + W[2122] * W[5767] + W[2527] * W[5362] + W[2932] * W[4957] + W[3337] * W[4552] + W[3742] * W[4147]) * 2.0;
+    W[7796] = (W[100] * W[7795] + W[505] * W[7390] + W[910] * W[6985] + W[1315] * W[6580] + W[1720] * W[6175]
+            + W[2125] * W[5770] + W[2530] * W[5365] + W[2935] * W[4960] + W[3340] * W[4555] + W[3745] * W[4150]) * 2.0;
+    W[7798] = (W[102] * W[7797] + W[507] * W[7392] + W[912] * W[6987] + W[1317] * W[6582] + W[1722] * W[6177]
+            + W[2127] * W[5772] + W[2532] * W[5367] + W[2937] * W[4962] + W[3342] * W[4557] + W[3747] * W[4152]) * 2.0;
+    W[7801] = (W[105] * W[7800] + W[510] * W[7395] + W[915] * W[6990] + W[1320] * W[6585] + W[1725] * W[6180]
+            + W[2130] * W[5775] + W[2535] * W[5370] + W[2940] * W[4965] + W[3345] * W[4560] + W[3750] * W[4155]) * 2.0;
+    W[7803] = (W[107] * W[7802] + W[512] * W[7397] + W[917] * W[6992] + W[1322] * W[6587] + W[1727] * W[6182]
+            + W[2132] * W[5777] + W[2537] * W[5372] + W[2942] * W[4967] + W[3347] * W[4562] + W[3752] * W[4157]) * 2.0;
+    return 0;
+}
+
+/* Lines 100 .. 119 of taylor_run's order 19, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_351(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7794] = W[7791] + W[7793];
+    W[7799] = W[7796] + W[7798];
+    W[7804] = W[7801] + W[7803];
+    W[7809] = W[7806] + W[7808];
+    W[7814] = W[7811] + W[7813];
+    W[7847] = (-28.5 * W[7739] * W[152] - 28.0 * W[7334] * W[557] - 27.5 * W[6929] * W[962] - 27.0 * W[6524] * W[1367]
+            - 26.5 * W[6119] * W[1772] - 26.0 * W[5714] * W[2177] - 25.5 * W[5309] * W[2582] - 25.0 * W[4904] * W[2987]
+            - 24.5 * W[4499] * W[3392] - 24.0 * W[4094] * W[3797] - 23.5 * W[3689] * W[4202] - 23.0 * W[3284] * W[4607]
+            - 22.5 * W[2879] * W[5012] - 22.0 * W[2474] * W[5417] - 21.5 * W[2069] * W[5822] - 21.0 * W[1664] * W[6227]
+            - 20.5 * W[1259] * W[6632] - 20.0 * W[854] * W[7037] - 19.5 * W[449] * W[7442]) / (19.0 * W[44]);
+    W[7851] = (-28.5 * W[7732] * W[156] - 28.0 * W[7327] * W[561] - 27.5 * W[6922] * W[966] - 27.0 * W[6517] * W[1371]
+            - 26.5 * W[6112] * W[1776] - 26.0 * W[5707] * W[2181] - 25.5 * W[5302] * W[2586] - 25.0 * W[4897] * W[2991]
+            - 24.5 * W[4492] * W[3396] - 24.0 * W[4087] * W[3801] - 23.5 * W[3682] * W[4206] - 23.0 * W[3277] * W[4611]
+            - 22.5 * W[2872] * W[5016] - 22.0 * W[2467] * W[5421] - 21.5 * W[2062] * W[5826] - 21.0 * W[1657] * W[6231]
+            - 20.5 * W[1252] * W[6636] - 20.0 * W[847] * W[7041] - 19.5 * W[442] * W[7446]) / (19.0 * W[37]);
+    W[7856] = (-28.5 * W[7725] * W[161] - 28.0 * W[7320] * W[566] - 27.5 * W[6915] * W[971] - 27.0 * W[6510] * W[1376]
+            - 26.5 * W[6105] * W[1781] - 26.0 * W[5700] * W[2186] - 25.5 * W[5295] * W[2591] - 25.0 * W[4890] * W[2996]
+            - 24.5 * W[4485] * W[3401] - 24.0 * W[4080] * W[3806] - 23.5 * W[3675] * W[4211] - 23.0 * W[3270] * W[4616]
+            - 22.5 * W[2865] * W[5021] - 22.0 * W[2460] * W[5426] - 21.5 * W[2055] * W[5831] - 21.0 * W[1650] * W[6236]
+            - 20.5 * W[1245] * W[6641] - 20.0 * W[840] * W[7046] - 19.5 * W[435] * W[7451]) / (19.0 * W[30]);
+    W[7861] = (-28.5 * W[7718] * W[166] - 28.0 * W[7313] * W[571] - 27.5 * W[6908] * W[976] - 27.0 * W[6503] * W[1381]
+            - 26.5 * W[6098] * W[1786] - 26.0 * W[5693] * W[2191] - 25.5 * W[5288] * W[2596] - 25.0 * W[4883] * W[3001]
+            - 24.5 * W[4478] * W[3406] - 24.0 * W[4073] * W[3811] - 23.5 * W[3668] * W[4216] - 23.0 * W[3263] * W[4621]
+            - 22.5 * W[2858] * W[5026] - 22.0 * W[2453] * W[5431] - 21.5 * W[2048] * W[5836] - 21.0 * W[1643] * W[6241]
+            - 20.5 * W[1238] * W[6646] - 20.0 * W[833] * W[7051] - 19.5 * W[428] * W[7456]) / (19.0 * W[23]);
+    W[7866] = (-28.5 * W[7711] * W[171] - 28.0 * W[7306] * W[576] - 27.5 * W[6901] * W[981] - 27.0 * W[6496] * W[1386]
+            - 26.5 * W[6091] * W[1791] - 26.0 * W[5686] * W[2196] - 25.5 * W[5281] * W[2601] - 25.0 * W[4876] * W[3006]
+            - 24.5 * W[4471] * W[3411] - 24.0 * W[4066] * W[3816] - 23.5 * W[3661] * W[4221] - 23.0 * W[3256] * W[4626]
+            - 22.5 * W[2851] * W[5031] - 22.0 * W[2446] * W[5436] - 21.5 * W[2041] * W[5841] - 21.0 * W[1636] * W[6246]
+            - 20.5 * W[1231] * W[6651] - 20.0 * W[826] * W[7056] - 19.5 * W[421] * W[7461]) / (19.0 * W[16]);
+    W[7871] = (-28.5 * W[7704] * W[176] - 28.0 * W[7299] * W[581] - 27.5 * W[6894] * W[986] - 27.0 * W[6489] * W[1391]
+            - 26.5 * W[6084] * W[1796] - 26.0 * W[5679] * W[2201] - 25.5 * W[5274] * W[2606] - 25.0 * W[4869] * W[3011]
+            - 24.5 * W[4464] * W[3416] - 24.0 * W[4059] * W[3821] - 23.5 * W[3654] * W[4226] - 23.0 * W[3249] * W[4631]
+            - 22.5 * W[2844] * W[5036] - 22.0 * W[2439] * W[5441] - 21.5 * W[2034] * W[5846] - 21.0 * W[1629] * W[6251]
+            - 20.5 * W[1224] * W[6656] - 20.0 * W[819] * W[7061] - 19.5 * W[414] * W[7466]) / (19.0 * W[9]);
+    W[7895] = (-28.5 * W[7764] * W[200] - 28.0 * W[7359] * W[605] - 27.5 * W[6954] * W[1010] - 27.0 * W[6549] * W[1415]
+            - 26.5 * W[6144] * W[1820] - 26.0 * W[5739] * W[2225] - 25.5 * W[5334] * W[2630] - 25.0 * W[4929] * W[3035]
+            - 24.5 * W[4524] * W[3440] - 24.0 * W[4119] * W[3845] - 23.5 * W[3714] * W[4250] - 23.0 * W[3309] * W[4655]
+            - 22.5 * W[2904] * W[5060] - 22.0 * W[2499] * W[5465] - 21.5 * W[2094] * W[5870] - 21.0 * W[1689] * W[6275]
+            - 20.5 * W[1284] * W[6680] - 20.0 * W[879] * W[7085] - 19.5 * W[474] * W[7490]) / (19.0 * W[69]);
+    W[7899] = (-28.5 * W[7759] * W[204] - 28.0 * W[7354] * W[609] - 27.5 * W[6949] * W[1014] - 27.0 * W[6544] * W[1419]
+            - 26.5 * W[6139] * W[1824] - 26.0 * W[5734] * W[2229] - 25.5 * W[5329] * W[2634] - 25.0 * W[4924] * W[3039]
+            - 24.5 * W[4519] * W[3444] - 24.0 * W[4114] * W[3849] - 23.5 * W[3709] * W[4254] - 23.0 * W[3304] * W[4659]
+            - 22.5 * W[2899] * W[5064] - 22.0 * W[2494] * W[5469] - 21.5 * W[2089] * W[5874] - 21.0 * W[1684] * W[6279]
+            - 20.5 * W[1279] * W[6684] - 20.0 * W[874] * W[7089] - 19.5 * W[469] * W[7494]) / (19.0 * W[64]);
+    W[7904] = (-28.5 * W[7754] * W[209] - 28.0 * W[7349] * W[614] - 27.5 * W[6944] * W[1019] - 27.0 * W[6539] * W[1424]
+            - 26.5 * W[6134] * W[1829] - 26.0 * W[5729] * W[2234] - 25.5 * W[5324] * W[2639] - 25.0 * W[4919] * W[3044]
+            - 24.5 * W[4514] * W[3449] - 24.0 * W[4109] * W[3854] - 23.5 * W[3704] * W[4259] - 23.0 * W[3299] * W[4664]
+            - 22.5 * W[2894] * W[5069] - 22.0 * W[2489] * W[5474] - 21.5 * W[2084] * W[5879] - 21.0 * W[1679] * W[6284]
+            - 20.5 * W[1274] * W[6689] - 20.0 * W[869] * W[7094] - 19.5 * W[464] * W[7499]) / (19.0 * W[59]);
+    W[7909] = (-28.5 * W[7749] * W[214] - 28.0 * W[7344] * W[619] - 27.5 * W[6939] * W[1024] - 27.0 * W[6534] * W[1429]
+            - 26.5 * W[6129] * W[1834] - 26.0 * W[5724] * W[2239] - 25.5 * W[5319] * W[2644] - 25.0 * W[4914] * W[3049]
+            - 24.5 * W[4509] * W[3454] - 24.0 * W[4104] * W[3859] - 23.5 * W[3699] * W[4264] - 23.0 * W[3294] * W[4669]
+            - 22.5 * W[2889] * W[5074] - 22.0 * W[2484] * W[5479] - 21.5 * W[2079] * W[5884] - 21.0 * W[1674] * W[6289]
+            - 20.5 * W[1269] * W[6694] - 20.0 * W[864] * W[7099] - 19.5 * W[459] * W[7504]) / (19.0 * W[54]);
+    W[7914] = (-28.5 * W[7744] * W[219] - 28.0 * W[7339] * W[624] - 27.5 * W[6934] * W[1029] - 27.0 * W[6529] * W[1434]
+            - 26.5 * W[6124] * W[1839] - 26.0 * W[5719] * W[2244] - 25.5 * W[5314] * W[2649] - 25.0 * W[4909] * W[3054]
+            - 24.5 * W[4504] * W[3459] - 24.0 * W[4099] * W[3864] - 23.5 * W[3694] * W[4269] - 23.0 * W[3289] * W[4674]
+            - 22.5 * W[2884] * W[5079] - 22.0 * W[2479] * W[5484] - 21.5 * W[2074] * W[5889] - 21.0 * W[1669] * W[6294]
+            - 20.5 * W[1264] * W[6699] - 20.0 * W[859] * W[7104] - 19.5 * W[454] * W[7509]) / (19.0 * W[49]);
+    W[7939] = (-28.5 * W[7784] * W[244] - 28.0 * W[7379] * W[649] - 27.5 * W[6974] * W[1054] - 27.0 * W[6569] * W[1459]
+            - 26.5 * W[6164] * W[1864] - 26.0 * W[5759] * W[2269] - 25.5 * W[5354] * W[2674] - 25.0 * W[4949] * W[3079]
+            - 24.5 * W[4544] * W[3484] - 24.0 * W[4139] * W[3889] - 23.5 * W[3734] * W[4294] - 23.0 * W[3329] * W[4699]
+            - 22.5 * W[2924] * W[5104] - 22.0 * W[2519] * W[5509] - 21.5 * W[2114] * W[5914] - 21.0 * W[1709] * W[6319]
+            - 20.5 * W[1304] * W[6724] - 20.0 * W[899] * W[7129] - 19.5 * W[494] * W[7534]) / (19.0 * W[89]);
+    W[7943] = (-28.5 * W[7779] * W[248] - 28.0 * W[7374] * W[653] - 27.5 * W[6969] * W[1058] - 27.0 * W[6564] * W[1463]
+            - 26.5 * W[6159] * W[1868] - 26.0 * W[5754] * W[2273] - 25.5 * W[5349] * W[2678] - 25.0 * W[4944] * W[3083]
+            - 24.5 * W[4539] * W[3488] - 24.0 * W[4134] * W[3893] - 23.5 * W[3729] * W[4298] - 23.0 * W[3324] * W[4703]
+            - 22.5 * W[2919] * W[5108] - 22.0 * W[2514] * W[5513] - 21.5 * W[2109] * W[5918] - 21.0 * W[1704] * W[6323]
+            - 20.5 * W[1299] * W[6728] - 20.0 * W[894] * W[7133] - 19.5 * W[489] * W[7538]) / (19.0 * W[84]);
+    W[7948] = (-28.5 * W[7774] * W[253] - 28.0 * W[7369] * W[658] - 27.5 * W[6964] * W[1063] - 27.0 * W[6559] * W[1468]
+            - 26.5 * W[6154] * W[1873] - 26.0 * W[5749] * W[2278] - 25.5 * W[5344] * W[2683] - 25.0 * W[4939] * W[3088]
+            - 24.5 * W[4534] * W[3493] - 24.0 * W[4129] * W[3898] - 23.5 * W[3724] * W[4303] - 23.0 * W[3319] * W[4708]
+            - 22.5 * W[2914] * W[5113] - 22.0 * W[2509] * W[5518] - 21.5 * W[2104] * W[5923] - 21.0 * W[1699] * W[6328]
+            - 20.5 * W[1294] * W[6733] - 20.0 * W[889] * W[7138] - 19.5 * W[484] * W[7543]) / (19.0 * W[79]);
+    W[7953] = (-28.5 * W[7769] * W[258] - 28.0 * W[7364] * W[663] - 27.5 * W[6959] * W[1068] - 27.0 * W[6554] * W[1473]
+            - 26.5 * W[6149] * W[1878] - 26.0 * W[5744] * W[2283] - 25.5 * W[5339] * W[2688] - 25.0 * W[4934] * W[3093]
+            - 24.5 * W[4529] * W[3498] - 24.0 * W[4124] * W[3903] - 23.5 * W[3719] * W[4308] - 23.0 * W[3314] * W[4713]
+            - 22.5 * W[2909] * W[5118] - 22.0 * W[2504] * W[5523] - 21.5 * W[2099] * W[5928] - 21.0 * W[1694] * W[6333]
+            - 20.5 * W[1289] * W[6738] - 20.0 * W[884] * W[7143] - 19.5 * W[479] * W[7548]) / (19.0 * W[74]);
+    return 0;
+}
+
+/* Lines 140 .. 159 of taylor_run's order 19, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_353(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7905] = W[55] * W[7904] + W[460] * W[7499] + W[865] * W[7094] + W[1270] * W[6689] + W[1675] * W[6284]
+            + W[2080] * W[5879] + W[2485] * W[5474] + W[2890] * W[5069] + W[3295] * W[4664] + W[3700] * W[4259]
+            + W[4105] * W[3854] + W[4510] * W[3449] + W[4915] * W[3044] + W[5320] * W[2639] + W[5725] * W[2234]
+            + W[6130] * W[1829] + W[6535] * W[1424] + W[6940] * W[1019] + W[7345] * W[614] + W[7750] * W[209];
+    W[7910] = W[50] * W[7909] + W[455] * W[7504] + W[860] * W[7099] + W[1265] * W[6694] + W[1670] * W[6289]
+            + W[2075] * W[5884] + W[2480] * W[5479] + W[2885] * W[5074] + W[3290] * W[4669] + W[3695] * W[4264]
+            + W[4100] * W[3859] + W[4505] * W[3454] + W[4910] * W[3049] + W[5315] * W[2644] + W[5720] * W[2239]
+            + W[6125] * W[1834] + W[6530] * W[1429] + W[6935] * W[1024] + W[7340] * W[619] + W[7745] * W[214];
+    W[7915] = W[45] * W[7914] + W[450] * W[7509] + W[855] * W[7104] + W[1260] * W[6699] + W[1665] * W[6294]
+            + W[2070] * W[5889] + W[2475] * W[5484] + W[2880] * W[5079] + W[3285] * W[4674] + W[3690] * W[4269]
+            + W[4095] * W[3864] + W[4500] * W[3459] + W[4905] * W[3054] + W[5310] * W[2649] + W[5715] * W[2244]
+            + W[6120] * W[1839] + W[6525] * W[1434] + W[6930] * W[1029] + W[7335] * W[624] + W[7740] * W[219];
+    W[7921] = W[67] * W[7895] + W[472] * W[7490] + W[877] * W[7085] + W[1282] * W[6680] + W[1687] * W[6275]
+            + W[2092] * W[5870] + W[2497] * W[5465] + W[2902] * W[5060] + W[3307] * W[4655] + W[3712] * W[4250]
+            + W[4117] * W[3845] + W[4522] * W[3440] + W[4927] * W[3035] + W[5332] * W[2630] + W[5737] * W[2225]
+            + W[6142] * W[1820] + W[6547] * W[1415] + W[6952] * W[1010] + W[7357] * W[605] + W[7762] * W[200];
+    W[7923] = W[62] * W[7899] + W[467] * W[7494] + W[872] * W[7089] + W[1277] * W[6684] + W[1682] * W[6279]
+            + W[2087] * W[5874] + W[2492] * W[5469] + W[2897] * W[5064] + W[3302] * W[4659] + W[3707] * W[4254]
+            + W[4112] * W[3849] + W[4517] * W[3444] + W[4922] * W[3039] + W[5327] * W[2634] + W[5732] * W[2229]
+            + W[6137] * W[1824] + W[6542] * W[1419] + W[6947] * W[1014] + W[7352] * W[609] + W[7757] * W[204];
+    W[7926] = W[57] * W[7904] + W[462] * W[7499] + W[867] * W[7094] + W[1272] * W[6689] + W[1677] * W[6284]
+            + W[2082] * W[5879] + W[2487] * W[5474] + W[2892] * W[5069] + W[3297] * W[4664] + W[3702] * W[4259]
+            + W[4107] * W[3854] + W[4512] * W[3449] + W[4917] * W[3044] + W[5322] * W[2639] + W[5727] * W[2234]
+            + W[6132] * W[1829] + W[6537] * W[1424] + W[6942] * W[1019] + W[7347] * W[614] + W[7752] * W[209];
+    W[7929] = W[52] * W[7909] + W[457] * W[7504] + W[862] * W[7099] + W[1267] * W[6694] + W[1672] * W[6289]
+            + W[2077] * W[5884] + W[2482] * W[5479] + W[2887] * W[5074] + W[3292] * W[4669] + W[3697] * W[4264]
+            + W[4102] * W[3859] + W[4507] * W[3454] + W[4912] * W[3049] + W[5317] * W[2644] + W[5722] * W[2239]
+            + W[6127] * W[1834] + W[6532] * W[1429] + W[6937] * W[1024] + W[7342] * W[619] + W[7747] * W[214];
+    W[7932] = W[47] * W[7914] + W[452] * W[7509] + W[857] * W[7104] + W[1262] * W[6699] + W[1667] * W[6294]
+            + W[2072] * W[5889] + W[2477] * W[5484] + W[2882] * W[5079] + W[3287] * W[4674] + W[3692] * W[4269]
+            + W[4097] * W[3864] + W[4502] * W[3459] + W[4907] * W[3054] + W[5312] * W[2649] + W[5717] * W[2244]
+            + W[6122] * W[1839] + W[6527] * W[1434] + W[6932] * W[1029] + W[7337] * W[624] + W[7742] * W[219];
+    W[7940] = W[85] * W[7939] + W[490] * W[7534] + W[895] * W[7129] + W[1300] * W[6724] + W[1705] * W[6319]
+            + W[2110] * W[5914] + W[2515] * W[5509] + W[2920] * W[5104] + W[3325] * W[4699] + W[3730] * W[4294]
+            + W[4135] * W[3889] + W[4540] * W[3484] + W[4945] * W[3079] + W[5350] * W[2674] + W[5755] * W[2269]
+            + W[6160] * W[1864] + W[6565] * W[1459] + W[6970] * W[1054] + W[7375] * W[649] + W[7780] * W[244];
+    W[7944] = W[80] * W[7943] + W[485] * W[7538] + W[890] * W[7133] + W[1295] * W[6728] + W[1700] * W[6323]
+            + W[2105] * W[5918] + W[2510] * W[5513] + W[2915] * W[5108] + W[3320] * W[4703] + W[3725] * W[4298]
+            + W[4130] * W[3893] + W[4535] * W[3488] + W[4940] * W[3083] + W[5345] * W[2678] + W[5750] * W[2273]
+            + W[6155] * W[1868] + W[6560] * W[1463] + W[6965] * W[1058] + W[7370] * W[653] + W[7775] * W[248];
+    W[7949] = W[75] * W[7948] + W[480] * W[7543] + W[885] * W[7138] + W[1290] * W[6733] + W[1695] * W[6328]
+            + W[2100] * W[5923] + W[2505] * W[5518] + W[2910] * W[5113] + W[3315] * W[4708] + W[3720] * W[4303]
+            + W[4125] * W[3898] + W[4530] * W[3493] + W[4935] * W[3088] + W[5340] * W[2683] + W[5745] * W[2278]
+            + W[6150] * W[1873] + W[6555] * W[1468] + W[6960] * W[1063] + W[7365] * W[658] + W[7770] * W[253];
+    W[7954] = W[70] * W[7953] + W[475] * W[7548] + W[880] * W[7143] + W[1285] * W[6738] + W[1690] * W[6333]
+            + W[2095] * W[5928] + W[2500] * W[5523] + W[2905] * W[5118] + W[3310] * W[4713] + W[3715] * W[4308]
+            + W[4120] * W[3903] + W[4525] * W[3498] + W[4930] * W[3093] + W[5335] * W[2688] + W[5740] * W[2283]
+            + W[6145] * W[1878] + W[6550] * W[1473] + W[6955] * W[1068] + W[7360] * W[663] + W[7765] * W[258];
+    W[7962] = W[87] * W[7939] + W[492] * W[7534] + W[897] * W[7129] + W[1302] * W[6724] + W[1707] * W[6319]
+            + W[2112] * W[5914] + W[2517] * W[5509] + W[2922] * W[5104] + W[3327] * W[4699] + W[3732] * W[4294]
+            + W[4137] * W[3889] + W[4542] * W[3484] + W[4947] * W[3079] + W[5352] * W[2674] + W[5757] * W[2269]
+            + W[6162] * W[1864] + W[6567] * W[1459] + W[6972] * W[1054] + W[7377] * W[649] + W[7782] * W[244];
+    W[7964] = W[82] * W[7943] + W[487] * W[7538] + W[892] * W[7133] + W[1297] * W[6728] + W[1702] * W[6323]
+            + W[2107] * W[5918] + W[2512] * W[5513] + W[2917] * W[5108] + W[3322] * W[4703] + W[3727] * W[4298]
+            + W[4132] * W[3893] + W[4537] * W[3488] + W[4942] * W[3083] + W[5347] * W[2678] + W[5752] * W[2273]
+            + W[6157] * W[1868] + W[6562] * W[1463] + W[6967] * W[1058] + W[7372] * W[653] + W[7777] * W[248];
+    W[7967] = W[77] * W[7948] + W[482] * W[7543] + W[887] * W[7138] + W[1292] * W[6733] + W[1697] * W[6328]
+            + W[2102] * W[5923] + W[2507] * W[5518] + W[2912] * W[5113] + W[3317] * W[4708] + W[3722] * W[4303]
+            + W[4127] * W[3898] + W[4532] * W[3493] + W[4937] * W[3088] + W[5342] * W[2683] + W[5747] * W[2278]
+            + W[6152] * W[1873] + W[6557] * W[1468] + W[6962] * W[1063] + W[7367] * W[658] + W[7772] * W[253];
+    W[7970] = W[72] * W[7953] + W[477] * W[7548] + W[882] * W[7143] + W[1287] * W[6738] + W[1692] * W[6333]
+            + W[2097] * W[5928] + W[2502] * W[5523] + W[2907] * W[5118] + W[3312] * W[4713] + W[3717] * W[4308]
+            + W[4122] * W[3903] + W[4527] * W[3498] + W[4932] * W[3093] + W[5337] * W[2688] + W[5742] * W[2283]
+            + W[6147] * W[1878] + W[6552] * W[1473] + W[6957] * W[1068] + W[7362] * W[663] + W[7767] * W[258];
+    W[7980] = W[100] * W[7979] + W[505] * W[7574] + W[910] * W[7169] + W[1315] * W[6764] + W[1720] * W[6359]
+            + W[2125] * W[5954] + W[2530] * W[5549] + W[2935] * W[5144] + W[3340] * W[4739] + W[3745] * W[4334]
+            + W[4150] * W[3929] + W[4555] * W[3524] + W[4960] * W[3119] + W[5365] * W[2714] + W[5770] * W[2309]
+            + W[6175] * W[1904] + W[6580] * W[1499] + W[6985] * W[1094] + W[7390] * W[689] + W[7795] * W[284];
+    W[7984] = W[95] * W[7983] + W[500] * W[7578] + W[905] * W[7173] + W[1310] * W[6768] + W[1715] * W[6363]
+            + W[2120] * W[5958] + W[2525] * W[5553] + W[2930] * W[5148] + W[3335] * W[4743] + W[3740] * W[4338]
+            + W[4145] * W[3933] + W[4550] * W[3528] + W[4955] * W[3123] + W[5360] * W[2718] + W[5765] * W[2313]
+            + W[6170] * W[1908] + W[6575] * W[1503] + W[6980] * W[1098] + W[7385] * W[693] + W[7790] * W[288];
+    W[7989] = W[90] * W[7988] + W[495] * W[7583] + W[900] * W[7178] + W[1305] * W[6773] + W[1710] * W[6368]
+            + W[2115] * W[5963] + W[2520] * W[5558] + W[2925] * W[5153] + W[3330] * W[4748] + W[3735] * W[4343]
+            + W[4140] * W[3938] + W[4545] * W[3533] + W[4950] * W[3128] + W[5355] * W[2723] + W[5760] * W[2318]
+            + W[6165] * W[1913] + W[6570] * W[1508] + W[6975] * W[1103] + W[7380] * W[698] + W[7785] * W[293];
+    W[7999] = W[102] * W[7979] + W[507] * W[7574] + W[912] * W[7169] + W[1317] * W[6764] + W[1722] * W[6359]
+            + W[2127] * W[5954] + W[2532] * W[5549] + W[2937] * W[5144] + W[3342] * W[4739] + W[3747] * W[4334]
+            + W[4152] * W[3929] + W[4557] * W[3524] + W[4962] * W[3119] + W[5367] * W[2714] + W[5772] * W[2309]
+            + W[6177] * W[1904] + W[6582] * W[1499] + W[6987] * W[1094] + W[7392] * W[689] + W[7797] * W[284];
+    return 0;
+}
+
+/* Lines 220 .. 239 of taylor_run's order 19, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_357(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[8028] = W[135] * W[7905];
+    W[8030] = W[130] * W[7857];
+    W[8033] = W[319] * W[8032];
+    W[8035] = W[323] * W[8034];
+    W[8038] = W[142] * W[8004];
+    W[8040] = W[139] * W[7967];
+    W[8042] = W[135] * W[7926];
+    W[8044] = W[130] * W[7881];
+    W[8049] = W[147] * W[8048];
+    W[8050] = W[145] * W[8020];
+    W[8052] = W[143] * W[7984];
+    W[8054] = W[140] * W[7944];
+    W[8056] = W[136] * W[7900];
+    W[8058] = W[131] * W[7852];
+    W[8061] = W[147] * W[8060];
+    W[8062] = W[145] * W[8034];
+    W[8064] = W[143] * W[8001];
+    W[8066] = W[140] * W[7964];
+    W[8068] = W[136] * W[7923];
+    W[8070] = W[131] * W[7878];
+    return 0;
+}
+
+/* Lines 260 .. 279 of taylor_run's order 19, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_359(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7951] = W[7946] + W[7950];
+    W[7969] = W[7966] + W[7968];
+    W[7991] = W[7986] + W[7990];
+    W[8006] = W[8003] + W[8005];
+    W[8023] = W[3] * W[8022];
+    W[8037] = W[3] * W[8036];
+    W[8053] = W[8051] - W[8052];
+    W[8065] = W[8063] - W[8064];
+    W[8074] = W[7981] + W[8073];
+    W[8081] = W[8000] + W[8080];
+    W[7864] = W[7859] + W[7863];
+    W[7886] = W[7883] + W[7885];
+    W[7912] = W[7907] + W[7911];
+    W[7931] = W[7928] + W[7930];
+    W[7956] = W[7951] + W[7955];
+    W[7972] = W[7969] + W[7971];
+    W[7992] = W[3] * W[7991];
+    W[8007] = W[3] * W[8006];
+    W[8025] = W[8023] - W[8024];
+    W[8039] = W[8037] - W[8038];
+    return 0;
+}
+
+/* Lines 300 .. 319 of taylor_run's order 19, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_361(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[7918] = W[3] * W[7917];
+    W[7935] = W[3] * W[7934];
+    W[7959] = W[7957] - W[7958];
+    W[7975] = W[7973] - W[7974];
+    W[7996] = W[7994] - W[7995];
+    W[8011] = W[8009] - W[8010];
+    W[8029] = W[8027] - W[8028];
+    W[8043] = W[8041] - W[8042];
+    W[8059] = W[8057] - W[8058];
+    W[8071] = W[8069] - W[8070];
+    W[8077] = W[7849] + W[8076];
+    W[8084] = W[7877] + W[8083];
+    W[7875] = W[3] * W[7874];
+    W[7893] = W[3] * W[7892];
+    W[7920] = W[7918] - W[7919];
+    W[7937] = W[7935] - W[7936];
+    W[7961] = W[7959] - W[7960];
+    W[7977] = W[7975] - W[7976];
+    W[7998] = W[7996] - W[7997];
+    W[8013] = W[8011] - W[8012];
+    return 0;
+}
+
+/* Lines 340 .. 351 of taylor_run's order 19, in the fourth unit. */
+EOMC_PART int
+pleiades_taylor_run_363(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    X[576] = -W[7920] / W[121] / 20.0;
+    X[577] = -W[7937] / W[121] / 20.0;
+    X[578] = -W[7961] / W[122] / 20.0;
+    X[579] = -W[7977] / W[122] / 20.0;
+    X[580] = -W[7998] / W[123] / 20.0;
+    X[581] = -W[8013] / W[123] / 20.0;
+    X[582] = -W[8031] / W[124] / 20.0;
+    X[583] = -W[8045] / W[124] / 20.0;
+    X[584] = -W[8059] / W[125] / 20.0;
+    X[585] = -W[8071] / W[125] / 20.0;
+    X[586] = -W[8078] / W[126] / 20.0;
+    X[587] = -W[8085] / W[126] / 20.0;
+    return 0;
+}
+
+#endif /* EOMC_EXTENDED */
+
+#endif /* EOMC_UNIT 4 */

@@ -478,6 +478,31 @@ spinning_hoop_place_velocity(eomc_real t, const eomc_real *q,
 #endif /* EOMC_UNIT 1 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 3
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define spinning_hoop_taylor_run_1 spinning_hoop_taylor_run_1_ext
+#define spinning_hoop_taylor_run_2 spinning_hoop_taylor_run_2_ext
+#define spinning_hoop_taylor_run_3 spinning_hoop_taylor_run_3_ext
+#define spinning_hoop_taylor_run_4 spinning_hoop_taylor_run_4_ext
+#define spinning_hoop_taylor_run_6 spinning_hoop_taylor_run_6_ext
+#define spinning_hoop_taylor_run_8 spinning_hoop_taylor_run_8_ext
+#define spinning_hoop_taylor_run_10 spinning_hoop_taylor_run_10_ext
+#define spinning_hoop_taylor_run_13 spinning_hoop_taylor_run_13_ext
+#define spinning_hoop_taylor_run_14 spinning_hoop_taylor_run_14_ext
+#define spinning_hoop_taylor_run_17 spinning_hoop_taylor_run_17_ext
+#define spinning_hoop_taylor_run_18 spinning_hoop_taylor_run_18_ext
+#define spinning_hoop_taylor_run_21 spinning_hoop_taylor_run_21_ext
+#define spinning_hoop_taylor_run_22 spinning_hoop_taylor_run_22_ext
+#define spinning_hoop_taylor_run_25 spinning_hoop_taylor_run_25_ext
+#define spinning_hoop_taylor_run_26 spinning_hoop_taylor_run_26_ext
+#define spinning_hoop_taylor_run_29 spinning_hoop_taylor_run_29_ext
+#define spinning_hoop_taylor_run_30 spinning_hoop_taylor_run_30_ext
+#define spinning_hoop_taylor_run_33 spinning_hoop_taylor_run_33_ext
+#define spinning_hoop_taylor_run_34 spinning_hoop_taylor_run_34_ext
+#define spinning_hoop_taylor_run_37 spinning_hoop_taylor_run_37_ext
+#define spinning_hoop_taylor_run_38 spinning_hoop_taylor_run_38_ext
+#define spinning_hoop_taylor_run_41 spinning_hoop_taylor_run_41_ext
+#endif
 #include "eomc_taylor.h"
 
 #ifndef EOMC_EXTENDED
@@ -676,106 +701,13 @@ spinning_hoop_taylor(int k, int K, eomc_real t0, const eomc_real *p,
  * q''s, M being constant and diagonal, from -(h_j / M_jj) / (k + 1).
  * Written out to order 20, each recurrence's sum with its indices fixed
  * (the same arithmetic in the same order); above that, the loop. */
-/* Its terms are too many for the C compiler's optimizer, whose time grows
- * faster than they do; each is one statement on values in memory either
- * way (lowered.h, LOW_SERIES_OPTIMIZED_TERMS). */
-#if defined(__clang__)
-#define EOMC_UNOPTIMIZED __attribute__((optnone, noinline))
-#elif defined(__GNUC__)
-#define EOMC_UNOPTIMIZED __attribute__((optimize("O0"), noinline))
-#else
-#define EOMC_UNOPTIMIZED
-#endif
-static EOMC_UNOPTIMIZED int
-spinning_hoop_taylor_run(int K, eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *T, eomc_real *X, eomc_tay_solve solve,
+/* Lines 20 .. 39 of taylor_run's order 1. */
+static EOMC_NOINLINE int
+spinning_hoop_taylor_run_5(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
 {
-    const int S = K + 1;
-    (void)solve, (void)ctx;
-    if (K > 20) {
-        static const int state[2] = {3, 10};
-        for (int i = 0; i < 2; i++)
-            T[state[i] * S] = X[i];
-        for (int k = 0; k < K; k++) {
-            spinning_hoop_taylor(k, K, t0, p, u, T);
-            eomc_tay_integ(T + 3 * S, T + 10 * S, k);
-            eomc_tay_accel(T + 10 * S, T + 42 * S, T + 19 * S, k);
-        }
-        for (int j = 1; j <= K; j++)
-            for (int i = 0; i < 2; i++)
-                X[j * 2 + i] = T[state[i] * S + j];
-        return 0;
-    }
-    eomc_real W[903]; /* slot s's coefficient j at W[j * 43 + s], but the
-                   * state's: X[j * 2 + i], q's then v's */
-    /* order 0 */
-    W[0] = p[3];
-    W[1] = t0;
-    W[4] = sin(X[0]);
-    W[5] = cos(X[0]);
-    W[19] = p[4];
-    W[30] = X[1] * X[1];
-    W[31] = p[6];
-    W[2] = W[0] * W[1];
-    W[32] = W[31] * W[4];
-    W[33] = W[4] * W[5];
-    W[6] = sin(W[2]);
-    W[7] = cos(W[2]);
-    W[34] = W[33] * W[30];
-    W[8] = W[4] * W[7];
-    W[9] = W[4] * W[6];
-    W[11] = W[7] * W[5];
-    W[15] = W[6] * W[5];
-    W[13] = W[0] * W[9];
-    W[17] = W[0] * W[8];
-    W[20] = W[0] * W[15];
-    W[25] = W[0] * W[11];
-    W[12] = W[11] * X[1];
-    W[16] = W[15] * X[1];
-    W[21] = W[8] * X[1];
-    W[26] = W[9] * X[1];
-    W[14] = W[12] - W[13];
-    W[18] = W[16] + W[17];
-    W[22] = W[20] + W[21];
-    W[27] = W[25] - W[26];
-    W[24] = W[0] * W[18];
-    W[29] = W[0] * W[14];
-    W[23] = X[1] * W[22];
-    W[28] = X[1] * W[27];
-    W[35] = W[23] + W[24];
-    W[36] = W[28] + W[29];
-    W[37] = W[15] * W[36];
-    W[38] = W[11] * W[35];
-    W[39] = W[34] + W[37];
-    W[40] = W[39] - W[38];
-    W[41] = W[19] * W[40];
-    W[42] = W[32] + W[41];
-    X[2] = X[1];
-    X[3] = -W[42] / W[19];
-    if (K == 1)
-        goto out;
-    /* order 1 */
-    W[44] = 1.0;
-    W[47] = X[2] * W[5];
-    W[48] = -X[2] * W[4];
-    W[73] = X[1] * X[3] * 2.0;
-    W[45] = W[0] * W[44];
-    W[75] = W[31] * W[47];
-    W[76] = W[4] * W[48] + W[47] * W[5];
-    W[49] = W[45] * W[7];
-    W[50] = -W[45] * W[6];
-    W[77] = W[33] * W[73] + W[76] * W[30];
-    W[51] = W[4] * W[50] + W[47] * W[7];
-    W[52] = W[4] * W[49] + W[47] * W[6];
-    W[54] = W[7] * W[48] + W[50] * W[5];
-    W[58] = W[6] * W[48] + W[49] * W[5];
-    W[56] = W[0] * W[52];
-    W[60] = W[0] * W[51];
-    W[63] = W[0] * W[58];
-    W[68] = W[0] * W[54];
-    W[55] = W[11] * X[3] + W[54] * X[1];
-    W[59] = W[15] * X[3] + W[58] * X[1];
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[64] = W[8] * X[3] + W[51] * X[1];
     W[69] = W[9] * X[3] + W[52] * X[1];
     W[57] = W[55] - W[56];
@@ -796,29 +728,16 @@ spinning_hoop_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[85] = W[75] + W[84];
     X[4] = X[3] / 2.0;
     X[5] = -W[85] / W[19] / 2.0;
-    if (K == 2)
-        goto out;
-    /* order 2 */
-    W[90] = (X[2] * W[48] + 2.0 * X[4] * W[5]) / 2.0;
-    W[91] = -((X[2] * W[47] + 2.0 * X[4] * W[4])) / 2.0;
-    W[116] = X[1] * X[5] * 2.0 + X[3] * X[3];
-    W[118] = W[31] * W[90];
-    W[119] = W[4] * W[91] + W[47] * W[48] + W[90] * W[5];
-    W[92] = W[45] * W[50] / 2.0;
-    W[93] = -W[45] * W[49] / 2.0;
-    W[120] = W[33] * W[116] + W[76] * W[73] + W[119] * W[30];
-    W[94] = W[4] * W[93] + W[47] * W[50] + W[90] * W[7];
-    W[95] = W[4] * W[92] + W[47] * W[49] + W[90] * W[6];
-    W[97] = W[7] * W[91] + W[50] * W[48] + W[93] * W[5];
-    W[101] = W[6] * W[91] + W[49] * W[48] + W[92] * W[5];
-    W[99] = W[0] * W[95];
-    W[103] = W[0] * W[94];
-    W[106] = W[0] * W[101];
-    W[111] = W[0] * W[97];
-    W[98] = W[11] * X[5] + W[54] * X[3] + W[97] * X[1];
-    W[102] = W[15] * X[5] + W[58] * X[3] + W[101] * X[1];
-    W[107] = W[8] * X[5] + W[51] * X[3] + W[94] * X[1];
-    W[112] = W[9] * X[5] + W[52] * X[3] + W[95] * X[1];
+    return 0;
+}
+
+/* Lines 20 .. 37 of taylor_run's order 2. */
+static EOMC_NOINLINE int
+spinning_hoop_taylor_run_7(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[100] = W[98] - W[99];
     W[104] = W[102] + W[103];
     W[108] = W[106] + W[107];
@@ -837,29 +756,16 @@ spinning_hoop_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[128] = W[118] + W[127];
     X[6] = X[5] / 3.0;
     X[7] = -W[128] / W[19] / 3.0;
-    if (K == 3)
-        goto out;
-    /* order 3 */
-    W[133] = (X[2] * W[91] + 2.0 * X[4] * W[48] + 3.0 * X[6] * W[5]) / 3.0;
-    W[134] = -((X[2] * W[90] + 2.0 * X[4] * W[47] + 3.0 * X[6] * W[4])) / 3.0;
-    W[159] = (X[1] * X[7] + X[3] * X[5]) * 2.0;
-    W[161] = W[31] * W[133];
-    W[162] = W[4] * W[134] + W[47] * W[91] + W[90] * W[48] + W[133] * W[5];
-    W[135] = W[45] * W[93] / 3.0;
-    W[136] = -W[45] * W[92] / 3.0;
-    W[163] = W[33] * W[159] + W[76] * W[116] + W[119] * W[73] + W[162] * W[30];
-    W[137] = W[4] * W[136] + W[47] * W[93] + W[90] * W[50] + W[133] * W[7];
-    W[138] = W[4] * W[135] + W[47] * W[92] + W[90] * W[49] + W[133] * W[6];
-    W[140] = W[7] * W[134] + W[50] * W[91] + W[93] * W[48] + W[136] * W[5];
-    W[144] = W[6] * W[134] + W[49] * W[91] + W[92] * W[48] + W[135] * W[5];
-    W[142] = W[0] * W[138];
-    W[146] = W[0] * W[137];
-    W[149] = W[0] * W[144];
-    W[154] = W[0] * W[140];
-    W[141] = W[11] * X[7] + W[54] * X[5] + W[97] * X[3] + W[140] * X[1];
-    W[145] = W[15] * X[7] + W[58] * X[5] + W[101] * X[3] + W[144] * X[1];
-    W[150] = W[8] * X[7] + W[51] * X[5] + W[94] * X[3] + W[137] * X[1];
-    W[155] = W[9] * X[7] + W[52] * X[5] + W[95] * X[3] + W[138] * X[1];
+    return 0;
+}
+
+/* Lines 20 .. 37 of taylor_run's order 3. */
+static EOMC_NOINLINE int
+spinning_hoop_taylor_run_9(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[143] = W[141] - W[142];
     W[147] = W[145] + W[146];
     W[151] = W[149] + W[150];
@@ -878,29 +784,16 @@ spinning_hoop_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[171] = W[161] + W[170];
     X[8] = X[7] / 4.0;
     X[9] = -W[171] / W[19] / 4.0;
-    if (K == 4)
-        goto out;
-    /* order 4 */
-    W[176] = (X[2] * W[134] + 2.0 * X[4] * W[91] + 3.0 * X[6] * W[48] + 4.0 * X[8] * W[5]) / 4.0;
-    W[177] = -((X[2] * W[133] + 2.0 * X[4] * W[90] + 3.0 * X[6] * W[47] + 4.0 * X[8] * W[4])) / 4.0;
-    W[202] = (X[1] * X[9] + X[3] * X[7]) * 2.0 + X[5] * X[5];
-    W[204] = W[31] * W[176];
-    W[205] = W[4] * W[177] + W[47] * W[134] + W[90] * W[91] + W[133] * W[48] + W[176] * W[5];
-    W[178] = W[45] * W[136] / 4.0;
-    W[179] = -W[45] * W[135] / 4.0;
-    W[206] = W[33] * W[202] + W[76] * W[159] + W[119] * W[116] + W[162] * W[73] + W[205] * W[30];
-    W[180] = W[4] * W[179] + W[47] * W[136] + W[90] * W[93] + W[133] * W[50] + W[176] * W[7];
-    W[181] = W[4] * W[178] + W[47] * W[135] + W[90] * W[92] + W[133] * W[49] + W[176] * W[6];
-    W[183] = W[7] * W[177] + W[50] * W[134] + W[93] * W[91] + W[136] * W[48] + W[179] * W[5];
-    W[187] = W[6] * W[177] + W[49] * W[134] + W[92] * W[91] + W[135] * W[48] + W[178] * W[5];
-    W[185] = W[0] * W[181];
-    W[189] = W[0] * W[180];
-    W[192] = W[0] * W[187];
-    W[197] = W[0] * W[183];
-    W[184] = W[11] * X[9] + W[54] * X[7] + W[97] * X[5] + W[140] * X[3] + W[183] * X[1];
-    W[188] = W[15] * X[9] + W[58] * X[7] + W[101] * X[5] + W[144] * X[3] + W[187] * X[1];
-    W[193] = W[8] * X[9] + W[51] * X[7] + W[94] * X[5] + W[137] * X[3] + W[180] * X[1];
-    W[198] = W[9] * X[9] + W[52] * X[7] + W[95] * X[5] + W[138] * X[3] + W[181] * X[1];
+    return 0;
+}
+
+/* Lines 20 .. 37 of taylor_run's order 4. */
+static EOMC_NOINLINE int
+spinning_hoop_taylor_run_11(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[186] = W[184] - W[185];
     W[190] = W[188] + W[189];
     W[194] = W[192] + W[193];
@@ -919,9 +812,16 @@ spinning_hoop_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[214] = W[204] + W[213];
     X[10] = X[9] / 5.0;
     X[11] = -W[214] / W[19] / 5.0;
-    if (K == 5)
-        goto out;
-    /* order 5 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 5. */
+static EOMC_NOINLINE int
+spinning_hoop_taylor_run_12(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[219] = (X[2] * W[177] + 2.0 * X[4] * W[134] + 3.0 * X[6] * W[91] + 4.0 * X[8] * W[48] + 5.0 * X[10] * W[5]) / 5.0;
     W[220] = -((X[2] * W[176] + 2.0 * X[4] * W[133] + 3.0 * X[6] * W[90] + 4.0 * X[8] * W[47]
             + 5.0 * X[10] * W[4])) / 5.0;
@@ -949,61 +849,16 @@ spinning_hoop_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[231] = W[15] * X[11] + W[58] * X[9] + W[101] * X[7] + W[144] * X[5] + W[187] * X[3] + W[230] * X[1];
     W[236] = W[8] * X[11] + W[51] * X[9] + W[94] * X[7] + W[137] * X[5] + W[180] * X[3] + W[223] * X[1];
     W[241] = W[9] * X[11] + W[52] * X[9] + W[95] * X[7] + W[138] * X[5] + W[181] * X[3] + W[224] * X[1];
-    W[229] = W[227] - W[228];
-    W[233] = W[231] + W[232];
-    W[237] = W[235] + W[236];
-    W[242] = W[240] - W[241];
-    W[239] = W[0] * W[233];
-    W[244] = W[0] * W[229];
-    W[238] = X[1] * W[237] + X[3] * W[194] + X[5] * W[151] + X[7] * W[108] + X[9] * W[65] + X[11] * W[22];
-    W[243] = X[1] * W[242] + X[3] * W[199] + X[5] * W[156] + X[7] * W[113] + X[9] * W[70] + X[11] * W[27];
-    W[250] = W[238] + W[239];
-    W[251] = W[243] + W[244];
-    W[252] = W[15] * W[251] + W[58] * W[208] + W[101] * W[165] + W[144] * W[122] + W[187] * W[79]
-            + W[230] * W[36];
-    W[253] = W[11] * W[250] + W[54] * W[207] + W[97] * W[164] + W[140] * W[121] + W[183] * W[78]
-            + W[226] * W[35];
-    W[254] = W[249] + W[252];
-    W[255] = W[254] - W[253];
-    W[256] = W[19] * W[255];
-    W[257] = W[247] + W[256];
-    X[12] = X[11] / 6.0;
-    X[13] = -W[257] / W[19] / 6.0;
-    if (K == 6)
-        goto out;
-    /* order 6 */
-    W[262] = (X[2] * W[220] + 2.0 * X[4] * W[177] + 3.0 * X[6] * W[134] + 4.0 * X[8] * W[91] + 5.0 * X[10] * W[48]
-            + 6.0 * X[12] * W[5]) / 6.0;
-    W[263] = -((X[2] * W[219] + 2.0 * X[4] * W[176] + 3.0 * X[6] * W[133] + 4.0 * X[8] * W[90]
-            + 5.0 * X[10] * W[47] + 6.0 * X[12] * W[4])) / 6.0;
-    W[288] = (X[1] * X[13] + X[3] * X[11] + X[5] * X[9]) * 2.0 + X[7] * X[7];
-    W[290] = W[31] * W[262];
-    W[291] = W[4] * W[263] + W[47] * W[220] + W[90] * W[177] + W[133] * W[134] + W[176] * W[91]
-            + W[219] * W[48] + W[262] * W[5];
-    W[264] = W[45] * W[222] / 6.0;
-    W[265] = -W[45] * W[221] / 6.0;
-    W[292] = W[33] * W[288] + W[76] * W[245] + W[119] * W[202] + W[162] * W[159] + W[205] * W[116]
-            + W[248] * W[73] + W[291] * W[30];
-    W[266] = W[4] * W[265] + W[47] * W[222] + W[90] * W[179] + W[133] * W[136] + W[176] * W[93]
-            + W[219] * W[50] + W[262] * W[7];
-    W[267] = W[4] * W[264] + W[47] * W[221] + W[90] * W[178] + W[133] * W[135] + W[176] * W[92]
-            + W[219] * W[49] + W[262] * W[6];
-    W[269] = W[7] * W[263] + W[50] * W[220] + W[93] * W[177] + W[136] * W[134] + W[179] * W[91]
-            + W[222] * W[48] + W[265] * W[5];
-    W[273] = W[6] * W[263] + W[49] * W[220] + W[92] * W[177] + W[135] * W[134] + W[178] * W[91]
-            + W[221] * W[48] + W[264] * W[5];
-    W[271] = W[0] * W[267];
-    W[275] = W[0] * W[266];
-    W[278] = W[0] * W[273];
-    W[283] = W[0] * W[269];
-    W[270] = W[11] * X[13] + W[54] * X[11] + W[97] * X[9] + W[140] * X[7] + W[183] * X[5] + W[226] * X[3]
-            + W[269] * X[1];
-    W[274] = W[15] * X[13] + W[58] * X[11] + W[101] * X[9] + W[144] * X[7] + W[187] * X[5] + W[230] * X[3]
-            + W[273] * X[1];
-    W[279] = W[8] * X[13] + W[51] * X[11] + W[94] * X[9] + W[137] * X[7] + W[180] * X[5] + W[223] * X[3]
-            + W[266] * X[1];
-    W[284] = W[9] * X[13] + W[52] * X[11] + W[95] * X[9] + W[138] * X[7] + W[181] * X[5] + W[224] * X[3]
-            + W[267] * X[1];
+    return 0;
+}
+
+/* Lines 20 .. 37 of taylor_run's order 6. */
+static EOMC_NOINLINE int
+spinning_hoop_taylor_run_15(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[272] = W[270] - W[271];
     W[276] = W[274] + W[275];
     W[280] = W[278] + W[279];
@@ -1026,9 +881,16 @@ spinning_hoop_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[300] = W[290] + W[299];
     X[14] = X[13] / 7.0;
     X[15] = -W[300] / W[19] / 7.0;
-    if (K == 7)
-        goto out;
-    /* order 7 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 7. */
+static EOMC_NOINLINE int
+spinning_hoop_taylor_run_16(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[305] = (X[2] * W[263] + 2.0 * X[4] * W[220] + 3.0 * X[6] * W[177] + 4.0 * X[8] * W[134]
             + 5.0 * X[10] * W[91] + 6.0 * X[12] * W[48] + 7.0 * X[14] * W[5]) / 7.0;
     W[306] = -((X[2] * W[262] + 2.0 * X[4] * W[219] + 3.0 * X[6] * W[176] + 4.0 * X[8] * W[133]
@@ -1061,63 +923,16 @@ spinning_hoop_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[266] * X[3] + W[309] * X[1];
     W[327] = W[9] * X[15] + W[52] * X[13] + W[95] * X[11] + W[138] * X[9] + W[181] * X[7] + W[224] * X[5]
             + W[267] * X[3] + W[310] * X[1];
-    W[315] = W[313] - W[314];
-    W[319] = W[317] + W[318];
-    W[323] = W[321] + W[322];
-    W[328] = W[326] - W[327];
-    W[325] = W[0] * W[319];
-    W[330] = W[0] * W[315];
-    W[324] = X[1] * W[323] + X[3] * W[280] + X[5] * W[237] + X[7] * W[194] + X[9] * W[151] + X[11] * W[108]
-            + X[13] * W[65] + X[15] * W[22];
-    W[329] = X[1] * W[328] + X[3] * W[285] + X[5] * W[242] + X[7] * W[199] + X[9] * W[156] + X[11] * W[113]
-            + X[13] * W[70] + X[15] * W[27];
-    W[336] = W[324] + W[325];
-    W[337] = W[329] + W[330];
-    W[338] = W[15] * W[337] + W[58] * W[294] + W[101] * W[251] + W[144] * W[208] + W[187] * W[165]
-            + W[230] * W[122] + W[273] * W[79] + W[316] * W[36];
-    W[339] = W[11] * W[336] + W[54] * W[293] + W[97] * W[250] + W[140] * W[207] + W[183] * W[164]
-            + W[226] * W[121] + W[269] * W[78] + W[312] * W[35];
-    W[340] = W[335] + W[338];
-    W[341] = W[340] - W[339];
-    W[342] = W[19] * W[341];
-    W[343] = W[333] + W[342];
-    X[16] = X[15] / 8.0;
-    X[17] = -W[343] / W[19] / 8.0;
-    if (K == 8)
-        goto out;
-    /* order 8 */
-    W[348] = (X[2] * W[306] + 2.0 * X[4] * W[263] + 3.0 * X[6] * W[220] + 4.0 * X[8] * W[177]
-            + 5.0 * X[10] * W[134] + 6.0 * X[12] * W[91] + 7.0 * X[14] * W[48] + 8.0 * X[16] * W[5]) / 8.0;
-    W[349] = -((X[2] * W[305] + 2.0 * X[4] * W[262] + 3.0 * X[6] * W[219] + 4.0 * X[8] * W[176]
-            + 5.0 * X[10] * W[133] + 6.0 * X[12] * W[90] + 7.0 * X[14] * W[47] + 8.0 * X[16] * W[4])) / 8.0;
-    W[374] = (X[1] * X[17] + X[3] * X[15] + X[5] * X[13] + X[7] * X[11]) * 2.0 + X[9] * X[9];
-    W[376] = W[31] * W[348];
-    W[377] = W[4] * W[349] + W[47] * W[306] + W[90] * W[263] + W[133] * W[220] + W[176] * W[177]
-            + W[219] * W[134] + W[262] * W[91] + W[305] * W[48] + W[348] * W[5];
-    W[350] = W[45] * W[308] / 8.0;
-    W[351] = -W[45] * W[307] / 8.0;
-    W[378] = W[33] * W[374] + W[76] * W[331] + W[119] * W[288] + W[162] * W[245] + W[205] * W[202]
-            + W[248] * W[159] + W[291] * W[116] + W[334] * W[73] + W[377] * W[30];
-    W[352] = W[4] * W[351] + W[47] * W[308] + W[90] * W[265] + W[133] * W[222] + W[176] * W[179]
-            + W[219] * W[136] + W[262] * W[93] + W[305] * W[50] + W[348] * W[7];
-    W[353] = W[4] * W[350] + W[47] * W[307] + W[90] * W[264] + W[133] * W[221] + W[176] * W[178]
-            + W[219] * W[135] + W[262] * W[92] + W[305] * W[49] + W[348] * W[6];
-    W[355] = W[7] * W[349] + W[50] * W[306] + W[93] * W[263] + W[136] * W[220] + W[179] * W[177]
-            + W[222] * W[134] + W[265] * W[91] + W[308] * W[48] + W[351] * W[5];
-    W[359] = W[6] * W[349] + W[49] * W[306] + W[92] * W[263] + W[135] * W[220] + W[178] * W[177]
-            + W[221] * W[134] + W[264] * W[91] + W[307] * W[48] + W[350] * W[5];
-    W[357] = W[0] * W[353];
-    W[361] = W[0] * W[352];
-    W[364] = W[0] * W[359];
-    W[369] = W[0] * W[355];
-    W[356] = W[11] * X[17] + W[54] * X[15] + W[97] * X[13] + W[140] * X[11] + W[183] * X[9] + W[226] * X[7]
-            + W[269] * X[5] + W[312] * X[3] + W[355] * X[1];
-    W[360] = W[15] * X[17] + W[58] * X[15] + W[101] * X[13] + W[144] * X[11] + W[187] * X[9] + W[230] * X[7]
-            + W[273] * X[5] + W[316] * X[3] + W[359] * X[1];
-    W[365] = W[8] * X[17] + W[51] * X[15] + W[94] * X[13] + W[137] * X[11] + W[180] * X[9] + W[223] * X[7]
-            + W[266] * X[5] + W[309] * X[3] + W[352] * X[1];
-    W[370] = W[9] * X[17] + W[52] * X[15] + W[95] * X[13] + W[138] * X[11] + W[181] * X[9] + W[224] * X[7]
-            + W[267] * X[5] + W[310] * X[3] + W[353] * X[1];
+    return 0;
+}
+
+/* Lines 20 .. 37 of taylor_run's order 8. */
+static EOMC_NOINLINE int
+spinning_hoop_taylor_run_19(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[358] = W[356] - W[357];
     W[362] = W[360] + W[361];
     W[366] = W[364] + W[365];
@@ -1140,9 +955,16 @@ spinning_hoop_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[386] = W[376] + W[385];
     X[18] = X[17] / 9.0;
     X[19] = -W[386] / W[19] / 9.0;
-    if (K == 9)
-        goto out;
-    /* order 9 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 9. */
+static EOMC_NOINLINE int
+spinning_hoop_taylor_run_20(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[391] = (X[2] * W[349] + 2.0 * X[4] * W[306] + 3.0 * X[6] * W[263] + 4.0 * X[8] * W[220]
             + 5.0 * X[10] * W[177] + 6.0 * X[12] * W[134] + 7.0 * X[14] * W[91] + 8.0 * X[16] * W[48]
             + 9.0 * X[18] * W[5]) / 9.0;
@@ -1177,72 +999,16 @@ spinning_hoop_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[266] * X[7] + W[309] * X[5] + W[352] * X[3] + W[395] * X[1];
     W[413] = W[9] * X[19] + W[52] * X[17] + W[95] * X[15] + W[138] * X[13] + W[181] * X[11] + W[224] * X[9]
             + W[267] * X[7] + W[310] * X[5] + W[353] * X[3] + W[396] * X[1];
-    W[401] = W[399] - W[400];
-    W[405] = W[403] + W[404];
-    W[409] = W[407] + W[408];
-    W[414] = W[412] - W[413];
-    W[411] = W[0] * W[405];
-    W[416] = W[0] * W[401];
-    W[410] = X[1] * W[409] + X[3] * W[366] + X[5] * W[323] + X[7] * W[280] + X[9] * W[237] + X[11] * W[194]
-            + X[13] * W[151] + X[15] * W[108] + X[17] * W[65] + X[19] * W[22];
-    W[415] = X[1] * W[414] + X[3] * W[371] + X[5] * W[328] + X[7] * W[285] + X[9] * W[242] + X[11] * W[199]
-            + X[13] * W[156] + X[15] * W[113] + X[17] * W[70] + X[19] * W[27];
-    W[422] = W[410] + W[411];
-    W[423] = W[415] + W[416];
-    W[424] = W[15] * W[423] + W[58] * W[380] + W[101] * W[337] + W[144] * W[294] + W[187] * W[251]
-            + W[230] * W[208] + W[273] * W[165] + W[316] * W[122] + W[359] * W[79] + W[402] * W[36];
-    W[425] = W[11] * W[422] + W[54] * W[379] + W[97] * W[336] + W[140] * W[293] + W[183] * W[250]
-            + W[226] * W[207] + W[269] * W[164] + W[312] * W[121] + W[355] * W[78] + W[398] * W[35];
-    W[426] = W[421] + W[424];
-    W[427] = W[426] - W[425];
-    W[428] = W[19] * W[427];
-    W[429] = W[419] + W[428];
-    X[20] = X[19] / 10.0;
-    X[21] = -W[429] / W[19] / 10.0;
-    if (K == 10)
-        goto out;
-    /* order 10 */
-    W[434] = (X[2] * W[392] + 2.0 * X[4] * W[349] + 3.0 * X[6] * W[306] + 4.0 * X[8] * W[263]
-            + 5.0 * X[10] * W[220] + 6.0 * X[12] * W[177] + 7.0 * X[14] * W[134] + 8.0 * X[16] * W[91]
-            + 9.0 * X[18] * W[48] + 10.0 * X[20] * W[5]) / 10.0;
-    W[435] = -((X[2] * W[391] + 2.0 * X[4] * W[348] + 3.0 * X[6] * W[305] + 4.0 * X[8] * W[262]
-            + 5.0 * X[10] * W[219] + 6.0 * X[12] * W[176] + 7.0 * X[14] * W[133] + 8.0 * X[16] * W[90]
-            + 9.0 * X[18] * W[47] + 10.0 * X[20] * W[4])) / 10.0;
-    W[460] = (X[1] * X[21] + X[3] * X[19] + X[5] * X[17] + X[7] * X[15] + X[9] * X[13]) * 2.0
-            + X[11] * X[11];
-    W[462] = W[31] * W[434];
-    W[463] = W[4] * W[435] + W[47] * W[392] + W[90] * W[349] + W[133] * W[306] + W[176] * W[263]
-            + W[219] * W[220] + W[262] * W[177] + W[305] * W[134] + W[348] * W[91] + W[391] * W[48]
-            + W[434] * W[5];
-    W[436] = W[45] * W[394] / 10.0;
-    W[437] = -W[45] * W[393] / 10.0;
-    W[464] = W[33] * W[460] + W[76] * W[417] + W[119] * W[374] + W[162] * W[331] + W[205] * W[288]
-            + W[248] * W[245] + W[291] * W[202] + W[334] * W[159] + W[377] * W[116] + W[420] * W[73]
-            + W[463] * W[30];
-    W[438] = W[4] * W[437] + W[47] * W[394] + W[90] * W[351] + W[133] * W[308] + W[176] * W[265]
-            + W[219] * W[222] + W[262] * W[179] + W[305] * W[136] + W[348] * W[93] + W[391] * W[50]
-            + W[434] * W[7];
-    W[439] = W[4] * W[436] + W[47] * W[393] + W[90] * W[350] + W[133] * W[307] + W[176] * W[264]
-            + W[219] * W[221] + W[262] * W[178] + W[305] * W[135] + W[348] * W[92] + W[391] * W[49]
-            + W[434] * W[6];
-    W[441] = W[7] * W[435] + W[50] * W[392] + W[93] * W[349] + W[136] * W[306] + W[179] * W[263]
-            + W[222] * W[220] + W[265] * W[177] + W[308] * W[134] + W[351] * W[91] + W[394] * W[48]
-            + W[437] * W[5];
-    W[445] = W[6] * W[435] + W[49] * W[392] + W[92] * W[349] + W[135] * W[306] + W[178] * W[263]
-            + W[221] * W[220] + W[264] * W[177] + W[307] * W[134] + W[350] * W[91] + W[393] * W[48]
-            + W[436] * W[5];
-    W[443] = W[0] * W[439];
-    W[447] = W[0] * W[438];
-    W[450] = W[0] * W[445];
-    W[455] = W[0] * W[441];
-    W[442] = W[11] * X[21] + W[54] * X[19] + W[97] * X[17] + W[140] * X[15] + W[183] * X[13] + W[226] * X[11]
-            + W[269] * X[9] + W[312] * X[7] + W[355] * X[5] + W[398] * X[3] + W[441] * X[1];
-    W[446] = W[15] * X[21] + W[58] * X[19] + W[101] * X[17] + W[144] * X[15] + W[187] * X[13]
-            + W[230] * X[11] + W[273] * X[9] + W[316] * X[7] + W[359] * X[5] + W[402] * X[3] + W[445] * X[1];
-    W[451] = W[8] * X[21] + W[51] * X[19] + W[94] * X[17] + W[137] * X[15] + W[180] * X[13] + W[223] * X[11]
-            + W[266] * X[9] + W[309] * X[7] + W[352] * X[5] + W[395] * X[3] + W[438] * X[1];
-    W[456] = W[9] * X[21] + W[52] * X[19] + W[95] * X[17] + W[138] * X[15] + W[181] * X[13] + W[224] * X[11]
-            + W[267] * X[9] + W[310] * X[7] + W[353] * X[5] + W[396] * X[3] + W[439] * X[1];
+    return 0;
+}
+
+/* Lines 20 .. 37 of taylor_run's order 10. */
+static EOMC_NOINLINE int
+spinning_hoop_taylor_run_23(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[444] = W[442] - W[443];
     W[448] = W[446] + W[447];
     W[452] = W[450] + W[451];
@@ -1267,9 +1033,16 @@ spinning_hoop_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[472] = W[462] + W[471];
     X[22] = X[21] / 11.0;
     X[23] = -W[472] / W[19] / 11.0;
-    if (K == 11)
-        goto out;
-    /* order 11 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 11. */
+static EOMC_NOINLINE int
+spinning_hoop_taylor_run_24(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[477] = (X[2] * W[435] + 2.0 * X[4] * W[392] + 3.0 * X[6] * W[349] + 4.0 * X[8] * W[306]
             + 5.0 * X[10] * W[263] + 6.0 * X[12] * W[220] + 7.0 * X[14] * W[177] + 8.0 * X[16] * W[134]
             + 9.0 * X[18] * W[91] + 10.0 * X[20] * W[48] + 11.0 * X[22] * W[5]) / 11.0;
@@ -1311,80 +1084,16 @@ spinning_hoop_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[266] * X[11] + W[309] * X[9] + W[352] * X[7] + W[395] * X[5] + W[438] * X[3] + W[481] * X[1];
     W[499] = W[9] * X[23] + W[52] * X[21] + W[95] * X[19] + W[138] * X[17] + W[181] * X[15] + W[224] * X[13]
             + W[267] * X[11] + W[310] * X[9] + W[353] * X[7] + W[396] * X[5] + W[439] * X[3] + W[482] * X[1];
-    W[487] = W[485] - W[486];
-    W[491] = W[489] + W[490];
-    W[495] = W[493] + W[494];
-    W[500] = W[498] - W[499];
-    W[497] = W[0] * W[491];
-    W[502] = W[0] * W[487];
-    W[496] = X[1] * W[495] + X[3] * W[452] + X[5] * W[409] + X[7] * W[366] + X[9] * W[323] + X[11] * W[280]
-            + X[13] * W[237] + X[15] * W[194] + X[17] * W[151] + X[19] * W[108] + X[21] * W[65]
-            + X[23] * W[22];
-    W[501] = X[1] * W[500] + X[3] * W[457] + X[5] * W[414] + X[7] * W[371] + X[9] * W[328] + X[11] * W[285]
-            + X[13] * W[242] + X[15] * W[199] + X[17] * W[156] + X[19] * W[113] + X[21] * W[70]
-            + X[23] * W[27];
-    W[508] = W[496] + W[497];
-    W[509] = W[501] + W[502];
-    W[510] = W[15] * W[509] + W[58] * W[466] + W[101] * W[423] + W[144] * W[380] + W[187] * W[337]
-            + W[230] * W[294] + W[273] * W[251] + W[316] * W[208] + W[359] * W[165] + W[402] * W[122]
-            + W[445] * W[79] + W[488] * W[36];
-    W[511] = W[11] * W[508] + W[54] * W[465] + W[97] * W[422] + W[140] * W[379] + W[183] * W[336]
-            + W[226] * W[293] + W[269] * W[250] + W[312] * W[207] + W[355] * W[164] + W[398] * W[121]
-            + W[441] * W[78] + W[484] * W[35];
-    W[512] = W[507] + W[510];
-    W[513] = W[512] - W[511];
-    W[514] = W[19] * W[513];
-    W[515] = W[505] + W[514];
-    X[24] = X[23] / 12.0;
-    X[25] = -W[515] / W[19] / 12.0;
-    if (K == 12)
-        goto out;
-    /* order 12 */
-    W[520] = (X[2] * W[478] + 2.0 * X[4] * W[435] + 3.0 * X[6] * W[392] + 4.0 * X[8] * W[349]
-            + 5.0 * X[10] * W[306] + 6.0 * X[12] * W[263] + 7.0 * X[14] * W[220] + 8.0 * X[16] * W[177]
-            + 9.0 * X[18] * W[134] + 10.0 * X[20] * W[91] + 11.0 * X[22] * W[48] + 12.0 * X[24] * W[5]) / 12.0;
-    W[521] = -((X[2] * W[477] + 2.0 * X[4] * W[434] + 3.0 * X[6] * W[391] + 4.0 * X[8] * W[348]
-            + 5.0 * X[10] * W[305] + 6.0 * X[12] * W[262] + 7.0 * X[14] * W[219] + 8.0 * X[16] * W[176]
-            + 9.0 * X[18] * W[133] + 10.0 * X[20] * W[90] + 11.0 * X[22] * W[47] + 12.0 * X[24] * W[4])) / 12.0;
-    W[546] = (X[1] * X[25] + X[3] * X[23] + X[5] * X[21] + X[7] * X[19] + X[9] * X[17] + X[11] * X[15]) * 2.0
-            + X[13] * X[13];
-    W[548] = W[31] * W[520];
-    W[549] = W[4] * W[521] + W[47] * W[478] + W[90] * W[435] + W[133] * W[392] + W[176] * W[349]
-            + W[219] * W[306] + W[262] * W[263] + W[305] * W[220] + W[348] * W[177] + W[391] * W[134]
-            + W[434] * W[91] + W[477] * W[48] + W[520] * W[5];
-    W[522] = W[45] * W[480] / 12.0;
-    W[523] = -W[45] * W[479] / 12.0;
-    W[550] = W[33] * W[546] + W[76] * W[503] + W[119] * W[460] + W[162] * W[417] + W[205] * W[374]
-            + W[248] * W[331] + W[291] * W[288] + W[334] * W[245] + W[377] * W[202] + W[420] * W[159]
-            + W[463] * W[116] + W[506] * W[73] + W[549] * W[30];
-    W[524] = W[4] * W[523] + W[47] * W[480] + W[90] * W[437] + W[133] * W[394] + W[176] * W[351]
-            + W[219] * W[308] + W[262] * W[265] + W[305] * W[222] + W[348] * W[179] + W[391] * W[136]
-            + W[434] * W[93] + W[477] * W[50] + W[520] * W[7];
-    W[525] = W[4] * W[522] + W[47] * W[479] + W[90] * W[436] + W[133] * W[393] + W[176] * W[350]
-            + W[219] * W[307] + W[262] * W[264] + W[305] * W[221] + W[348] * W[178] + W[391] * W[135]
-            + W[434] * W[92] + W[477] * W[49] + W[520] * W[6];
-    W[527] = W[7] * W[521] + W[50] * W[478] + W[93] * W[435] + W[136] * W[392] + W[179] * W[349]
-            + W[222] * W[306] + W[265] * W[263] + W[308] * W[220] + W[351] * W[177] + W[394] * W[134]
-            + W[437] * W[91] + W[480] * W[48] + W[523] * W[5];
-    W[531] = W[6] * W[521] + W[49] * W[478] + W[92] * W[435] + W[135] * W[392] + W[178] * W[349]
-            + W[221] * W[306] + W[264] * W[263] + W[307] * W[220] + W[350] * W[177] + W[393] * W[134]
-            + W[436] * W[91] + W[479] * W[48] + W[522] * W[5];
-    W[529] = W[0] * W[525];
-    W[533] = W[0] * W[524];
-    W[536] = W[0] * W[531];
-    W[541] = W[0] * W[527];
-    W[528] = W[11] * X[25] + W[54] * X[23] + W[97] * X[21] + W[140] * X[19] + W[183] * X[17] + W[226] * X[15]
-            + W[269] * X[13] + W[312] * X[11] + W[355] * X[9] + W[398] * X[7] + W[441] * X[5]
-            + W[484] * X[3] + W[527] * X[1];
-    W[532] = W[15] * X[25] + W[58] * X[23] + W[101] * X[21] + W[144] * X[19] + W[187] * X[17]
-            + W[230] * X[15] + W[273] * X[13] + W[316] * X[11] + W[359] * X[9] + W[402] * X[7]
-            + W[445] * X[5] + W[488] * X[3] + W[531] * X[1];
-    W[537] = W[8] * X[25] + W[51] * X[23] + W[94] * X[21] + W[137] * X[19] + W[180] * X[17] + W[223] * X[15]
-            + W[266] * X[13] + W[309] * X[11] + W[352] * X[9] + W[395] * X[7] + W[438] * X[5]
-            + W[481] * X[3] + W[524] * X[1];
-    W[542] = W[9] * X[25] + W[52] * X[23] + W[95] * X[21] + W[138] * X[19] + W[181] * X[17] + W[224] * X[15]
-            + W[267] * X[13] + W[310] * X[11] + W[353] * X[9] + W[396] * X[7] + W[439] * X[5]
-            + W[482] * X[3] + W[525] * X[1];
+    return 0;
+}
+
+/* Lines 20 .. 37 of taylor_run's order 12. */
+static EOMC_NOINLINE int
+spinning_hoop_taylor_run_27(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[530] = W[528] - W[529];
     W[534] = W[532] + W[533];
     W[538] = W[536] + W[537];
@@ -1411,9 +1120,16 @@ spinning_hoop_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[558] = W[548] + W[557];
     X[26] = X[25] / 13.0;
     X[27] = -W[558] / W[19] / 13.0;
-    if (K == 13)
-        goto out;
-    /* order 13 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 13. */
+static EOMC_NOINLINE int
+spinning_hoop_taylor_run_28(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[563] = (X[2] * W[521] + 2.0 * X[4] * W[478] + 3.0 * X[6] * W[435] + 4.0 * X[8] * W[392]
             + 5.0 * X[10] * W[349] + 6.0 * X[12] * W[306] + 7.0 * X[14] * W[263] + 8.0 * X[16] * W[220]
             + 9.0 * X[18] * W[177] + 10.0 * X[20] * W[134] + 11.0 * X[22] * W[91] + 12.0 * X[24] * W[48]
@@ -1461,82 +1177,16 @@ spinning_hoop_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[585] = W[9] * X[27] + W[52] * X[25] + W[95] * X[23] + W[138] * X[21] + W[181] * X[19] + W[224] * X[17]
             + W[267] * X[15] + W[310] * X[13] + W[353] * X[11] + W[396] * X[9] + W[439] * X[7]
             + W[482] * X[5] + W[525] * X[3] + W[568] * X[1];
-    W[573] = W[571] - W[572];
-    W[577] = W[575] + W[576];
-    W[581] = W[579] + W[580];
-    W[586] = W[584] - W[585];
-    W[583] = W[0] * W[577];
-    W[588] = W[0] * W[573];
-    W[582] = X[1] * W[581] + X[3] * W[538] + X[5] * W[495] + X[7] * W[452] + X[9] * W[409] + X[11] * W[366]
-            + X[13] * W[323] + X[15] * W[280] + X[17] * W[237] + X[19] * W[194] + X[21] * W[151]
-            + X[23] * W[108] + X[25] * W[65] + X[27] * W[22];
-    W[587] = X[1] * W[586] + X[3] * W[543] + X[5] * W[500] + X[7] * W[457] + X[9] * W[414] + X[11] * W[371]
-            + X[13] * W[328] + X[15] * W[285] + X[17] * W[242] + X[19] * W[199] + X[21] * W[156]
-            + X[23] * W[113] + X[25] * W[70] + X[27] * W[27];
-    W[594] = W[582] + W[583];
-    W[595] = W[587] + W[588];
-    W[596] = W[15] * W[595] + W[58] * W[552] + W[101] * W[509] + W[144] * W[466] + W[187] * W[423]
-            + W[230] * W[380] + W[273] * W[337] + W[316] * W[294] + W[359] * W[251] + W[402] * W[208]
-            + W[445] * W[165] + W[488] * W[122] + W[531] * W[79] + W[574] * W[36];
-    W[597] = W[11] * W[594] + W[54] * W[551] + W[97] * W[508] + W[140] * W[465] + W[183] * W[422]
-            + W[226] * W[379] + W[269] * W[336] + W[312] * W[293] + W[355] * W[250] + W[398] * W[207]
-            + W[441] * W[164] + W[484] * W[121] + W[527] * W[78] + W[570] * W[35];
-    W[598] = W[593] + W[596];
-    W[599] = W[598] - W[597];
-    W[600] = W[19] * W[599];
-    W[601] = W[591] + W[600];
-    X[28] = X[27] / 14.0;
-    X[29] = -W[601] / W[19] / 14.0;
-    if (K == 14)
-        goto out;
-    /* order 14 */
-    W[606] = (X[2] * W[564] + 2.0 * X[4] * W[521] + 3.0 * X[6] * W[478] + 4.0 * X[8] * W[435]
-            + 5.0 * X[10] * W[392] + 6.0 * X[12] * W[349] + 7.0 * X[14] * W[306] + 8.0 * X[16] * W[263]
-            + 9.0 * X[18] * W[220] + 10.0 * X[20] * W[177] + 11.0 * X[22] * W[134] + 12.0 * X[24] * W[91]
-            + 13.0 * X[26] * W[48] + 14.0 * X[28] * W[5]) / 14.0;
-    W[607] = -((X[2] * W[563] + 2.0 * X[4] * W[520] + 3.0 * X[6] * W[477] + 4.0 * X[8] * W[434]
-            + 5.0 * X[10] * W[391] + 6.0 * X[12] * W[348] + 7.0 * X[14] * W[305] + 8.0 * X[16] * W[262]
-            + 9.0 * X[18] * W[219] + 10.0 * X[20] * W[176] + 11.0 * X[22] * W[133] + 12.0 * X[24] * W[90]
-            + 13.0 * X[26] * W[47] + 14.0 * X[28] * W[4])) / 14.0;
-    W[632] = (X[1] * X[29] + X[3] * X[27] + X[5] * X[25] + X[7] * X[23] + X[9] * X[21] + X[11] * X[19]
-            + X[13] * X[17]) * 2.0 + X[15] * X[15];
-    W[634] = W[31] * W[606];
-    W[635] = W[4] * W[607] + W[47] * W[564] + W[90] * W[521] + W[133] * W[478] + W[176] * W[435]
-            + W[219] * W[392] + W[262] * W[349] + W[305] * W[306] + W[348] * W[263] + W[391] * W[220]
-            + W[434] * W[177] + W[477] * W[134] + W[520] * W[91] + W[563] * W[48] + W[606] * W[5];
-    W[608] = W[45] * W[566] / 14.0;
-    W[609] = -W[45] * W[565] / 14.0;
-    W[636] = W[33] * W[632] + W[76] * W[589] + W[119] * W[546] + W[162] * W[503] + W[205] * W[460]
-            + W[248] * W[417] + W[291] * W[374] + W[334] * W[331] + W[377] * W[288] + W[420] * W[245]
-            + W[463] * W[202] + W[506] * W[159] + W[549] * W[116] + W[592] * W[73] + W[635] * W[30];
-    W[610] = W[4] * W[609] + W[47] * W[566] + W[90] * W[523] + W[133] * W[480] + W[176] * W[437]
-            + W[219] * W[394] + W[262] * W[351] + W[305] * W[308] + W[348] * W[265] + W[391] * W[222]
-            + W[434] * W[179] + W[477] * W[136] + W[520] * W[93] + W[563] * W[50] + W[606] * W[7];
-    W[611] = W[4] * W[608] + W[47] * W[565] + W[90] * W[522] + W[133] * W[479] + W[176] * W[436]
-            + W[219] * W[393] + W[262] * W[350] + W[305] * W[307] + W[348] * W[264] + W[391] * W[221]
-            + W[434] * W[178] + W[477] * W[135] + W[520] * W[92] + W[563] * W[49] + W[606] * W[6];
-    W[613] = W[7] * W[607] + W[50] * W[564] + W[93] * W[521] + W[136] * W[478] + W[179] * W[435]
-            + W[222] * W[392] + W[265] * W[349] + W[308] * W[306] + W[351] * W[263] + W[394] * W[220]
-            + W[437] * W[177] + W[480] * W[134] + W[523] * W[91] + W[566] * W[48] + W[609] * W[5];
-    W[617] = W[6] * W[607] + W[49] * W[564] + W[92] * W[521] + W[135] * W[478] + W[178] * W[435]
-            + W[221] * W[392] + W[264] * W[349] + W[307] * W[306] + W[350] * W[263] + W[393] * W[220]
-            + W[436] * W[177] + W[479] * W[134] + W[522] * W[91] + W[565] * W[48] + W[608] * W[5];
-    W[615] = W[0] * W[611];
-    W[619] = W[0] * W[610];
-    W[622] = W[0] * W[617];
-    W[627] = W[0] * W[613];
-    W[614] = W[11] * X[29] + W[54] * X[27] + W[97] * X[25] + W[140] * X[23] + W[183] * X[21] + W[226] * X[19]
-            + W[269] * X[17] + W[312] * X[15] + W[355] * X[13] + W[398] * X[11] + W[441] * X[9]
-            + W[484] * X[7] + W[527] * X[5] + W[570] * X[3] + W[613] * X[1];
-    W[618] = W[15] * X[29] + W[58] * X[27] + W[101] * X[25] + W[144] * X[23] + W[187] * X[21]
-            + W[230] * X[19] + W[273] * X[17] + W[316] * X[15] + W[359] * X[13] + W[402] * X[11]
-            + W[445] * X[9] + W[488] * X[7] + W[531] * X[5] + W[574] * X[3] + W[617] * X[1];
-    W[623] = W[8] * X[29] + W[51] * X[27] + W[94] * X[25] + W[137] * X[23] + W[180] * X[21] + W[223] * X[19]
-            + W[266] * X[17] + W[309] * X[15] + W[352] * X[13] + W[395] * X[11] + W[438] * X[9]
-            + W[481] * X[7] + W[524] * X[5] + W[567] * X[3] + W[610] * X[1];
-    W[628] = W[9] * X[29] + W[52] * X[27] + W[95] * X[25] + W[138] * X[23] + W[181] * X[21] + W[224] * X[19]
-            + W[267] * X[17] + W[310] * X[15] + W[353] * X[13] + W[396] * X[11] + W[439] * X[9]
-            + W[482] * X[7] + W[525] * X[5] + W[568] * X[3] + W[611] * X[1];
+    return 0;
+}
+
+/* Lines 20 .. 37 of taylor_run's order 14. */
+static EOMC_NOINLINE int
+spinning_hoop_taylor_run_31(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[616] = W[614] - W[615];
     W[620] = W[618] + W[619];
     W[624] = W[622] + W[623];
@@ -1563,9 +1213,16 @@ spinning_hoop_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[644] = W[634] + W[643];
     X[30] = X[29] / 15.0;
     X[31] = -W[644] / W[19] / 15.0;
-    if (K == 15)
-        goto out;
-    /* order 15 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 15. */
+static EOMC_NOINLINE int
+spinning_hoop_taylor_run_32(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[649] = (X[2] * W[607] + 2.0 * X[4] * W[564] + 3.0 * X[6] * W[521] + 4.0 * X[8] * W[478]
             + 5.0 * X[10] * W[435] + 6.0 * X[12] * W[392] + 7.0 * X[14] * W[349] + 8.0 * X[16] * W[306]
             + 9.0 * X[18] * W[263] + 10.0 * X[20] * W[220] + 11.0 * X[22] * W[177] + 12.0 * X[24] * W[134]
@@ -1619,91 +1276,16 @@ spinning_hoop_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[671] = W[9] * X[31] + W[52] * X[29] + W[95] * X[27] + W[138] * X[25] + W[181] * X[23] + W[224] * X[21]
             + W[267] * X[19] + W[310] * X[17] + W[353] * X[15] + W[396] * X[13] + W[439] * X[11]
             + W[482] * X[9] + W[525] * X[7] + W[568] * X[5] + W[611] * X[3] + W[654] * X[1];
-    W[659] = W[657] - W[658];
-    W[663] = W[661] + W[662];
-    W[667] = W[665] + W[666];
-    W[672] = W[670] - W[671];
-    W[669] = W[0] * W[663];
-    W[674] = W[0] * W[659];
-    W[668] = X[1] * W[667] + X[3] * W[624] + X[5] * W[581] + X[7] * W[538] + X[9] * W[495] + X[11] * W[452]
-            + X[13] * W[409] + X[15] * W[366] + X[17] * W[323] + X[19] * W[280] + X[21] * W[237]
-            + X[23] * W[194] + X[25] * W[151] + X[27] * W[108] + X[29] * W[65] + X[31] * W[22];
-    W[673] = X[1] * W[672] + X[3] * W[629] + X[5] * W[586] + X[7] * W[543] + X[9] * W[500] + X[11] * W[457]
-            + X[13] * W[414] + X[15] * W[371] + X[17] * W[328] + X[19] * W[285] + X[21] * W[242]
-            + X[23] * W[199] + X[25] * W[156] + X[27] * W[113] + X[29] * W[70] + X[31] * W[27];
-    W[680] = W[668] + W[669];
-    W[681] = W[673] + W[674];
-    W[682] = W[15] * W[681] + W[58] * W[638] + W[101] * W[595] + W[144] * W[552] + W[187] * W[509]
-            + W[230] * W[466] + W[273] * W[423] + W[316] * W[380] + W[359] * W[337] + W[402] * W[294]
-            + W[445] * W[251] + W[488] * W[208] + W[531] * W[165] + W[574] * W[122] + W[617] * W[79]
-            + W[660] * W[36];
-    W[683] = W[11] * W[680] + W[54] * W[637] + W[97] * W[594] + W[140] * W[551] + W[183] * W[508]
-            + W[226] * W[465] + W[269] * W[422] + W[312] * W[379] + W[355] * W[336] + W[398] * W[293]
-            + W[441] * W[250] + W[484] * W[207] + W[527] * W[164] + W[570] * W[121] + W[613] * W[78]
-            + W[656] * W[35];
-    W[684] = W[679] + W[682];
-    W[685] = W[684] - W[683];
-    W[686] = W[19] * W[685];
-    W[687] = W[677] + W[686];
-    X[32] = X[31] / 16.0;
-    X[33] = -W[687] / W[19] / 16.0;
-    if (K == 16)
-        goto out;
-    /* order 16 */
-    W[692] = (X[2] * W[650] + 2.0 * X[4] * W[607] + 3.0 * X[6] * W[564] + 4.0 * X[8] * W[521]
-            + 5.0 * X[10] * W[478] + 6.0 * X[12] * W[435] + 7.0 * X[14] * W[392] + 8.0 * X[16] * W[349]
-            + 9.0 * X[18] * W[306] + 10.0 * X[20] * W[263] + 11.0 * X[22] * W[220] + 12.0 * X[24] * W[177]
-            + 13.0 * X[26] * W[134] + 14.0 * X[28] * W[91] + 15.0 * X[30] * W[48] + 16.0 * X[32] * W[5]) / 16.0;
-    W[693] = -((X[2] * W[649] + 2.0 * X[4] * W[606] + 3.0 * X[6] * W[563] + 4.0 * X[8] * W[520]
-            + 5.0 * X[10] * W[477] + 6.0 * X[12] * W[434] + 7.0 * X[14] * W[391] + 8.0 * X[16] * W[348]
-            + 9.0 * X[18] * W[305] + 10.0 * X[20] * W[262] + 11.0 * X[22] * W[219] + 12.0 * X[24] * W[176]
-            + 13.0 * X[26] * W[133] + 14.0 * X[28] * W[90] + 15.0 * X[30] * W[47] + 16.0 * X[32] * W[4])) / 16.0;
-    W[718] = (X[1] * X[33] + X[3] * X[31] + X[5] * X[29] + X[7] * X[27] + X[9] * X[25] + X[11] * X[23]
-            + X[13] * X[21] + X[15] * X[19]) * 2.0 + X[17] * X[17];
-    W[720] = W[31] * W[692];
-    W[721] = W[4] * W[693] + W[47] * W[650] + W[90] * W[607] + W[133] * W[564] + W[176] * W[521]
-            + W[219] * W[478] + W[262] * W[435] + W[305] * W[392] + W[348] * W[349] + W[391] * W[306]
-            + W[434] * W[263] + W[477] * W[220] + W[520] * W[177] + W[563] * W[134] + W[606] * W[91]
-            + W[649] * W[48] + W[692] * W[5];
-    W[694] = W[45] * W[652] / 16.0;
-    W[695] = -W[45] * W[651] / 16.0;
-    W[722] = W[33] * W[718] + W[76] * W[675] + W[119] * W[632] + W[162] * W[589] + W[205] * W[546]
-            + W[248] * W[503] + W[291] * W[460] + W[334] * W[417] + W[377] * W[374] + W[420] * W[331]
-            + W[463] * W[288] + W[506] * W[245] + W[549] * W[202] + W[592] * W[159] + W[635] * W[116]
-            + W[678] * W[73] + W[721] * W[30];
-    W[696] = W[4] * W[695] + W[47] * W[652] + W[90] * W[609] + W[133] * W[566] + W[176] * W[523]
-            + W[219] * W[480] + W[262] * W[437] + W[305] * W[394] + W[348] * W[351] + W[391] * W[308]
-            + W[434] * W[265] + W[477] * W[222] + W[520] * W[179] + W[563] * W[136] + W[606] * W[93]
-            + W[649] * W[50] + W[692] * W[7];
-    W[697] = W[4] * W[694] + W[47] * W[651] + W[90] * W[608] + W[133] * W[565] + W[176] * W[522]
-            + W[219] * W[479] + W[262] * W[436] + W[305] * W[393] + W[348] * W[350] + W[391] * W[307]
-            + W[434] * W[264] + W[477] * W[221] + W[520] * W[178] + W[563] * W[135] + W[606] * W[92]
-            + W[649] * W[49] + W[692] * W[6];
-    W[699] = W[7] * W[693] + W[50] * W[650] + W[93] * W[607] + W[136] * W[564] + W[179] * W[521]
-            + W[222] * W[478] + W[265] * W[435] + W[308] * W[392] + W[351] * W[349] + W[394] * W[306]
-            + W[437] * W[263] + W[480] * W[220] + W[523] * W[177] + W[566] * W[134] + W[609] * W[91]
-            + W[652] * W[48] + W[695] * W[5];
-    W[703] = W[6] * W[693] + W[49] * W[650] + W[92] * W[607] + W[135] * W[564] + W[178] * W[521]
-            + W[221] * W[478] + W[264] * W[435] + W[307] * W[392] + W[350] * W[349] + W[393] * W[306]
-            + W[436] * W[263] + W[479] * W[220] + W[522] * W[177] + W[565] * W[134] + W[608] * W[91]
-            + W[651] * W[48] + W[694] * W[5];
-    W[701] = W[0] * W[697];
-    W[705] = W[0] * W[696];
-    W[708] = W[0] * W[703];
-    W[713] = W[0] * W[699];
-    W[700] = W[11] * X[33] + W[54] * X[31] + W[97] * X[29] + W[140] * X[27] + W[183] * X[25] + W[226] * X[23]
-            + W[269] * X[21] + W[312] * X[19] + W[355] * X[17] + W[398] * X[15] + W[441] * X[13]
-            + W[484] * X[11] + W[527] * X[9] + W[570] * X[7] + W[613] * X[5] + W[656] * X[3] + W[699] * X[1];
-    W[704] = W[15] * X[33] + W[58] * X[31] + W[101] * X[29] + W[144] * X[27] + W[187] * X[25]
-            + W[230] * X[23] + W[273] * X[21] + W[316] * X[19] + W[359] * X[17] + W[402] * X[15]
-            + W[445] * X[13] + W[488] * X[11] + W[531] * X[9] + W[574] * X[7] + W[617] * X[5]
-            + W[660] * X[3] + W[703] * X[1];
-    W[709] = W[8] * X[33] + W[51] * X[31] + W[94] * X[29] + W[137] * X[27] + W[180] * X[25] + W[223] * X[23]
-            + W[266] * X[21] + W[309] * X[19] + W[352] * X[17] + W[395] * X[15] + W[438] * X[13]
-            + W[481] * X[11] + W[524] * X[9] + W[567] * X[7] + W[610] * X[5] + W[653] * X[3] + W[696] * X[1];
-    W[714] = W[9] * X[33] + W[52] * X[31] + W[95] * X[29] + W[138] * X[27] + W[181] * X[25] + W[224] * X[23]
-            + W[267] * X[21] + W[310] * X[19] + W[353] * X[17] + W[396] * X[15] + W[439] * X[13]
-            + W[482] * X[11] + W[525] * X[9] + W[568] * X[7] + W[611] * X[5] + W[654] * X[3] + W[697] * X[1];
+    return 0;
+}
+
+/* Lines 20 .. 37 of taylor_run's order 16. */
+static EOMC_NOINLINE int
+spinning_hoop_taylor_run_35(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[702] = W[700] - W[701];
     W[706] = W[704] + W[705];
     W[710] = W[708] + W[709];
@@ -1734,9 +1316,16 @@ spinning_hoop_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[730] = W[720] + W[729];
     X[34] = X[33] / 17.0;
     X[35] = -W[730] / W[19] / 17.0;
-    if (K == 17)
-        goto out;
-    /* order 17 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 17. */
+static EOMC_NOINLINE int
+spinning_hoop_taylor_run_36(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[735] = (X[2] * W[693] + 2.0 * X[4] * W[650] + 3.0 * X[6] * W[607] + 4.0 * X[8] * W[564]
             + 5.0 * X[10] * W[521] + 6.0 * X[12] * W[478] + 7.0 * X[14] * W[435] + 8.0 * X[16] * W[392]
             + 9.0 * X[18] * W[349] + 10.0 * X[20] * W[306] + 11.0 * X[22] * W[263] + 12.0 * X[24] * W[220]
@@ -1796,98 +1385,16 @@ spinning_hoop_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[267] * X[23] + W[310] * X[21] + W[353] * X[19] + W[396] * X[17] + W[439] * X[15]
             + W[482] * X[13] + W[525] * X[11] + W[568] * X[9] + W[611] * X[7] + W[654] * X[5]
             + W[697] * X[3] + W[740] * X[1];
-    W[745] = W[743] - W[744];
-    W[749] = W[747] + W[748];
-    W[753] = W[751] + W[752];
-    W[758] = W[756] - W[757];
-    W[755] = W[0] * W[749];
-    W[760] = W[0] * W[745];
-    W[754] = X[1] * W[753] + X[3] * W[710] + X[5] * W[667] + X[7] * W[624] + X[9] * W[581] + X[11] * W[538]
-            + X[13] * W[495] + X[15] * W[452] + X[17] * W[409] + X[19] * W[366] + X[21] * W[323]
-            + X[23] * W[280] + X[25] * W[237] + X[27] * W[194] + X[29] * W[151] + X[31] * W[108]
-            + X[33] * W[65] + X[35] * W[22];
-    W[759] = X[1] * W[758] + X[3] * W[715] + X[5] * W[672] + X[7] * W[629] + X[9] * W[586] + X[11] * W[543]
-            + X[13] * W[500] + X[15] * W[457] + X[17] * W[414] + X[19] * W[371] + X[21] * W[328]
-            + X[23] * W[285] + X[25] * W[242] + X[27] * W[199] + X[29] * W[156] + X[31] * W[113]
-            + X[33] * W[70] + X[35] * W[27];
-    W[766] = W[754] + W[755];
-    W[767] = W[759] + W[760];
-    W[768] = W[15] * W[767] + W[58] * W[724] + W[101] * W[681] + W[144] * W[638] + W[187] * W[595]
-            + W[230] * W[552] + W[273] * W[509] + W[316] * W[466] + W[359] * W[423] + W[402] * W[380]
-            + W[445] * W[337] + W[488] * W[294] + W[531] * W[251] + W[574] * W[208] + W[617] * W[165]
-            + W[660] * W[122] + W[703] * W[79] + W[746] * W[36];
-    W[769] = W[11] * W[766] + W[54] * W[723] + W[97] * W[680] + W[140] * W[637] + W[183] * W[594]
-            + W[226] * W[551] + W[269] * W[508] + W[312] * W[465] + W[355] * W[422] + W[398] * W[379]
-            + W[441] * W[336] + W[484] * W[293] + W[527] * W[250] + W[570] * W[207] + W[613] * W[164]
-            + W[656] * W[121] + W[699] * W[78] + W[742] * W[35];
-    W[770] = W[765] + W[768];
-    W[771] = W[770] - W[769];
-    W[772] = W[19] * W[771];
-    W[773] = W[763] + W[772];
-    X[36] = X[35] / 18.0;
-    X[37] = -W[773] / W[19] / 18.0;
-    if (K == 18)
-        goto out;
-    /* order 18 */
-    W[778] = (X[2] * W[736] + 2.0 * X[4] * W[693] + 3.0 * X[6] * W[650] + 4.0 * X[8] * W[607]
-            + 5.0 * X[10] * W[564] + 6.0 * X[12] * W[521] + 7.0 * X[14] * W[478] + 8.0 * X[16] * W[435]
-            + 9.0 * X[18] * W[392] + 10.0 * X[20] * W[349] + 11.0 * X[22] * W[306] + 12.0 * X[24] * W[263]
-            + 13.0 * X[26] * W[220] + 14.0 * X[28] * W[177] + 15.0 * X[30] * W[134] + 16.0 * X[32] * W[91]
-            + 17.0 * X[34] * W[48] + 18.0 * X[36] * W[5]) / 18.0;
-    W[779] = -((X[2] * W[735] + 2.0 * X[4] * W[692] + 3.0 * X[6] * W[649] + 4.0 * X[8] * W[606]
-            + 5.0 * X[10] * W[563] + 6.0 * X[12] * W[520] + 7.0 * X[14] * W[477] + 8.0 * X[16] * W[434]
-            + 9.0 * X[18] * W[391] + 10.0 * X[20] * W[348] + 11.0 * X[22] * W[305] + 12.0 * X[24] * W[262]
-            + 13.0 * X[26] * W[219] + 14.0 * X[28] * W[176] + 15.0 * X[30] * W[133] + 16.0 * X[32] * W[90]
-            + 17.0 * X[34] * W[47] + 18.0 * X[36] * W[4])) / 18.0;
-    W[804] = (X[1] * X[37] + X[3] * X[35] + X[5] * X[33] + X[7] * X[31] + X[9] * X[29] + X[11] * X[27]
-            + X[13] * X[25] + X[15] * X[23] + X[17] * X[21]) * 2.0 + X[19] * X[19];
-    W[806] = W[31] * W[778];
-    W[807] = W[4] * W[779] + W[47] * W[736] + W[90] * W[693] + W[133] * W[650] + W[176] * W[607]
-            + W[219] * W[564] + W[262] * W[521] + W[305] * W[478] + W[348] * W[435] + W[391] * W[392]
-            + W[434] * W[349] + W[477] * W[306] + W[520] * W[263] + W[563] * W[220] + W[606] * W[177]
-            + W[649] * W[134] + W[692] * W[91] + W[735] * W[48] + W[778] * W[5];
-    W[780] = W[45] * W[738] / 18.0;
-    W[781] = -W[45] * W[737] / 18.0;
-    W[808] = W[33] * W[804] + W[76] * W[761] + W[119] * W[718] + W[162] * W[675] + W[205] * W[632]
-            + W[248] * W[589] + W[291] * W[546] + W[334] * W[503] + W[377] * W[460] + W[420] * W[417]
-            + W[463] * W[374] + W[506] * W[331] + W[549] * W[288] + W[592] * W[245] + W[635] * W[202]
-            + W[678] * W[159] + W[721] * W[116] + W[764] * W[73] + W[807] * W[30];
-    W[782] = W[4] * W[781] + W[47] * W[738] + W[90] * W[695] + W[133] * W[652] + W[176] * W[609]
-            + W[219] * W[566] + W[262] * W[523] + W[305] * W[480] + W[348] * W[437] + W[391] * W[394]
-            + W[434] * W[351] + W[477] * W[308] + W[520] * W[265] + W[563] * W[222] + W[606] * W[179]
-            + W[649] * W[136] + W[692] * W[93] + W[735] * W[50] + W[778] * W[7];
-    W[783] = W[4] * W[780] + W[47] * W[737] + W[90] * W[694] + W[133] * W[651] + W[176] * W[608]
-            + W[219] * W[565] + W[262] * W[522] + W[305] * W[479] + W[348] * W[436] + W[391] * W[393]
-            + W[434] * W[350] + W[477] * W[307] + W[520] * W[264] + W[563] * W[221] + W[606] * W[178]
-            + W[649] * W[135] + W[692] * W[92] + W[735] * W[49] + W[778] * W[6];
-    W[785] = W[7] * W[779] + W[50] * W[736] + W[93] * W[693] + W[136] * W[650] + W[179] * W[607]
-            + W[222] * W[564] + W[265] * W[521] + W[308] * W[478] + W[351] * W[435] + W[394] * W[392]
-            + W[437] * W[349] + W[480] * W[306] + W[523] * W[263] + W[566] * W[220] + W[609] * W[177]
-            + W[652] * W[134] + W[695] * W[91] + W[738] * W[48] + W[781] * W[5];
-    W[789] = W[6] * W[779] + W[49] * W[736] + W[92] * W[693] + W[135] * W[650] + W[178] * W[607]
-            + W[221] * W[564] + W[264] * W[521] + W[307] * W[478] + W[350] * W[435] + W[393] * W[392]
-            + W[436] * W[349] + W[479] * W[306] + W[522] * W[263] + W[565] * W[220] + W[608] * W[177]
-            + W[651] * W[134] + W[694] * W[91] + W[737] * W[48] + W[780] * W[5];
-    W[787] = W[0] * W[783];
-    W[791] = W[0] * W[782];
-    W[794] = W[0] * W[789];
-    W[799] = W[0] * W[785];
-    W[786] = W[11] * X[37] + W[54] * X[35] + W[97] * X[33] + W[140] * X[31] + W[183] * X[29] + W[226] * X[27]
-            + W[269] * X[25] + W[312] * X[23] + W[355] * X[21] + W[398] * X[19] + W[441] * X[17]
-            + W[484] * X[15] + W[527] * X[13] + W[570] * X[11] + W[613] * X[9] + W[656] * X[7]
-            + W[699] * X[5] + W[742] * X[3] + W[785] * X[1];
-    W[790] = W[15] * X[37] + W[58] * X[35] + W[101] * X[33] + W[144] * X[31] + W[187] * X[29]
-            + W[230] * X[27] + W[273] * X[25] + W[316] * X[23] + W[359] * X[21] + W[402] * X[19]
-            + W[445] * X[17] + W[488] * X[15] + W[531] * X[13] + W[574] * X[11] + W[617] * X[9]
-            + W[660] * X[7] + W[703] * X[5] + W[746] * X[3] + W[789] * X[1];
-    W[795] = W[8] * X[37] + W[51] * X[35] + W[94] * X[33] + W[137] * X[31] + W[180] * X[29] + W[223] * X[27]
-            + W[266] * X[25] + W[309] * X[23] + W[352] * X[21] + W[395] * X[19] + W[438] * X[17]
-            + W[481] * X[15] + W[524] * X[13] + W[567] * X[11] + W[610] * X[9] + W[653] * X[7]
-            + W[696] * X[5] + W[739] * X[3] + W[782] * X[1];
-    W[800] = W[9] * X[37] + W[52] * X[35] + W[95] * X[33] + W[138] * X[31] + W[181] * X[29] + W[224] * X[27]
-            + W[267] * X[25] + W[310] * X[23] + W[353] * X[21] + W[396] * X[19] + W[439] * X[17]
-            + W[482] * X[15] + W[525] * X[13] + W[568] * X[11] + W[611] * X[9] + W[654] * X[7]
-            + W[697] * X[5] + W[740] * X[3] + W[783] * X[1];
+    return 0;
+}
+
+/* Lines 20 .. 37 of taylor_run's order 18. */
+static EOMC_NOINLINE int
+spinning_hoop_taylor_run_39(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[788] = W[786] - W[787];
     W[792] = W[790] + W[791];
     W[796] = W[794] + W[795];
@@ -1918,9 +1425,16 @@ spinning_hoop_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[816] = W[806] + W[815];
     X[38] = X[37] / 19.0;
     X[39] = -W[816] / W[19] / 19.0;
-    if (K == 19)
-        goto out;
-    /* order 19 */
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 19. */
+static EOMC_NOINLINE int
+spinning_hoop_taylor_run_40(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[821] = (X[2] * W[779] + 2.0 * X[4] * W[736] + 3.0 * X[6] * W[693] + 4.0 * X[8] * W[650]
             + 5.0 * X[10] * W[607] + 6.0 * X[12] * W[564] + 7.0 * X[14] * W[521] + 8.0 * X[16] * W[478]
             + 9.0 * X[18] * W[435] + 10.0 * X[20] * W[392] + 11.0 * X[22] * W[349] + 12.0 * X[24] * W[306]
@@ -1980,36 +1494,260 @@ spinning_hoop_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + W[267] * X[27] + W[310] * X[25] + W[353] * X[23] + W[396] * X[21] + W[439] * X[19]
             + W[482] * X[17] + W[525] * X[15] + W[568] * X[13] + W[611] * X[11] + W[654] * X[9]
             + W[697] * X[7] + W[740] * X[5] + W[783] * X[3] + W[826] * X[1];
-    W[831] = W[829] - W[830];
-    W[835] = W[833] + W[834];
-    W[839] = W[837] + W[838];
-    W[844] = W[842] - W[843];
-    W[841] = W[0] * W[835];
-    W[846] = W[0] * W[831];
-    W[840] = X[1] * W[839] + X[3] * W[796] + X[5] * W[753] + X[7] * W[710] + X[9] * W[667] + X[11] * W[624]
-            + X[13] * W[581] + X[15] * W[538] + X[17] * W[495] + X[19] * W[452] + X[21] * W[409]
-            + X[23] * W[366] + X[25] * W[323] + X[27] * W[280] + X[29] * W[237] + X[31] * W[194]
-            + X[33] * W[151] + X[35] * W[108] + X[37] * W[65] + X[39] * W[22];
-    W[845] = X[1] * W[844] + X[3] * W[801] + X[5] * W[758] + X[7] * W[715] + X[9] * W[672] + X[11] * W[629]
-            + X[13] * W[586] + X[15] * W[543] + X[17] * W[500] + X[19] * W[457] + X[21] * W[414]
-            + X[23] * W[371] + X[25] * W[328] + X[27] * W[285] + X[29] * W[242] + X[31] * W[199]
-            + X[33] * W[156] + X[35] * W[113] + X[37] * W[70] + X[39] * W[27];
-    W[852] = W[840] + W[841];
-    W[853] = W[845] + W[846];
-    W[854] = W[15] * W[853] + W[58] * W[810] + W[101] * W[767] + W[144] * W[724] + W[187] * W[681]
-            + W[230] * W[638] + W[273] * W[595] + W[316] * W[552] + W[359] * W[509] + W[402] * W[466]
-            + W[445] * W[423] + W[488] * W[380] + W[531] * W[337] + W[574] * W[294] + W[617] * W[251]
-            + W[660] * W[208] + W[703] * W[165] + W[746] * W[122] + W[789] * W[79] + W[832] * W[36];
-    W[855] = W[11] * W[852] + W[54] * W[809] + W[97] * W[766] + W[140] * W[723] + W[183] * W[680]
-            + W[226] * W[637] + W[269] * W[594] + W[312] * W[551] + W[355] * W[508] + W[398] * W[465]
-            + W[441] * W[422] + W[484] * W[379] + W[527] * W[336] + W[570] * W[293] + W[613] * W[250]
-            + W[656] * W[207] + W[699] * W[164] + W[742] * W[121] + W[785] * W[78] + W[828] * W[35];
-    W[856] = W[851] + W[854];
-    W[857] = W[856] - W[855];
-    W[858] = W[19] * W[857];
-    W[859] = W[849] + W[858];
-    X[40] = X[39] / 20.0;
-    X[41] = -W[859] / W[19] / 20.0;
+    return 0;
+}
+
+EOMC_PART int
+spinning_hoop_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+spinning_hoop_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+spinning_hoop_taylor_run_3(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+spinning_hoop_taylor_run_4(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+spinning_hoop_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+spinning_hoop_taylor_run_8(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx);
+EOMC_PART int
+spinning_hoop_taylor_run_10(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+spinning_hoop_taylor_run_13(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+spinning_hoop_taylor_run_14(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+spinning_hoop_taylor_run_17(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+spinning_hoop_taylor_run_18(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+spinning_hoop_taylor_run_21(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+spinning_hoop_taylor_run_22(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+spinning_hoop_taylor_run_25(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+spinning_hoop_taylor_run_26(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+spinning_hoop_taylor_run_29(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+spinning_hoop_taylor_run_30(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+spinning_hoop_taylor_run_33(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+spinning_hoop_taylor_run_34(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+spinning_hoop_taylor_run_37(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+spinning_hoop_taylor_run_38(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART int
+spinning_hoop_taylor_run_41(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+static int
+spinning_hoop_taylor_run(int K, eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *T, eomc_real *X, eomc_tay_solve solve,
+    void *ctx)
+{
+    const int S = K + 1;
+    (void)solve, (void)ctx;
+    if (K > 20) {
+        static const int state[2] = {3, 10};
+        for (int i = 0; i < 2; i++)
+            T[state[i] * S] = X[i];
+        for (int k = 0; k < K; k++) {
+            spinning_hoop_taylor(k, K, t0, p, u, T);
+            eomc_tay_integ(T + 3 * S, T + 10 * S, k);
+            eomc_tay_accel(T + 10 * S, T + 42 * S, T + 19 * S, k);
+        }
+        for (int j = 1; j <= K; j++)
+            for (int i = 0; i < 2; i++)
+                X[j * 2 + i] = T[state[i] * S + j];
+        return 0;
+    }
+    eomc_real W[903]; /* slot s's coefficient j at W[j * 43 + s], but the
+                   * state's: X[j * 2 + i], q's then v's */
+    /* order 0 */
+    if (spinning_hoop_taylor_run_1(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (spinning_hoop_taylor_run_2(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (spinning_hoop_taylor_run_3(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 1)
+        goto out;
+    /* order 1 */
+    if (spinning_hoop_taylor_run_4(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (spinning_hoop_taylor_run_5(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 2)
+        goto out;
+    /* order 2 */
+    if (spinning_hoop_taylor_run_6(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (spinning_hoop_taylor_run_7(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 3)
+        goto out;
+    /* order 3 */
+    if (spinning_hoop_taylor_run_8(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (spinning_hoop_taylor_run_9(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 4)
+        goto out;
+    /* order 4 */
+    if (spinning_hoop_taylor_run_10(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (spinning_hoop_taylor_run_11(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 5)
+        goto out;
+    /* order 5 */
+    if (spinning_hoop_taylor_run_12(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (spinning_hoop_taylor_run_13(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 6)
+        goto out;
+    /* order 6 */
+    if (spinning_hoop_taylor_run_14(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (spinning_hoop_taylor_run_15(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 7)
+        goto out;
+    /* order 7 */
+    if (spinning_hoop_taylor_run_16(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (spinning_hoop_taylor_run_17(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 8)
+        goto out;
+    /* order 8 */
+    if (spinning_hoop_taylor_run_18(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (spinning_hoop_taylor_run_19(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 9)
+        goto out;
+    /* order 9 */
+    if (spinning_hoop_taylor_run_20(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (spinning_hoop_taylor_run_21(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 10)
+        goto out;
+    /* order 10 */
+    if (spinning_hoop_taylor_run_22(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (spinning_hoop_taylor_run_23(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 11)
+        goto out;
+    /* order 11 */
+    if (spinning_hoop_taylor_run_24(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (spinning_hoop_taylor_run_25(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 12)
+        goto out;
+    /* order 12 */
+    if (spinning_hoop_taylor_run_26(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (spinning_hoop_taylor_run_27(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 13)
+        goto out;
+    /* order 13 */
+    if (spinning_hoop_taylor_run_28(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (spinning_hoop_taylor_run_29(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 14)
+        goto out;
+    /* order 14 */
+    if (spinning_hoop_taylor_run_30(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (spinning_hoop_taylor_run_31(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 15)
+        goto out;
+    /* order 15 */
+    if (spinning_hoop_taylor_run_32(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (spinning_hoop_taylor_run_33(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 16)
+        goto out;
+    /* order 16 */
+    if (spinning_hoop_taylor_run_34(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (spinning_hoop_taylor_run_35(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 17)
+        goto out;
+    /* order 17 */
+    if (spinning_hoop_taylor_run_36(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (spinning_hoop_taylor_run_37(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 18)
+        goto out;
+    /* order 18 */
+    if (spinning_hoop_taylor_run_38(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (spinning_hoop_taylor_run_39(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (K == 19)
+        goto out;
+    /* order 19 */
+    if (spinning_hoop_taylor_run_40(t0, p, u, W, X, solve, ctx))
+        return -1;
+    if (spinning_hoop_taylor_run_41(t0, p, u, W, X, solve, ctx))
+        return -1;
 out:
     T[19 * S] = W[19]; /* M's diagonal, entry 0 */
     return 0;
@@ -2121,3 +1859,891 @@ const eomc_model_ext spinning_hoop_model_ext = {
 };
 #endif /* EOMC_EXTENDED */
 #endif /* EOMC_UNIT 3 */
+
+#if !defined(EOMC_UNIT) || EOMC_UNIT == 4
+/* The twin's names, linked beside the model's. */
+#if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
+#define spinning_hoop_taylor_run_1 spinning_hoop_taylor_run_1_ext
+#define spinning_hoop_taylor_run_2 spinning_hoop_taylor_run_2_ext
+#define spinning_hoop_taylor_run_3 spinning_hoop_taylor_run_3_ext
+#define spinning_hoop_taylor_run_4 spinning_hoop_taylor_run_4_ext
+#define spinning_hoop_taylor_run_6 spinning_hoop_taylor_run_6_ext
+#define spinning_hoop_taylor_run_8 spinning_hoop_taylor_run_8_ext
+#define spinning_hoop_taylor_run_10 spinning_hoop_taylor_run_10_ext
+#define spinning_hoop_taylor_run_13 spinning_hoop_taylor_run_13_ext
+#define spinning_hoop_taylor_run_14 spinning_hoop_taylor_run_14_ext
+#define spinning_hoop_taylor_run_17 spinning_hoop_taylor_run_17_ext
+#define spinning_hoop_taylor_run_18 spinning_hoop_taylor_run_18_ext
+#define spinning_hoop_taylor_run_21 spinning_hoop_taylor_run_21_ext
+#define spinning_hoop_taylor_run_22 spinning_hoop_taylor_run_22_ext
+#define spinning_hoop_taylor_run_25 spinning_hoop_taylor_run_25_ext
+#define spinning_hoop_taylor_run_26 spinning_hoop_taylor_run_26_ext
+#define spinning_hoop_taylor_run_29 spinning_hoop_taylor_run_29_ext
+#define spinning_hoop_taylor_run_30 spinning_hoop_taylor_run_30_ext
+#define spinning_hoop_taylor_run_33 spinning_hoop_taylor_run_33_ext
+#define spinning_hoop_taylor_run_34 spinning_hoop_taylor_run_34_ext
+#define spinning_hoop_taylor_run_37 spinning_hoop_taylor_run_37_ext
+#define spinning_hoop_taylor_run_38 spinning_hoop_taylor_run_38_ext
+#define spinning_hoop_taylor_run_41 spinning_hoop_taylor_run_41_ext
+#endif
+#ifndef EOMC_EXTENDED
+/* Lines 0 .. 19 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+spinning_hoop_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[0] = p[3];
+    W[1] = t0;
+    W[4] = sin(X[0]);
+    W[5] = cos(X[0]);
+    W[19] = p[4];
+    W[30] = X[1] * X[1];
+    W[31] = p[6];
+    W[2] = W[0] * W[1];
+    W[32] = W[31] * W[4];
+    W[33] = W[4] * W[5];
+    W[6] = sin(W[2]);
+    W[7] = cos(W[2]);
+    W[34] = W[33] * W[30];
+    W[8] = W[4] * W[7];
+    W[9] = W[4] * W[6];
+    W[11] = W[7] * W[5];
+    W[15] = W[6] * W[5];
+    W[13] = W[0] * W[9];
+    W[17] = W[0] * W[8];
+    W[20] = W[0] * W[15];
+    return 0;
+}
+
+/* Lines 20 .. 39 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+spinning_hoop_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[25] = W[0] * W[11];
+    W[12] = W[11] * X[1];
+    W[16] = W[15] * X[1];
+    W[21] = W[8] * X[1];
+    W[26] = W[9] * X[1];
+    W[14] = W[12] - W[13];
+    W[18] = W[16] + W[17];
+    W[22] = W[20] + W[21];
+    W[27] = W[25] - W[26];
+    W[24] = W[0] * W[18];
+    W[29] = W[0] * W[14];
+    W[23] = X[1] * W[22];
+    W[28] = X[1] * W[27];
+    W[35] = W[23] + W[24];
+    W[36] = W[28] + W[29];
+    W[37] = W[15] * W[36];
+    W[38] = W[11] * W[35];
+    W[39] = W[34] + W[37];
+    W[40] = W[39] - W[38];
+    W[41] = W[19] * W[40];
+    return 0;
+}
+
+/* Lines 40 .. 42 of taylor_run's order 0, in the fourth unit. */
+EOMC_PART int
+spinning_hoop_taylor_run_3(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[42] = W[32] + W[41];
+    X[2] = X[1];
+    X[3] = -W[42] / W[19];
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 1, in the fourth unit. */
+EOMC_PART int
+spinning_hoop_taylor_run_4(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[44] = 1.0;
+    W[47] = X[2] * W[5];
+    W[48] = -X[2] * W[4];
+    W[73] = X[1] * X[3] * 2.0;
+    W[45] = W[0] * W[44];
+    W[75] = W[31] * W[47];
+    W[76] = W[4] * W[48] + W[47] * W[5];
+    W[49] = W[45] * W[7];
+    W[50] = -W[45] * W[6];
+    W[77] = W[33] * W[73] + W[76] * W[30];
+    W[51] = W[4] * W[50] + W[47] * W[7];
+    W[52] = W[4] * W[49] + W[47] * W[6];
+    W[54] = W[7] * W[48] + W[50] * W[5];
+    W[58] = W[6] * W[48] + W[49] * W[5];
+    W[56] = W[0] * W[52];
+    W[60] = W[0] * W[51];
+    W[63] = W[0] * W[58];
+    W[68] = W[0] * W[54];
+    W[55] = W[11] * X[3] + W[54] * X[1];
+    W[59] = W[15] * X[3] + W[58] * X[1];
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART int
+spinning_hoop_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[90] = (X[2] * W[48] + 2.0 * X[4] * W[5]) / 2.0;
+    W[91] = -((X[2] * W[47] + 2.0 * X[4] * W[4])) / 2.0;
+    W[116] = X[1] * X[5] * 2.0 + X[3] * X[3];
+    W[118] = W[31] * W[90];
+    W[119] = W[4] * W[91] + W[47] * W[48] + W[90] * W[5];
+    W[92] = W[45] * W[50] / 2.0;
+    W[93] = -W[45] * W[49] / 2.0;
+    W[120] = W[33] * W[116] + W[76] * W[73] + W[119] * W[30];
+    W[94] = W[4] * W[93] + W[47] * W[50] + W[90] * W[7];
+    W[95] = W[4] * W[92] + W[47] * W[49] + W[90] * W[6];
+    W[97] = W[7] * W[91] + W[50] * W[48] + W[93] * W[5];
+    W[101] = W[6] * W[91] + W[49] * W[48] + W[92] * W[5];
+    W[99] = W[0] * W[95];
+    W[103] = W[0] * W[94];
+    W[106] = W[0] * W[101];
+    W[111] = W[0] * W[97];
+    W[98] = W[11] * X[5] + W[54] * X[3] + W[97] * X[1];
+    W[102] = W[15] * X[5] + W[58] * X[3] + W[101] * X[1];
+    W[107] = W[8] * X[5] + W[51] * X[3] + W[94] * X[1];
+    W[112] = W[9] * X[5] + W[52] * X[3] + W[95] * X[1];
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 3, in the fourth unit. */
+EOMC_PART int
+spinning_hoop_taylor_run_8(eomc_real t0, const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
+    void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[133] = (X[2] * W[91] + 2.0 * X[4] * W[48] + 3.0 * X[6] * W[5]) / 3.0;
+    W[134] = -((X[2] * W[90] + 2.0 * X[4] * W[47] + 3.0 * X[6] * W[4])) / 3.0;
+    W[159] = (X[1] * X[7] + X[3] * X[5]) * 2.0;
+    W[161] = W[31] * W[133];
+    W[162] = W[4] * W[134] + W[47] * W[91] + W[90] * W[48] + W[133] * W[5];
+    W[135] = W[45] * W[93] / 3.0;
+    W[136] = -W[45] * W[92] / 3.0;
+    W[163] = W[33] * W[159] + W[76] * W[116] + W[119] * W[73] + W[162] * W[30];
+    W[137] = W[4] * W[136] + W[47] * W[93] + W[90] * W[50] + W[133] * W[7];
+    W[138] = W[4] * W[135] + W[47] * W[92] + W[90] * W[49] + W[133] * W[6];
+    W[140] = W[7] * W[134] + W[50] * W[91] + W[93] * W[48] + W[136] * W[5];
+    W[144] = W[6] * W[134] + W[49] * W[91] + W[92] * W[48] + W[135] * W[5];
+    W[142] = W[0] * W[138];
+    W[146] = W[0] * W[137];
+    W[149] = W[0] * W[144];
+    W[154] = W[0] * W[140];
+    W[141] = W[11] * X[7] + W[54] * X[5] + W[97] * X[3] + W[140] * X[1];
+    W[145] = W[15] * X[7] + W[58] * X[5] + W[101] * X[3] + W[144] * X[1];
+    W[150] = W[8] * X[7] + W[51] * X[5] + W[94] * X[3] + W[137] * X[1];
+    W[155] = W[9] * X[7] + W[52] * X[5] + W[95] * X[3] + W[138] * X[1];
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 4, in the fourth unit. */
+EOMC_PART int
+spinning_hoop_taylor_run_10(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[176] = (X[2] * W[134] + 2.0 * X[4] * W[91] + 3.0 * X[6] * W[48] + 4.0 * X[8] * W[5]) / 4.0;
+    W[177] = -((X[2] * W[133] + 2.0 * X[4] * W[90] + 3.0 * X[6] * W[47] + 4.0 * X[8] * W[4])) / 4.0;
+    W[202] = (X[1] * X[9] + X[3] * X[7]) * 2.0 + X[5] * X[5];
+    W[204] = W[31] * W[176];
+    W[205] = W[4] * W[177] + W[47] * W[134] + W[90] * W[91] + W[133] * W[48] + W[176] * W[5];
+    W[178] = W[45] * W[136] / 4.0;
+    W[179] = -W[45] * W[135] / 4.0;
+    W[206] = W[33] * W[202] + W[76] * W[159] + W[119] * W[116] + W[162] * W[73] + W[205] * W[30];
+    W[180] = W[4] * W[179] + W[47] * W[136] + W[90] * W[93] + W[133] * W[50] + W[176] * W[7];
+    W[181] = W[4] * W[178] + W[47] * W[135] + W[90] * W[92] + W[133] * W[49] + W[176] * W[6];
+    W[183] = W[7] * W[177] + W[50] * W[134] + W[93] * W[91] + W[136] * W[48] + W[179] * W[5];
+    W[187] = W[6] * W[177] + W[49] * W[134] + W[92] * W[91] + W[135] * W[48] + W[178] * W[5];
+    W[185] = W[0] * W[181];
+    W[189] = W[0] * W[180];
+    W[192] = W[0] * W[187];
+    W[197] = W[0] * W[183];
+    W[184] = W[11] * X[9] + W[54] * X[7] + W[97] * X[5] + W[140] * X[3] + W[183] * X[1];
+    W[188] = W[15] * X[9] + W[58] * X[7] + W[101] * X[5] + W[144] * X[3] + W[187] * X[1];
+    W[193] = W[8] * X[9] + W[51] * X[7] + W[94] * X[5] + W[137] * X[3] + W[180] * X[1];
+    W[198] = W[9] * X[9] + W[52] * X[7] + W[95] * X[5] + W[138] * X[3] + W[181] * X[1];
+    return 0;
+}
+
+/* Lines 20 .. 37 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART int
+spinning_hoop_taylor_run_13(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[229] = W[227] - W[228];
+    W[233] = W[231] + W[232];
+    W[237] = W[235] + W[236];
+    W[242] = W[240] - W[241];
+    W[239] = W[0] * W[233];
+    W[244] = W[0] * W[229];
+    W[238] = X[1] * W[237] + X[3] * W[194] + X[5] * W[151] + X[7] * W[108] + X[9] * W[65] + X[11] * W[22];
+    W[243] = X[1] * W[242] + X[3] * W[199] + X[5] * W[156] + X[7] * W[113] + X[9] * W[70] + X[11] * W[27];
+    W[250] = W[238] + W[239];
+    W[251] = W[243] + W[244];
+    W[252] = W[15] * W[251] + W[58] * W[208] + W[101] * W[165] + W[144] * W[122] + W[187] * W[79]
+            + W[230] * W[36];
+    W[253] = W[11] * W[250] + W[54] * W[207] + W[97] * W[164] + W[140] * W[121] + W[183] * W[78]
+            + W[226] * W[35];
+    W[254] = W[249] + W[252];
+    W[255] = W[254] - W[253];
+    W[256] = W[19] * W[255];
+    W[257] = W[247] + W[256];
+    X[12] = X[11] / 6.0;
+    X[13] = -W[257] / W[19] / 6.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 6, in the fourth unit. */
+EOMC_PART int
+spinning_hoop_taylor_run_14(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[262] = (X[2] * W[220] + 2.0 * X[4] * W[177] + 3.0 * X[6] * W[134] + 4.0 * X[8] * W[91] + 5.0 * X[10] * W[48]
+            + 6.0 * X[12] * W[5]) / 6.0;
+    W[263] = -((X[2] * W[219] + 2.0 * X[4] * W[176] + 3.0 * X[6] * W[133] + 4.0 * X[8] * W[90]
+            + 5.0 * X[10] * W[47] + 6.0 * X[12] * W[4])) / 6.0;
+    W[288] = (X[1] * X[13] + X[3] * X[11] + X[5] * X[9]) * 2.0 + X[7] * X[7];
+    W[290] = W[31] * W[262];
+    W[291] = W[4] * W[263] + W[47] * W[220] + W[90] * W[177] + W[133] * W[134] + W[176] * W[91]
+            + W[219] * W[48] + W[262] * W[5];
+    W[264] = W[45] * W[222] / 6.0;
+    W[265] = -W[45] * W[221] / 6.0;
+    W[292] = W[33] * W[288] + W[76] * W[245] + W[119] * W[202] + W[162] * W[159] + W[205] * W[116]
+            + W[248] * W[73] + W[291] * W[30];
+    W[266] = W[4] * W[265] + W[47] * W[222] + W[90] * W[179] + W[133] * W[136] + W[176] * W[93]
+            + W[219] * W[50] + W[262] * W[7];
+    W[267] = W[4] * W[264] + W[47] * W[221] + W[90] * W[178] + W[133] * W[135] + W[176] * W[92]
+            + W[219] * W[49] + W[262] * W[6];
+    W[269] = W[7] * W[263] + W[50] * W[220] + W[93] * W[177] + W[136] * W[134] + W[179] * W[91]
+            + W[222] * W[48] + W[265] * W[5];
+    W[273] = W[6] * W[263] + W[49] * W[220] + W[92] * W[177] + W[135] * W[134] + W[178] * W[91]
+            + W[221] * W[48] + W[264] * W[5];
+    W[271] = W[0] * W[267];
+    W[275] = W[0] * W[266];
+    W[278] = W[0] * W[273];
+    W[283] = W[0] * W[269];
+    W[270] = W[11] * X[13] + W[54] * X[11] + W[97] * X[9] + W[140] * X[7] + W[183] * X[5] + W[226] * X[3]
+            + W[269] * X[1];
+    W[274] = W[15] * X[13] + W[58] * X[11] + W[101] * X[9] + W[144] * X[7] + W[187] * X[5] + W[230] * X[3]
+            + W[273] * X[1];
+    W[279] = W[8] * X[13] + W[51] * X[11] + W[94] * X[9] + W[137] * X[7] + W[180] * X[5] + W[223] * X[3]
+            + W[266] * X[1];
+    W[284] = W[9] * X[13] + W[52] * X[11] + W[95] * X[9] + W[138] * X[7] + W[181] * X[5] + W[224] * X[3]
+            + W[267] * X[1];
+    return 0;
+}
+
+/* Lines 20 .. 37 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART int
+spinning_hoop_taylor_run_17(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[315] = W[313] - W[314];
+    W[319] = W[317] + W[318];
+    W[323] = W[321] + W[322];
+    W[328] = W[326] - W[327];
+    W[325] = W[0] * W[319];
+    W[330] = W[0] * W[315];
+    W[324] = X[1] * W[323] + X[3] * W[280] + X[5] * W[237] + X[7] * W[194] + X[9] * W[151] + X[11] * W[108]
+            + X[13] * W[65] + X[15] * W[22];
+    W[329] = X[1] * W[328] + X[3] * W[285] + X[5] * W[242] + X[7] * W[199] + X[9] * W[156] + X[11] * W[113]
+            + X[13] * W[70] + X[15] * W[27];
+    W[336] = W[324] + W[325];
+    W[337] = W[329] + W[330];
+    W[338] = W[15] * W[337] + W[58] * W[294] + W[101] * W[251] + W[144] * W[208] + W[187] * W[165]
+            + W[230] * W[122] + W[273] * W[79] + W[316] * W[36];
+    W[339] = W[11] * W[336] + W[54] * W[293] + W[97] * W[250] + W[140] * W[207] + W[183] * W[164]
+            + W[226] * W[121] + W[269] * W[78] + W[312] * W[35];
+    W[340] = W[335] + W[338];
+    W[341] = W[340] - W[339];
+    W[342] = W[19] * W[341];
+    W[343] = W[333] + W[342];
+    X[16] = X[15] / 8.0;
+    X[17] = -W[343] / W[19] / 8.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 8, in the fourth unit. */
+EOMC_PART int
+spinning_hoop_taylor_run_18(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[348] = (X[2] * W[306] + 2.0 * X[4] * W[263] + 3.0 * X[6] * W[220] + 4.0 * X[8] * W[177]
+            + 5.0 * X[10] * W[134] + 6.0 * X[12] * W[91] + 7.0 * X[14] * W[48] + 8.0 * X[16] * W[5]) / 8.0;
+    W[349] = -((X[2] * W[305] + 2.0 * X[4] * W[262] + 3.0 * X[6] * W[219] + 4.0 * X[8] * W[176]
+            + 5.0 * X[10] * W[133] + 6.0 * X[12] * W[90] + 7.0 * X[14] * W[47] + 8.0 * X[16] * W[4])) / 8.0;
+    W[374] = (X[1] * X[17] + X[3] * X[15] + X[5] * X[13] + X[7] * X[11]) * 2.0 + X[9] * X[9];
+    W[376] = W[31] * W[348];
+    W[377] = W[4] * W[349] + W[47] * W[306] + W[90] * W[263] + W[133] * W[220] + W[176] * W[177]
+            + W[219] * W[134] + W[262] * W[91] + W[305] * W[48] + W[348] * W[5];
+    W[350] = W[45] * W[308] / 8.0;
+    W[351] = -W[45] * W[307] / 8.0;
+    W[378] = W[33] * W[374] + W[76] * W[331] + W[119] * W[288] + W[162] * W[245] + W[205] * W[202]
+            + W[248] * W[159] + W[291] * W[116] + W[334] * W[73] + W[377] * W[30];
+    W[352] = W[4] * W[351] + W[47] * W[308] + W[90] * W[265] + W[133] * W[222] + W[176] * W[179]
+            + W[219] * W[136] + W[262] * W[93] + W[305] * W[50] + W[348] * W[7];
+    W[353] = W[4] * W[350] + W[47] * W[307] + W[90] * W[264] + W[133] * W[221] + W[176] * W[178]
+            + W[219] * W[135] + W[262] * W[92] + W[305] * W[49] + W[348] * W[6];
+    W[355] = W[7] * W[349] + W[50] * W[306] + W[93] * W[263] + W[136] * W[220] + W[179] * W[177]
+            + W[222] * W[134] + W[265] * W[91] + W[308] * W[48] + W[351] * W[5];
+    W[359] = W[6] * W[349] + W[49] * W[306] + W[92] * W[263] + W[135] * W[220] + W[178] * W[177]
+            + W[221] * W[134] + W[264] * W[91] + W[307] * W[48] + W[350] * W[5];
+    W[357] = W[0] * W[353];
+    W[361] = W[0] * W[352];
+    W[364] = W[0] * W[359];
+    W[369] = W[0] * W[355];
+    W[356] = W[11] * X[17] + W[54] * X[15] + W[97] * X[13] + W[140] * X[11] + W[183] * X[9] + W[226] * X[7]
+            + W[269] * X[5] + W[312] * X[3] + W[355] * X[1];
+    W[360] = W[15] * X[17] + W[58] * X[15] + W[101] * X[13] + W[144] * X[11] + W[187] * X[9] + W[230] * X[7]
+            + W[273] * X[5] + W[316] * X[3] + W[359] * X[1];
+    W[365] = W[8] * X[17] + W[51] * X[15] + W[94] * X[13] + W[137] * X[11] + W[180] * X[9] + W[223] * X[7]
+            + W[266] * X[5] + W[309] * X[3] + W[352] * X[1];
+    W[370] = W[9] * X[17] + W[52] * X[15] + W[95] * X[13] + W[138] * X[11] + W[181] * X[9] + W[224] * X[7]
+            + W[267] * X[5] + W[310] * X[3] + W[353] * X[1];
+    return 0;
+}
+
+/* Lines 20 .. 37 of taylor_run's order 9, in the fourth unit. */
+EOMC_PART int
+spinning_hoop_taylor_run_21(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[401] = W[399] - W[400];
+    W[405] = W[403] + W[404];
+    W[409] = W[407] + W[408];
+    W[414] = W[412] - W[413];
+    W[411] = W[0] * W[405];
+    W[416] = W[0] * W[401];
+    W[410] = X[1] * W[409] + X[3] * W[366] + X[5] * W[323] + X[7] * W[280] + X[9] * W[237] + X[11] * W[194]
+            + X[13] * W[151] + X[15] * W[108] + X[17] * W[65] + X[19] * W[22];
+    W[415] = X[1] * W[414] + X[3] * W[371] + X[5] * W[328] + X[7] * W[285] + X[9] * W[242] + X[11] * W[199]
+            + X[13] * W[156] + X[15] * W[113] + X[17] * W[70] + X[19] * W[27];
+    W[422] = W[410] + W[411];
+    W[423] = W[415] + W[416];
+    W[424] = W[15] * W[423] + W[58] * W[380] + W[101] * W[337] + W[144] * W[294] + W[187] * W[251]
+            + W[230] * W[208] + W[273] * W[165] + W[316] * W[122] + W[359] * W[79] + W[402] * W[36];
+    W[425] = W[11] * W[422] + W[54] * W[379] + W[97] * W[336] + W[140] * W[293] + W[183] * W[250]
+            + W[226] * W[207] + W[269] * W[164] + W[312] * W[121] + W[355] * W[78] + W[398] * W[35];
+    W[426] = W[421] + W[424];
+    W[427] = W[426] - W[425];
+    W[428] = W[19] * W[427];
+    W[429] = W[419] + W[428];
+    X[20] = X[19] / 10.0;
+    X[21] = -W[429] / W[19] / 10.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 10, in the fourth unit. */
+EOMC_PART int
+spinning_hoop_taylor_run_22(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[434] = (X[2] * W[392] + 2.0 * X[4] * W[349] + 3.0 * X[6] * W[306] + 4.0 * X[8] * W[263]
+            + 5.0 * X[10] * W[220] + 6.0 * X[12] * W[177] + 7.0 * X[14] * W[134] + 8.0 * X[16] * W[91]
+            + 9.0 * X[18] * W[48] + 10.0 * X[20] * W[5]) / 10.0;
+    W[435] = -((X[2] * W[391] + 2.0 * X[4] * W[348] + 3.0 * X[6] * W[305] + 4.0 * X[8] * W[262]
+            + 5.0 * X[10] * W[219] + 6.0 * X[12] * W[176] + 7.0 * X[14] * W[133] + 8.0 * X[16] * W[90]
+            + 9.0 * X[18] * W[47] + 10.0 * X[20] * W[4])) / 10.0;
+    W[460] = (X[1] * X[21] + X[3] * X[19] + X[5] * X[17] + X[7] * X[15] + X[9] * X[13]) * 2.0
+            + X[11] * X[11];
+    W[462] = W[31] * W[434];
+    W[463] = W[4] * W[435] + W[47] * W[392] + W[90] * W[349] + W[133] * W[306] + W[176] * W[263]
+            + W[219] * W[220] + W[262] * W[177] + W[305] * W[134] + W[348] * W[91] + W[391] * W[48]
+            + W[434] * W[5];
+    W[436] = W[45] * W[394] / 10.0;
+    W[437] = -W[45] * W[393] / 10.0;
+    W[464] = W[33] * W[460] + W[76] * W[417] + W[119] * W[374] + W[162] * W[331] + W[205] * W[288]
+            + W[248] * W[245] + W[291] * W[202] + W[334] * W[159] + W[377] * W[116] + W[420] * W[73]
+            + W[463] * W[30];
+    W[438] = W[4] * W[437] + W[47] * W[394] + W[90] * W[351] + W[133] * W[308] + W[176] * W[265]
+            + W[219] * W[222] + W[262] * W[179] + W[305] * W[136] + W[348] * W[93] + W[391] * W[50]
+            + W[434] * W[7];
+    W[439] = W[4] * W[436] + W[47] * W[393] + W[90] * W[350] + W[133] * W[307] + W[176] * W[264]
+            + W[219] * W[221] + W[262] * W[178] + W[305] * W[135] + W[348] * W[92] + W[391] * W[49]
+            + W[434] * W[6];
+    W[441] = W[7] * W[435] + W[50] * W[392] + W[93] * W[349] + W[136] * W[306] + W[179] * W[263]
+            + W[222] * W[220] + W[265] * W[177] + W[308] * W[134] + W[351] * W[91] + W[394] * W[48]
+            + W[437] * W[5];
+    W[445] = W[6] * W[435] + W[49] * W[392] + W[92] * W[349] + W[135] * W[306] + W[178] * W[263]
+            + W[221] * W[220] + W[264] * W[177] + W[307] * W[134] + W[350] * W[91] + W[393] * W[48]
+            + W[436] * W[5];
+    W[443] = W[0] * W[439];
+    W[447] = W[0] * W[438];
+    W[450] = W[0] * W[445];
+    W[455] = W[0] * W[441];
+    W[442] = W[11] * X[21] + W[54] * X[19] + W[97] * X[17] + W[140] * X[15] + W[183] * X[13] + W[226] * X[11]
+            + W[269] * X[9] + W[312] * X[7] + W[355] * X[5] + W[398] * X[3] + W[441] * X[1];
+    W[446] = W[15] * X[21] + W[58] * X[19] + W[101] * X[17] + W[144] * X[15] + W[187] * X[13]
+            + W[230] * X[11] + W[273] * X[9] + W[316] * X[7] + W[359] * X[5] + W[402] * X[3] + W[445] * X[1];
+    W[451] = W[8] * X[21] + W[51] * X[19] + W[94] * X[17] + W[137] * X[15] + W[180] * X[13] + W[223] * X[11]
+            + W[266] * X[9] + W[309] * X[7] + W[352] * X[5] + W[395] * X[3] + W[438] * X[1];
+    W[456] = W[9] * X[21] + W[52] * X[19] + W[95] * X[17] + W[138] * X[15] + W[181] * X[13] + W[224] * X[11]
+            + W[267] * X[9] + W[310] * X[7] + W[353] * X[5] + W[396] * X[3] + W[439] * X[1];
+    return 0;
+}
+
+/* Lines 20 .. 37 of taylor_run's order 11, in the fourth unit. */
+EOMC_PART int
+spinning_hoop_taylor_run_25(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[487] = W[485] - W[486];
+    W[491] = W[489] + W[490];
+    W[495] = W[493] + W[494];
+    W[500] = W[498] - W[499];
+    W[497] = W[0] * W[491];
+    W[502] = W[0] * W[487];
+    W[496] = X[1] * W[495] + X[3] * W[452] + X[5] * W[409] + X[7] * W[366] + X[9] * W[323] + X[11] * W[280]
+            + X[13] * W[237] + X[15] * W[194] + X[17] * W[151] + X[19] * W[108] + X[21] * W[65]
+            + X[23] * W[22];
+    W[501] = X[1] * W[500] + X[3] * W[457] + X[5] * W[414] + X[7] * W[371] + X[9] * W[328] + X[11] * W[285]
+            + X[13] * W[242] + X[15] * W[199] + X[17] * W[156] + X[19] * W[113] + X[21] * W[70]
+            + X[23] * W[27];
+    W[508] = W[496] + W[497];
+    W[509] = W[501] + W[502];
+    W[510] = W[15] * W[509] + W[58] * W[466] + W[101] * W[423] + W[144] * W[380] + W[187] * W[337]
+            + W[230] * W[294] + W[273] * W[251] + W[316] * W[208] + W[359] * W[165] + W[402] * W[122]
+            + W[445] * W[79] + W[488] * W[36];
+    W[511] = W[11] * W[508] + W[54] * W[465] + W[97] * W[422] + W[140] * W[379] + W[183] * W[336]
+            + W[226] * W[293] + W[269] * W[250] + W[312] * W[207] + W[355] * W[164] + W[398] * W[121]
+            + W[441] * W[78] + W[484] * W[35];
+    W[512] = W[507] + W[510];
+    W[513] = W[512] - W[511];
+    W[514] = W[19] * W[513];
+    W[515] = W[505] + W[514];
+    X[24] = X[23] / 12.0;
+    X[25] = -W[515] / W[19] / 12.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 12, in the fourth unit. */
+EOMC_PART int
+spinning_hoop_taylor_run_26(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[520] = (X[2] * W[478] + 2.0 * X[4] * W[435] + 3.0 * X[6] * W[392] + 4.0 * X[8] * W[349]
+            + 5.0 * X[10] * W[306] + 6.0 * X[12] * W[263] + 7.0 * X[14] * W[220] + 8.0 * X[16] * W[177]
+            + 9.0 * X[18] * W[134] + 10.0 * X[20] * W[91] + 11.0 * X[22] * W[48] + 12.0 * X[24] * W[5]) / 12.0;
+    W[521] = -((X[2] * W[477] + 2.0 * X[4] * W[434] + 3.0 * X[6] * W[391] + 4.0 * X[8] * W[348]
+            + 5.0 * X[10] * W[305] + 6.0 * X[12] * W[262] + 7.0 * X[14] * W[219] + 8.0 * X[16] * W[176]
+            + 9.0 * X[18] * W[133] + 10.0 * X[20] * W[90] + 11.0 * X[22] * W[47] + 12.0 * X[24] * W[4])) / 12.0;
+    W[546] = (X[1] * X[25] + X[3] * X[23] + X[5] * X[21] + X[7] * X[19] + X[9] * X[17] + X[11] * X[15]) * 2.0
+            + X[13] * X[13];
+    W[548] = W[31] * W[520];
+    W[549] = W[4] * W[521] + W[47] * W[478] + W[90] * W[435] + W[133] * W[392] + W[176] * W[349]
+            + W[219] * W[306] + W[262] * W[263] + W[305] * W[220] + W[348] * W[177] + W[391] * W[134]
+            + W[434] * W[91] + W[477] * W[48] + W[520] * W[5];
+    W[522] = W[45] * W[480] / 12.0;
+    W[523] = -W[45] * W[479] / 12.0;
+    W[550] = W[33] * W[546] + W[76] * W[503] + W[119] * W[460] + W[162] * W[417] + W[205] * W[374]
+            + W[248] * W[331] + W[291] * W[288] + W[334] * W[245] + W[377] * W[202] + W[420] * W[159]
+            + W[463] * W[116] + W[506] * W[73] + W[549] * W[30];
+    W[524] = W[4] * W[523] + W[47] * W[480] + W[90] * W[437] + W[133] * W[394] + W[176] * W[351]
+            + W[219] * W[308] + W[262] * W[265] + W[305] * W[222] + W[348] * W[179] + W[391] * W[136]
+            + W[434] * W[93] + W[477] * W[50] + W[520] * W[7];
+    W[525] = W[4] * W[522] + W[47] * W[479] + W[90] * W[436] + W[133] * W[393] + W[176] * W[350]
+            + W[219] * W[307] + W[262] * W[264] + W[305] * W[221] + W[348] * W[178] + W[391] * W[135]
+            + W[434] * W[92] + W[477] * W[49] + W[520] * W[6];
+    W[527] = W[7] * W[521] + W[50] * W[478] + W[93] * W[435] + W[136] * W[392] + W[179] * W[349]
+            + W[222] * W[306] + W[265] * W[263] + W[308] * W[220] + W[351] * W[177] + W[394] * W[134]
+            + W[437] * W[91] + W[480] * W[48] + W[523] * W[5];
+    W[531] = W[6] * W[521] + W[49] * W[478] + W[92] * W[435] + W[135] * W[392] + W[178] * W[349]
+            + W[221] * W[306] + W[264] * W[263] + W[307] * W[220] + W[350] * W[177] + W[393] * W[134]
+            + W[436] * W[91] + W[479] * W[48] + W[522] * W[5];
+    W[529] = W[0] * W[525];
+    W[533] = W[0] * W[524];
+    W[536] = W[0] * W[531];
+    W[541] = W[0] * W[527];
+    W[528] = W[11] * X[25] + W[54] * X[23] + W[97] * X[21] + W[140] * X[19] + W[183] * X[17] + W[226] * X[15]
+            + W[269] * X[13] + W[312] * X[11] + W[355] * X[9] + W[398] * X[7] + W[441] * X[5]
+            + W[484] * X[3] + W[527] * X[1];
+    W[532] = W[15] * X[25] + W[58] * X[23] + W[101] * X[21] + W[144] * X[19] + W[187] * X[17]
+            + W[230] * X[15] + W[273] * X[13] + W[316] * X[11] + W[359] * X[9] + W[402] * X[7]
+            + W[445] * X[5] + W[488] * X[3] + W[531] * X[1];
+    W[537] = W[8] * X[25] + W[51] * X[23] + W[94] * X[21] + W[137] * X[19] + W[180] * X[17] + W[223] * X[15]
+            + W[266] * X[13] + W[309] * X[11] + W[352] * X[9] + W[395] * X[7] + W[438] * X[5]
+            + W[481] * X[3] + W[524] * X[1];
+    W[542] = W[9] * X[25] + W[52] * X[23] + W[95] * X[21] + W[138] * X[19] + W[181] * X[17] + W[224] * X[15]
+            + W[267] * X[13] + W[310] * X[11] + W[353] * X[9] + W[396] * X[7] + W[439] * X[5]
+            + W[482] * X[3] + W[525] * X[1];
+    return 0;
+}
+
+/* Lines 20 .. 37 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART int
+spinning_hoop_taylor_run_29(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[573] = W[571] - W[572];
+    W[577] = W[575] + W[576];
+    W[581] = W[579] + W[580];
+    W[586] = W[584] - W[585];
+    W[583] = W[0] * W[577];
+    W[588] = W[0] * W[573];
+    W[582] = X[1] * W[581] + X[3] * W[538] + X[5] * W[495] + X[7] * W[452] + X[9] * W[409] + X[11] * W[366]
+            + X[13] * W[323] + X[15] * W[280] + X[17] * W[237] + X[19] * W[194] + X[21] * W[151]
+            + X[23] * W[108] + X[25] * W[65] + X[27] * W[22];
+    W[587] = X[1] * W[586] + X[3] * W[543] + X[5] * W[500] + X[7] * W[457] + X[9] * W[414] + X[11] * W[371]
+            + X[13] * W[328] + X[15] * W[285] + X[17] * W[242] + X[19] * W[199] + X[21] * W[156]
+            + X[23] * W[113] + X[25] * W[70] + X[27] * W[27];
+    W[594] = W[582] + W[583];
+    W[595] = W[587] + W[588];
+    W[596] = W[15] * W[595] + W[58] * W[552] + W[101] * W[509] + W[144] * W[466] + W[187] * W[423]
+            + W[230] * W[380] + W[273] * W[337] + W[316] * W[294] + W[359] * W[251] + W[402] * W[208]
+            + W[445] * W[165] + W[488] * W[122] + W[531] * W[79] + W[574] * W[36];
+    W[597] = W[11] * W[594] + W[54] * W[551] + W[97] * W[508] + W[140] * W[465] + W[183] * W[422]
+            + W[226] * W[379] + W[269] * W[336] + W[312] * W[293] + W[355] * W[250] + W[398] * W[207]
+            + W[441] * W[164] + W[484] * W[121] + W[527] * W[78] + W[570] * W[35];
+    W[598] = W[593] + W[596];
+    W[599] = W[598] - W[597];
+    W[600] = W[19] * W[599];
+    W[601] = W[591] + W[600];
+    X[28] = X[27] / 14.0;
+    X[29] = -W[601] / W[19] / 14.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 14, in the fourth unit. */
+EOMC_PART int
+spinning_hoop_taylor_run_30(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[606] = (X[2] * W[564] + 2.0 * X[4] * W[521] + 3.0 * X[6] * W[478] + 4.0 * X[8] * W[435]
+            + 5.0 * X[10] * W[392] + 6.0 * X[12] * W[349] + 7.0 * X[14] * W[306] + 8.0 * X[16] * W[263]
+            + 9.0 * X[18] * W[220] + 10.0 * X[20] * W[177] + 11.0 * X[22] * W[134] + 12.0 * X[24] * W[91]
+            + 13.0 * X[26] * W[48] + 14.0 * X[28] * W[5]) / 14.0;
+    W[607] = -((X[2] * W[563] + 2.0 * X[4] * W[520] + 3.0 * X[6] * W[477] + 4.0 * X[8] * W[434]
+            + 5.0 * X[10] * W[391] + 6.0 * X[12] * W[348] + 7.0 * X[14] * W[305] + 8.0 * X[16] * W[262]
+            + 9.0 * X[18] * W[219] + 10.0 * X[20] * W[176] + 11.0 * X[22] * W[133] + 12.0 * X[24] * W[90]
+            + 13.0 * X[26] * W[47] + 14.0 * X[28] * W[4])) / 14.0;
+    W[632] = (X[1] * X[29] + X[3] * X[27] + X[5] * X[25] + X[7] * X[23] + X[9] * X[21] + X[11] * X[19]
+            + X[13] * X[17]) * 2.0 + X[15] * X[15];
+    W[634] = W[31] * W[606];
+    W[635] = W[4] * W[607] + W[47] * W[564] + W[90] * W[521] + W[133] * W[478] + W[176] * W[435]
+            + W[219] * W[392] + W[262] * W[349] + W[305] * W[306] + W[348] * W[263] + W[391] * W[220]
+            + W[434] * W[177] + W[477] * W[134] + W[520] * W[91] + W[563] * W[48] + W[606] * W[5];
+    W[608] = W[45] * W[566] / 14.0;
+    W[609] = -W[45] * W[565] / 14.0;
+    W[636] = W[33] * W[632] + W[76] * W[589] + W[119] * W[546] + W[162] * W[503] + W[205] * W[460]
+            + W[248] * W[417] + W[291] * W[374] + W[334] * W[331] + W[377] * W[288] + W[420] * W[245]
+            + W[463] * W[202] + W[506] * W[159] + W[549] * W[116] + W[592] * W[73] + W[635] * W[30];
+    W[610] = W[4] * W[609] + W[47] * W[566] + W[90] * W[523] + W[133] * W[480] + W[176] * W[437]
+            + W[219] * W[394] + W[262] * W[351] + W[305] * W[308] + W[348] * W[265] + W[391] * W[222]
+            + W[434] * W[179] + W[477] * W[136] + W[520] * W[93] + W[563] * W[50] + W[606] * W[7];
+    W[611] = W[4] * W[608] + W[47] * W[565] + W[90] * W[522] + W[133] * W[479] + W[176] * W[436]
+            + W[219] * W[393] + W[262] * W[350] + W[305] * W[307] + W[348] * W[264] + W[391] * W[221]
+            + W[434] * W[178] + W[477] * W[135] + W[520] * W[92] + W[563] * W[49] + W[606] * W[6];
+    W[613] = W[7] * W[607] + W[50] * W[564] + W[93] * W[521] + W[136] * W[478] + W[179] * W[435]
+            + W[222] * W[392] + W[265] * W[349] + W[308] * W[306] + W[351] * W[263] + W[394] * W[220]
+            + W[437] * W[177] + W[480] * W[134] + W[523] * W[91] + W[566] * W[48] + W[609] * W[5];
+    W[617] = W[6] * W[607] + W[49] * W[564] + W[92] * W[521] + W[135] * W[478] + W[178] * W[435]
+            + W[221] * W[392] + W[264] * W[349] + W[307] * W[306] + W[350] * W[263] + W[393] * W[220]
+            + W[436] * W[177] + W[479] * W[134] + W[522] * W[91] + W[565] * W[48] + W[608] * W[5];
+    W[615] = W[0] * W[611];
+    W[619] = W[0] * W[610];
+    W[622] = W[0] * W[617];
+    W[627] = W[0] * W[613];
+    W[614] = W[11] * X[29] + W[54] * X[27] + W[97] * X[25] + W[140] * X[23] + W[183] * X[21] + W[226] * X[19]
+            + W[269] * X[17] + W[312] * X[15] + W[355] * X[13] + W[398] * X[11] + W[441] * X[9]
+            + W[484] * X[7] + W[527] * X[5] + W[570] * X[3] + W[613] * X[1];
+    W[618] = W[15] * X[29] + W[58] * X[27] + W[101] * X[25] + W[144] * X[23] + W[187] * X[21]
+            + W[230] * X[19] + W[273] * X[17] + W[316] * X[15] + W[359] * X[13] + W[402] * X[11]
+            + W[445] * X[9] + W[488] * X[7] + W[531] * X[5] + W[574] * X[3] + W[617] * X[1];
+    W[623] = W[8] * X[29] + W[51] * X[27] + W[94] * X[25] + W[137] * X[23] + W[180] * X[21] + W[223] * X[19]
+            + W[266] * X[17] + W[309] * X[15] + W[352] * X[13] + W[395] * X[11] + W[438] * X[9]
+            + W[481] * X[7] + W[524] * X[5] + W[567] * X[3] + W[610] * X[1];
+    W[628] = W[9] * X[29] + W[52] * X[27] + W[95] * X[25] + W[138] * X[23] + W[181] * X[21] + W[224] * X[19]
+            + W[267] * X[17] + W[310] * X[15] + W[353] * X[13] + W[396] * X[11] + W[439] * X[9]
+            + W[482] * X[7] + W[525] * X[5] + W[568] * X[3] + W[611] * X[1];
+    return 0;
+}
+
+/* Lines 20 .. 37 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART int
+spinning_hoop_taylor_run_33(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[659] = W[657] - W[658];
+    W[663] = W[661] + W[662];
+    W[667] = W[665] + W[666];
+    W[672] = W[670] - W[671];
+    W[669] = W[0] * W[663];
+    W[674] = W[0] * W[659];
+    W[668] = X[1] * W[667] + X[3] * W[624] + X[5] * W[581] + X[7] * W[538] + X[9] * W[495] + X[11] * W[452]
+            + X[13] * W[409] + X[15] * W[366] + X[17] * W[323] + X[19] * W[280] + X[21] * W[237]
+            + X[23] * W[194] + X[25] * W[151] + X[27] * W[108] + X[29] * W[65] + X[31] * W[22];
+    W[673] = X[1] * W[672] + X[3] * W[629] + X[5] * W[586] + X[7] * W[543] + X[9] * W[500] + X[11] * W[457]
+            + X[13] * W[414] + X[15] * W[371] + X[17] * W[328] + X[19] * W[285] + X[21] * W[242]
+            + X[23] * W[199] + X[25] * W[156] + X[27] * W[113] + X[29] * W[70] + X[31] * W[27];
+    W[680] = W[668] + W[669];
+    W[681] = W[673] + W[674];
+    W[682] = W[15] * W[681] + W[58] * W[638] + W[101] * W[595] + W[144] * W[552] + W[187] * W[509]
+            + W[230] * W[466] + W[273] * W[423] + W[316] * W[380] + W[359] * W[337] + W[402] * W[294]
+            + W[445] * W[251] + W[488] * W[208] + W[531] * W[165] + W[574] * W[122] + W[617] * W[79]
+            + W[660] * W[36];
+    W[683] = W[11] * W[680] + W[54] * W[637] + W[97] * W[594] + W[140] * W[551] + W[183] * W[508]
+            + W[226] * W[465] + W[269] * W[422] + W[312] * W[379] + W[355] * W[336] + W[398] * W[293]
+            + W[441] * W[250] + W[484] * W[207] + W[527] * W[164] + W[570] * W[121] + W[613] * W[78]
+            + W[656] * W[35];
+    W[684] = W[679] + W[682];
+    W[685] = W[684] - W[683];
+    W[686] = W[19] * W[685];
+    W[687] = W[677] + W[686];
+    X[32] = X[31] / 16.0;
+    X[33] = -W[687] / W[19] / 16.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 16, in the fourth unit. */
+EOMC_PART int
+spinning_hoop_taylor_run_34(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[692] = (X[2] * W[650] + 2.0 * X[4] * W[607] + 3.0 * X[6] * W[564] + 4.0 * X[8] * W[521]
+            + 5.0 * X[10] * W[478] + 6.0 * X[12] * W[435] + 7.0 * X[14] * W[392] + 8.0 * X[16] * W[349]
+            + 9.0 * X[18] * W[306] + 10.0 * X[20] * W[263] + 11.0 * X[22] * W[220] + 12.0 * X[24] * W[177]
+            + 13.0 * X[26] * W[134] + 14.0 * X[28] * W[91] + 15.0 * X[30] * W[48] + 16.0 * X[32] * W[5]) / 16.0;
+    W[693] = -((X[2] * W[649] + 2.0 * X[4] * W[606] + 3.0 * X[6] * W[563] + 4.0 * X[8] * W[520]
+            + 5.0 * X[10] * W[477] + 6.0 * X[12] * W[434] + 7.0 * X[14] * W[391] + 8.0 * X[16] * W[348]
+            + 9.0 * X[18] * W[305] + 10.0 * X[20] * W[262] + 11.0 * X[22] * W[219] + 12.0 * X[24] * W[176]
+            + 13.0 * X[26] * W[133] + 14.0 * X[28] * W[90] + 15.0 * X[30] * W[47] + 16.0 * X[32] * W[4])) / 16.0;
+    W[718] = (X[1] * X[33] + X[3] * X[31] + X[5] * X[29] + X[7] * X[27] + X[9] * X[25] + X[11] * X[23]
+            + X[13] * X[21] + X[15] * X[19]) * 2.0 + X[17] * X[17];
+    W[720] = W[31] * W[692];
+    W[721] = W[4] * W[693] + W[47] * W[650] + W[90] * W[607] + W[133] * W[564] + W[176] * W[521]
+            + W[219] * W[478] + W[262] * W[435] + W[305] * W[392] + W[348] * W[349] + W[391] * W[306]
+            + W[434] * W[263] + W[477] * W[220] + W[520] * W[177] + W[563] * W[134] + W[606] * W[91]
+            + W[649] * W[48] + W[692] * W[5];
+    W[694] = W[45] * W[652] / 16.0;
+    W[695] = -W[45] * W[651] / 16.0;
+    W[722] = W[33] * W[718] + W[76] * W[675] + W[119] * W[632] + W[162] * W[589] + W[205] * W[546]
+            + W[248] * W[503] + W[291] * W[460] + W[334] * W[417] + W[377] * W[374] + W[420] * W[331]
+            + W[463] * W[288] + W[506] * W[245] + W[549] * W[202] + W[592] * W[159] + W[635] * W[116]
+            + W[678] * W[73] + W[721] * W[30];
+    W[696] = W[4] * W[695] + W[47] * W[652] + W[90] * W[609] + W[133] * W[566] + W[176] * W[523]
+            + W[219] * W[480] + W[262] * W[437] + W[305] * W[394] + W[348] * W[351] + W[391] * W[308]
+            + W[434] * W[265] + W[477] * W[222] + W[520] * W[179] + W[563] * W[136] + W[606] * W[93]
+            + W[649] * W[50] + W[692] * W[7];
+    W[697] = W[4] * W[694] + W[47] * W[651] + W[90] * W[608] + W[133] * W[565] + W[176] * W[522]
+            + W[219] * W[479] + W[262] * W[436] + W[305] * W[393] + W[348] * W[350] + W[391] * W[307]
+            + W[434] * W[264] + W[477] * W[221] + W[520] * W[178] + W[563] * W[135] + W[606] * W[92]
+            + W[649] * W[49] + W[692] * W[6];
+    W[699] = W[7] * W[693] + W[50] * W[650] + W[93] * W[607] + W[136] * W[564] + W[179] * W[521]
+            + W[222] * W[478] + W[265] * W[435] + W[308] * W[392] + W[351] * W[349] + W[394] * W[306]
+            + W[437] * W[263] + W[480] * W[220] + W[523] * W[177] + W[566] * W[134] + W[609] * W[91]
+            + W[652] * W[48] + W[695] * W[5];
+    W[703] = W[6] * W[693] + W[49] * W[650] + W[92] * W[607] + W[135] * W[564] + W[178] * W[521]
+            + W[221] * W[478] + W[264] * W[435] + W[307] * W[392] + W[350] * W[349] + W[393] * W[306]
+            + W[436] * W[263] + W[479] * W[220] + W[522] * W[177] + W[565] * W[134] + W[608] * W[91]
+            + W[651] * W[48] + W[694] * W[5];
+    W[701] = W[0] * W[697];
+    W[705] = W[0] * W[696];
+    W[708] = W[0] * W[703];
+    W[713] = W[0] * W[699];
+    W[700] = W[11] * X[33] + W[54] * X[31] + W[97] * X[29] + W[140] * X[27] + W[183] * X[25] + W[226] * X[23]
+            + W[269] * X[21] + W[312] * X[19] + W[355] * X[17] + W[398] * X[15] + W[441] * X[13]
+            + W[484] * X[11] + W[527] * X[9] + W[570] * X[7] + W[613] * X[5] + W[656] * X[3] + W[699] * X[1];
+    W[704] = W[15] * X[33] + W[58] * X[31] + W[101] * X[29] + W[144] * X[27] + W[187] * X[25]
+            + W[230] * X[23] + W[273] * X[21] + W[316] * X[19] + W[359] * X[17] + W[402] * X[15]
+            + W[445] * X[13] + W[488] * X[11] + W[531] * X[9] + W[574] * X[7] + W[617] * X[5]
+            + W[660] * X[3] + W[703] * X[1];
+    W[709] = W[8] * X[33] + W[51] * X[31] + W[94] * X[29] + W[137] * X[27] + W[180] * X[25] + W[223] * X[23]
+            + W[266] * X[21] + W[309] * X[19] + W[352] * X[17] + W[395] * X[15] + W[438] * X[13]
+            + W[481] * X[11] + W[524] * X[9] + W[567] * X[7] + W[610] * X[5] + W[653] * X[3] + W[696] * X[1];
+    W[714] = W[9] * X[33] + W[52] * X[31] + W[95] * X[29] + W[138] * X[27] + W[181] * X[25] + W[224] * X[23]
+            + W[267] * X[21] + W[310] * X[19] + W[353] * X[17] + W[396] * X[15] + W[439] * X[13]
+            + W[482] * X[11] + W[525] * X[9] + W[568] * X[7] + W[611] * X[5] + W[654] * X[3] + W[697] * X[1];
+    return 0;
+}
+
+/* Lines 20 .. 37 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART int
+spinning_hoop_taylor_run_37(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[745] = W[743] - W[744];
+    W[749] = W[747] + W[748];
+    W[753] = W[751] + W[752];
+    W[758] = W[756] - W[757];
+    W[755] = W[0] * W[749];
+    W[760] = W[0] * W[745];
+    W[754] = X[1] * W[753] + X[3] * W[710] + X[5] * W[667] + X[7] * W[624] + X[9] * W[581] + X[11] * W[538]
+            + X[13] * W[495] + X[15] * W[452] + X[17] * W[409] + X[19] * W[366] + X[21] * W[323]
+            + X[23] * W[280] + X[25] * W[237] + X[27] * W[194] + X[29] * W[151] + X[31] * W[108]
+            + X[33] * W[65] + X[35] * W[22];
+    W[759] = X[1] * W[758] + X[3] * W[715] + X[5] * W[672] + X[7] * W[629] + X[9] * W[586] + X[11] * W[543]
+            + X[13] * W[500] + X[15] * W[457] + X[17] * W[414] + X[19] * W[371] + X[21] * W[328]
+            + X[23] * W[285] + X[25] * W[242] + X[27] * W[199] + X[29] * W[156] + X[31] * W[113]
+            + X[33] * W[70] + X[35] * W[27];
+    W[766] = W[754] + W[755];
+    W[767] = W[759] + W[760];
+    W[768] = W[15] * W[767] + W[58] * W[724] + W[101] * W[681] + W[144] * W[638] + W[187] * W[595]
+            + W[230] * W[552] + W[273] * W[509] + W[316] * W[466] + W[359] * W[423] + W[402] * W[380]
+            + W[445] * W[337] + W[488] * W[294] + W[531] * W[251] + W[574] * W[208] + W[617] * W[165]
+            + W[660] * W[122] + W[703] * W[79] + W[746] * W[36];
+    W[769] = W[11] * W[766] + W[54] * W[723] + W[97] * W[680] + W[140] * W[637] + W[183] * W[594]
+            + W[226] * W[551] + W[269] * W[508] + W[312] * W[465] + W[355] * W[422] + W[398] * W[379]
+            + W[441] * W[336] + W[484] * W[293] + W[527] * W[250] + W[570] * W[207] + W[613] * W[164]
+            + W[656] * W[121] + W[699] * W[78] + W[742] * W[35];
+    W[770] = W[765] + W[768];
+    W[771] = W[770] - W[769];
+    W[772] = W[19] * W[771];
+    W[773] = W[763] + W[772];
+    X[36] = X[35] / 18.0;
+    X[37] = -W[773] / W[19] / 18.0;
+    return 0;
+}
+
+/* Lines 0 .. 19 of taylor_run's order 18, in the fourth unit. */
+EOMC_PART int
+spinning_hoop_taylor_run_38(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[778] = (X[2] * W[736] + 2.0 * X[4] * W[693] + 3.0 * X[6] * W[650] + 4.0 * X[8] * W[607]
+            + 5.0 * X[10] * W[564] + 6.0 * X[12] * W[521] + 7.0 * X[14] * W[478] + 8.0 * X[16] * W[435]
+            + 9.0 * X[18] * W[392] + 10.0 * X[20] * W[349] + 11.0 * X[22] * W[306] + 12.0 * X[24] * W[263]
+            + 13.0 * X[26] * W[220] + 14.0 * X[28] * W[177] + 15.0 * X[30] * W[134] + 16.0 * X[32] * W[91]
+            + 17.0 * X[34] * W[48] + 18.0 * X[36] * W[5]) / 18.0;
+    W[779] = -((X[2] * W[735] + 2.0 * X[4] * W[692] + 3.0 * X[6] * W[649] + 4.0 * X[8] * W[606]
+            + 5.0 * X[10] * W[563] + 6.0 * X[12] * W[520] + 7.0 * X[14] * W[477] + 8.0 * X[16] * W[434]
+            + 9.0 * X[18] * W[391] + 10.0 * X[20] * W[348] + 11.0 * X[22] * W[305] + 12.0 * X[24] * W[262]
+            + 13.0 * X[26] * W[219] + 14.0 * X[28] * W[176] + 15.0 * X[30] * W[133] + 16.0 * X[32] * W[90]
+            + 17.0 * X[34] * W[47] + 18.0 * X[36] * W[4])) / 18.0;
+    W[804] = (X[1] * X[37] + X[3] * X[35] + X[5] * X[33] + X[7] * X[31] + X[9] * X[29] + X[11] * X[27]
+            + X[13] * X[25] + X[15] * X[23] + X[17] * X[21]) * 2.0 + X[19] * X[19];
+    W[806] = W[31] * W[778];
+    W[807] = W[4] * W[779] + W[47] * W[736] + W[90] * W[693] + W[133] * W[650] + W[176] * W[607]
+            + W[219] * W[564] + W[262] * W[521] + W[305] * W[478] + W[348] * W[435] + W[391] * W[392]
+            + W[434] * W[349] + W[477] * W[306] + W[520] * W[263] + W[563] * W[220] + W[606] * W[177]
+            + W[649] * W[134] + W[692] * W[91] + W[735] * W[48] + W[778] * W[5];
+    W[780] = W[45] * W[738] / 18.0;
+    W[781] = -W[45] * W[737] / 18.0;
+    W[808] = W[33] * W[804] + W[76] * W[761] + W[119] * W[718] + W[162] * W[675] + W[205] * W[632]
+            + W[248] * W[589] + W[291] * W[546] + W[334] * W[503] + W[377] * W[460] + W[420] * W[417]
+            + W[463] * W[374] + W[506] * W[331] + W[549] * W[288] + W[592] * W[245] + W[635] * W[202]
+            + W[678] * W[159] + W[721] * W[116] + W[764] * W[73] + W[807] * W[30];
+    W[782] = W[4] * W[781] + W[47] * W[738] + W[90] * W[695] + W[133] * W[652] + W[176] * W[609]
+            + W[219] * W[566] + W[262] * W[523] + W[305] * W[480] + W[348] * W[437] + W[391] * W[394]
+            + W[434] * W[351] + W[477] * W[308] + W[520] * W[265] + W[563] * W[222] + W[606] * W[179]
+            + W[649] * W[136] + W[692] * W[93] + W[735] * W[50] + W[778] * W[7];
+    W[783] = W[4] * W[780] + W[47] * W[737] + W[90] * W[694] + W[133] * W[651] + W[176] * W[608]
+            + W[219] * W[565] + W[262] * W[522] + W[305] * W[479] + W[348] * W[436] + W[391] * W[393]
+            + W[434] * W[350] + W[477] * W[307] + W[520] * W[264] + W[563] * W[221] + W[606] * W[178]
+            + W[649] * W[135] + W[692] * W[92] + W[735] * W[49] + W[778] * W[6];
+    W[785] = W[7] * W[779] + W[50] * W[736] + W[93] * W[693] + W[136] * W[650] + W[179] * W[607]
+            + W[222] * W[564] + W[265] * W[521] + W[308] * W[478] + W[351] * W[435] + W[394] * W[392]
+            + W[437] * W[349] + W[480] * W[306] + W[523] * W[263] + W[566] * W[220] + W[609] * W[177]
+            + W[652] * W[134] + W[695] * W[91] + W[738] * W[48] + W[781] * W[5];
+    W[789] = W[6] * W[779] + W[49] * W[736] + W[92] * W[693] + W[135] * W[650] + W[178] * W[607]
+            + W[221] * W[564] + W[264] * W[521] + W[307] * W[478] + W[350] * W[435] + W[393] * W[392]
+            + W[436] * W[349] + W[479] * W[306] + W[522] * W[263] + W[565] * W[220] + W[608] * W[177]
+            + W[651] * W[134] + W[694] * W[91] + W[737] * W[48] + W[780] * W[5];
+    W[787] = W[0] * W[783];
+    W[791] = W[0] * W[782];
+    W[794] = W[0] * W[789];
+    W[799] = W[0] * W[785];
+    W[786] = W[11] * X[37] + W[54] * X[35] + W[97] * X[33] + W[140] * X[31] + W[183] * X[29] + W[226] * X[27]
+            + W[269] * X[25] + W[312] * X[23] + W[355] * X[21] + W[398] * X[19] + W[441] * X[17]
+            + W[484] * X[15] + W[527] * X[13] + W[570] * X[11] + W[613] * X[9] + W[656] * X[7]
+            + W[699] * X[5] + W[742] * X[3] + W[785] * X[1];
+    W[790] = W[15] * X[37] + W[58] * X[35] + W[101] * X[33] + W[144] * X[31] + W[187] * X[29]
+            + W[230] * X[27] + W[273] * X[25] + W[316] * X[23] + W[359] * X[21] + W[402] * X[19]
+            + W[445] * X[17] + W[488] * X[15] + W[531] * X[13] + W[574] * X[11] + W[617] * X[9]
+            + W[660] * X[7] + W[703] * X[5] + W[746] * X[3] + W[789] * X[1];
+    W[795] = W[8] * X[37] + W[51] * X[35] + W[94] * X[33] + W[137] * X[31] + W[180] * X[29] + W[223] * X[27]
+            + W[266] * X[25] + W[309] * X[23] + W[352] * X[21] + W[395] * X[19] + W[438] * X[17]
+            + W[481] * X[15] + W[524] * X[13] + W[567] * X[11] + W[610] * X[9] + W[653] * X[7]
+            + W[696] * X[5] + W[739] * X[3] + W[782] * X[1];
+    W[800] = W[9] * X[37] + W[52] * X[35] + W[95] * X[33] + W[138] * X[31] + W[181] * X[29] + W[224] * X[27]
+            + W[267] * X[25] + W[310] * X[23] + W[353] * X[21] + W[396] * X[19] + W[439] * X[17]
+            + W[482] * X[15] + W[525] * X[13] + W[568] * X[11] + W[611] * X[9] + W[654] * X[7]
+            + W[697] * X[5] + W[740] * X[3] + W[783] * X[1];
+    return 0;
+}
+
+/* Lines 20 .. 37 of taylor_run's order 19, in the fourth unit. */
+EOMC_PART int
+spinning_hoop_taylor_run_41(eomc_real t0, const eomc_real *p,
+    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
+{
+    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
+    W[831] = W[829] - W[830];
+    W[835] = W[833] + W[834];
+    W[839] = W[837] + W[838];
+    W[844] = W[842] - W[843];
+    W[841] = W[0] * W[835];
+    W[846] = W[0] * W[831];
+    W[840] = X[1] * W[839] + X[3] * W[796] + X[5] * W[753] + X[7] * W[710] + X[9] * W[667] + X[11] * W[624]
+            + X[13] * W[581] + X[15] * W[538] + X[17] * W[495] + X[19] * W[452] + X[21] * W[409]
+            + X[23] * W[366] + X[25] * W[323] + X[27] * W[280] + X[29] * W[237] + X[31] * W[194]
+            + X[33] * W[151] + X[35] * W[108] + X[37] * W[65] + X[39] * W[22];
+    W[845] = X[1] * W[844] + X[3] * W[801] + X[5] * W[758] + X[7] * W[715] + X[9] * W[672] + X[11] * W[629]
+            + X[13] * W[586] + X[15] * W[543] + X[17] * W[500] + X[19] * W[457] + X[21] * W[414]
+            + X[23] * W[371] + X[25] * W[328] + X[27] * W[285] + X[29] * W[242] + X[31] * W[199]
+            + X[33] * W[156] + X[35] * W[113] + X[37] * W[70] + X[39] * W[27];
+    W[852] = W[840] + W[841];
+    W[853] = W[845] + W[846];
+    W[854] = W[15] * W[853] + W[58] * W[810] + W[101] * W[767] + W[144] * W[724] + W[187] * W[681]
+            + W[230] * W[638] + W[273] * W[595] + W[316] * W[552] + W[359] * W[509] + W[402] * W[466]
+            + W[445] * W[423] + W[488] * W[380] + W[531] * W[337] + W[574] * W[294] + W[617] * W[251]
+            + W[660] * W[208] + W[703] * W[165] + W[746] * W[122] + W[789] * W[79] + W[832] * W[36];
+    W[855] = W[11] * W[852] + W[54] * W[809] + W[97] * W[766] + W[140] * W[723] + W[183] * W[680]
+            + W[226] * W[637] + W[269] * W[594] + W[312] * W[551] + W[355] * W[508] + W[398] * W[465]
+            + W[441] * W[422] + W[484] * W[379] + W[527] * W[336] + W[570] * W[293] + W[613] * W[250]
+            + W[656] * W[207] + W[699] * W[164] + W[742] * W[121] + W[785] * W[78] + W[828] * W[35];
+    W[856] = W[851] + W[854];
+    W[857] = W[856] - W[855];
+    W[858] = W[19] * W[857];
+    W[859] = W[849] + W[858];
+    X[40] = X[39] / 20.0;
+    X[41] = -W[859] / W[19] / 20.0;
+    return 0;
+}
+
+#endif /* EOMC_EXTENDED */
+
+#endif /* EOMC_UNIT 4 */

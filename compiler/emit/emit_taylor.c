@@ -371,6 +371,79 @@ print_series_line(Printer *pr, const LowSeries *se, const LowSerLine *l, const C
     fputs(";\n", pr->f);
 }
 
+/* The cells of ty's written-out series (place malloc'd: the caller frees
+ * it). */
+static Cells
+series_cells(const LowTaylor *ty, int lanes)
+{
+    int ns = ty->nstate, nslot = ty->nslot;
+    int *place = xmalloc(((size_t)nslot + 1) * sizeof *place);
+    for (int s = 0; s < nslot; s++)
+        place[s] = -1;
+    for (int i = 0; i < ns; i++)
+        place[ty->state_slot[i]] = i;
+    return (Cells){place, nslot, ns, lanes};
+}
+
+/* A parted series (LowSeries.parted: past LOW_SERIES_OPTIMIZED_TERMS
+ * terms) is cut into parts of at most this many lines, none across an
+ * order, each a function of its own on taylor_run's W and X, which
+ * taylor_run calls in turn.  The C compiler's optimizer, whose time grows
+ * faster than a function's length, then sees short functions.  Measured
+ * on the Pleiades (25 000 terms; gcc 12, -Og, the unit that holds them):
+ * parts of 10, 20, 40, 80 lines compile in 3.6, 3.5, 3.7, 4.4 s, and its
+ * series to order 15 takes 44 700, 42 700, 44 200, 46 700 instructions
+ * (longer parts spill more), where the one function compiled without the
+ * optimizer took 1.0 s less and 65 700 instructions. */
+enum { SERIES_PART_LINES = 20 };
+
+/* The parts of ty's parted series, NAME_taylor_run_1, ..., in print_series'
+ * order: each in the third unit or the fourth, whichever is behind (as
+ * emit_taylor cuts the program; a term counted as a temporary), those of
+ * the fourth declared after. */
+static void
+print_series_parts(Printer *pr, const LowTaylor *ty)
+{
+    const LowSeries *se = ty->series;
+    const char *params = "eomc_real t0, const eomc_real *p, const eomc_real *u, "
+                         "eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve, "
+                         "void *ctx";
+    Cells cells = series_cells(ty, 0);
+    int nparts = 0;
+    for (int k = 0; k < LOW_SERIES_ORDERS; k++)
+        nparts += (se->start[k + 1] - se->start[k] + SERIES_PART_LINES - 1) / SERIES_PART_LINES;
+    char *in4 = xmalloc((size_t)nparts + 1), fname[160];
+    for (int k = 0, part = 0; k < LOW_SERIES_ORDERS; k++)
+        for (int i = se->start[k]; i < se->start[k + 1]; i += SERIES_PART_LINES, part++) {
+            int end = i + SERIES_PART_LINES < se->start[k + 1] ? i + SERIES_PART_LINES
+                                                              : se->start[k + 1];
+            long terms = 0;
+            for (int j = i; j < end; j++)
+                terms += se->line[j].nterm + 1;
+            int second = in4[part] = pr->unit2 && pr->nodes[1] < pr->nodes[0];
+            pr->nodes[second] += terms;
+            if (second)
+                emit_unit2_begin(pr, 1);
+            snprintf(fname, sizeof fname, "%s_taylor_run_%d", pr->md->name, part + 1);
+            emit_line(pr, "/* Lines %d .. %d of taylor_run's order %d%s. */", i - se->start[k],
+                      end - 1 - se->start[k], k, second ? ", in the fourth unit" : "");
+            emit_head(pr, second ? "EOMC_PART int" : "static EOMC_NOINLINE int", fname, params);
+            emit_line(pr, "    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;");
+            for (int j = i; j < end; j++)
+                print_series_line(pr, se, &se->line[j], &cells);
+            emit_line(pr, "    return 0;\n}\n");
+            if (second)
+                emit_unit2_end(pr);
+        }
+    for (int part = 0; part < nparts; part++) { /* called before they are defined */
+        snprintf(fname, sizeof fname, "%s_taylor_run_%d", pr->md->name, part + 1);
+        if (in4[part])
+            emit_decl(pr, "EOMC_PART int", fname, params, ";");
+    }
+    free(in4);
+    free((int *)cells.place);
+}
+
 /* taylor_run written out (lower_series.c): orders 0 .. LOW_SERIES_ORDERS
  * - 1, the state's cells in the caller's X (Cells) and the others in the
  * local W; then what the caller reads of the others copied into T. */
@@ -378,13 +451,9 @@ static void
 print_series(Printer *pr, const LowTaylor *ty, int lanes)
 {
     const LowSeries *se = ty->series;
-    int ns = ty->nstate, nslot = ty->nslot;
-    int *place = xmalloc(((size_t)nslot + 1) * sizeof *place);
-    for (int s = 0; s < nslot; s++)
-        place[s] = -1;
-    for (int i = 0; i < ns; i++)
-        place[ty->state_slot[i]] = i;
-    Cells cells = {place, nslot, ns, lanes};
+    int ns = ty->nstate, nslot = ty->nslot, parted = se->parted && !lanes;
+    Cells cells = series_cells(ty, lanes);
+    int *place = (int *)cells.place;
     const char *zero = lanes ? "EOMC_V4C(0.0)" : "0.0";
     emit_line(pr, "    %s W[%d]; /* slot s's coefficient j at W[j * %d + s], but the",
               lanes ? "eomc_v4" : "eomc_real", se->ncell, nslot);
@@ -403,14 +472,17 @@ print_series(Printer *pr, const LowTaylor *ty, int lanes)
             emit_line(pr, "    for (int c = %d; c <= %d; c++) /* 0 at every step */\n"
                           "        W[c] = %s;", c, se->zero_out[j - 1], zero);
     }
-    for (int k = 0; k < LOW_SERIES_ORDERS; k++) {
+    for (int k = 0, part = 0; k < LOW_SERIES_ORDERS; k++) {
         if (k > 0) {
             emit_line(pr, "    if (K == %d)", k);
             emit_line(pr, "        goto out;");
         }
         emit_line(pr, "    /* order %d */", k);
-        for (int i = se->start[k]; i < se->start[k + 1]; i++)
+        for (int i = se->start[k]; i < se->start[k + 1] && !parted; i++)
             print_series_line(pr, se, &se->line[i], &cells);
+        for (int i = se->start[k]; i < se->start[k + 1] && parted; i += SERIES_PART_LINES)
+            emit_line(pr, "    if (%s_taylor_run_%d(t0, p, u, W, X, solve, ctx))\n"
+                          "        return -1;", pr->md->name, ++part);
     }
     emit_line(pr, "out:");
     for (int e = 0; e < ty->nevent + ty->nmode; e++) {
@@ -464,22 +536,11 @@ print_run(Printer *pr, const LowTaylor *ty)
             emit_line(pr, " */");
         }
     }
-    int unopt = ty->series && ty->series->unoptimized;
-    if (unopt) {
-        emit_line(pr, "/* Its terms are too many for the C compiler's optimizer, whose time grows");
-        emit_line(pr, " * faster than they do; each is one statement on values in memory either");
-        emit_line(pr, " * way (lowered.h, LOW_SERIES_OPTIMIZED_TERMS). */");
-        emit_line(pr, "#if defined(__clang__)");
-        emit_line(pr, "#define EOMC_UNOPTIMIZED __attribute__((optnone, noinline))");
-        emit_line(pr, "#elif defined(__GNUC__)");
-        emit_line(pr, "#define EOMC_UNOPTIMIZED __attribute__((optimize(\"O0\"), noinline))");
-        emit_line(pr, "#else");
-        emit_line(pr, "#define EOMC_UNOPTIMIZED");
-        emit_line(pr, "#endif");
-    }
+    if (ty->series && ty->series->parted)
+        print_series_parts(pr, ty);
     char fname[160];
     snprintf(fname, sizeof fname, "%s_taylor_run", nm);
-    emit_head(pr, unopt ? "static EOMC_UNOPTIMIZED int" : "static int", fname,
+    emit_head(pr, "static int", fname,
               "int K, eomc_real t0, const eomc_real *p, const eomc_real *u, eomc_real *T, "
               "eomc_real *X, eomc_tay_solve solve, void *ctx");
     emit_line(pr, "    const int S = K + 1;");

@@ -327,10 +327,10 @@ lower_series(const LowTaylor *ty, Arena *A)
     if (!o.why && o.nterm <= LOW_SERIES_MAX_TERMS) {
         se = arena_alloc(A, sizeof *se);
         *se = (LowSeries){.ncell = ncell, .nline = o.nline, .start = start, .nterm = o.nterm,
-                          .unoptimized = o.nterm > LOW_SERIES_OPTIMIZED_TERMS};
+                          .parted = o.nterm > LOW_SERIES_OPTIMIZED_TERMS};
         /* four runs at once where M is constant and diagonal (no solve, whose
-         * hook is one run's) and the C compiler optimizes the series */
-        se->lanes = !ty->acc_slot && !se->unoptimized;
+         * hook is one run's) and the series is one function */
+        se->lanes = !ty->acc_slot && !se->parted;
         se->line = arena_new_array(A, LowSerLine, o.nline + 1);
         se->term = arena_new_array(A, LowSerTerm, o.nterm + 1);
         if (o.nline)

@@ -259,13 +259,13 @@ typedef struct LowSerLine {
 /* The orders written out: rtol down to 1e-16 asks for at most 20
  * (taylor.c's order rule); taylor_run loops over the program above. */
 enum { LOW_SERIES_ORDERS = 20 };
-/* Up to this many terms the written-out series is compiled as the rest
- * of its unit; past it, without the C compiler's optimizer: gcc -O1's
- * time grows faster than the terms do on this code (Arenstorf's 2 000
- * terms: 0.7 s; the Pleiades' 25 000: 61 s, 25 s cut one function an
- * order), where -O0 takes 1.3 s and its code costs 1.3 times -O1's (each
- * coefficient one statement whose operands come from memory either way;
- * Kepler's, which -O1 keeps in registers, would cost twice). */
+/* Up to this many terms the written-out series is one function, which
+ * the C compiler optimizes whole (Kepler's values stay in registers from
+ * one line to the next).  Past it, the optimizer's time grows faster than
+ * the terms do (gcc -Og or -O1: the Pleiades' 25 000 terms take 31 or 47
+ * s as one function, the register allocator's time), so the series is cut
+ * into parts of a few lines each (emit_taylor.c, SERIES_PART_LINES),
+ * each a function of its own that the optimizer sees alone. */
 enum { LOW_SERIES_OPTIMIZED_TERMS = 2500 };
 /* The most terms written out: a larger model's series is its program's
  * loop (docs/internals.md, "Taylor's series written out"). */
@@ -280,9 +280,9 @@ typedef struct LowSeries {
     int *zero_out;  /* the cells taylor_run copies out that no line writes
                      * (0 at every step): written 0 (nzero_out) */
     int nzero_out;
-    int unoptimized; /* more than LOW_SERIES_OPTIMIZED_TERMS terms */
+    int parted;      /* more than LOW_SERIES_OPTIMIZED_TERMS terms: printed in parts */
     int lanes;       /* also for four runs at once (taylor_run4): M constant
-                      * and diagonal, and optimized */
+                      * and diagonal, and one function */
 } LowSeries;
 
 /* The program of the model's taylor member (eomc_model.h): nstep calls

@@ -796,8 +796,8 @@ emit_function(Printer *pr, const LowFunc *lf)
         char *in2 = xmalloc((size_t)S.nparts);
         for (pr->cur = 0; pr->cur < S.nparts; pr->cur++) {
             char part[160];
-            int second = in2[pr->cur] = pr->unit2 && pr->nodes[1] < pr->nodes[0];
-            pr->nodes[second] += S.pstart[pr->cur + 1] - S.pstart[pr->cur];
+            int second = in2[pr->cur] =
+                emit_part_half(pr, S.pstart[pr->cur + 1] - S.pstart[pr->cur], 1);
             snprintf(part, sizeof part, "%s_part%d", fname, pr->cur + 1);
             if (second)
                 emit_unit2_begin(pr, lf->double_only);

@@ -420,8 +420,7 @@ print_series_parts(Printer *pr, const LowTaylor *ty)
             long terms = 0;
             for (int j = i; j < end; j++)
                 terms += se->line[j].nterm + 1;
-            int second = in4[part] = pr->unit2 && pr->nodes[1] < pr->nodes[0];
-            pr->nodes[second] += terms;
+            int second = in4[part] = emit_part_half(pr, terms, 1);
             if (second)
                 emit_unit2_begin(pr, 1);
             snprintf(fname, sizeof fname, "%s_taylor_run_%d", pr->md->name, part + 1);
@@ -651,8 +650,7 @@ emit_taylor(Printer *pr, const LowTaylor *ty)
         int first = part * LOWER_PART_SIZE, end = first + LOWER_PART_SIZE;
         if (end > ty->nstep)
             end = ty->nstep;
-        int second = in4[part] = nparts > 1 && pr->unit2 && pr->nodes[1] < pr->nodes[0];
-        pr->nodes[second] += end - first;
+        int second = in4[part] = emit_part_half(pr, end - first, nparts > 1);
         if (second) {
             emit_unit2_begin(pr, 0);
             if (!declared++)

@@ -41,6 +41,14 @@ unit2_swap(Printer *pr)
     pr->fenced = pr->fenced2, pr->fenced2 = fenced;
 }
 
+int
+emit_part_half(Printer *pr, long weight, int movable)
+{
+    int second = movable && pr->unit2 && pr->nodes[1] < pr->nodes[0];
+    pr->nodes[second] += weight;
+    return second;
+}
+
 void
 emit_unit2_begin(Printer *pr, int double_only)
 {

@@ -66,6 +66,10 @@ void emit_line(Printer *pr, const char *fmt, ...);
 /* What follows is compiled in double only (1: the functions the
  * reference solution does not need), or in both precisions (0). */
 void emit_fence(Printer *pr, int double_only);
+/* The half a part of this weight goes to, counted there (nodes): 1, the
+ * second, where there is one, the part may go there (movable) and it is
+ * behind; else 0. */
+int emit_part_half(Printer *pr, long weight, int movable);
 /* Print a part into the second half (fenced double_only), and back. */
 void emit_unit2_begin(Printer *pr, int double_only);
 void emit_unit2_end(Printer *pr);

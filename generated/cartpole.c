@@ -24,9 +24,11 @@
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
 #define EOMC_WEAK __attribute__((weak))
+#define EOMC_UNCHECKED __attribute__((no_sanitize("alignment", "null", "pointer-overflow")))
 #else
 #define EOMC_NOINLINE
 #define EOMC_WEAK
+#define EOMC_UNCHECKED
 #endif
 
 /* eomc build compiles this file as translation units at once: with
@@ -448,7 +450,7 @@ cartpole_taylor(int k, int K, eomc_real t0, const eomc_real *p,
  * order 20, each recurrence's sum with its indices fixed (the same
  * arithmetic in the same order); above that 1, for the caller's loop. */
 /* Lines 40 .. 42 of taylor_run's order 0. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 cartpole_taylor_run_3(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -465,7 +467,7 @@ cartpole_taylor_run_3(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 1. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 cartpole_taylor_run_4(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -495,7 +497,7 @@ cartpole_taylor_run_4(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 34 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 cartpole_taylor_run_7(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -521,7 +523,7 @@ cartpole_taylor_run_7(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 cartpole_taylor_run_8(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -551,7 +553,7 @@ cartpole_taylor_run_8(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 34 of taylor_run's order 4. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 cartpole_taylor_run_11(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -577,7 +579,7 @@ cartpole_taylor_run_11(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 cartpole_taylor_run_12(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -613,7 +615,7 @@ cartpole_taylor_run_12(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 34 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 cartpole_taylor_run_15(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -642,7 +644,7 @@ cartpole_taylor_run_15(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 cartpole_taylor_run_16(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -681,7 +683,7 @@ cartpole_taylor_run_16(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 34 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 cartpole_taylor_run_19(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -710,7 +712,7 @@ cartpole_taylor_run_19(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 cartpole_taylor_run_20(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -751,7 +753,7 @@ cartpole_taylor_run_20(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 34 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 cartpole_taylor_run_23(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -783,7 +785,7 @@ cartpole_taylor_run_23(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 cartpole_taylor_run_24(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -831,7 +833,7 @@ cartpole_taylor_run_24(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 34 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 cartpole_taylor_run_27(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -863,7 +865,7 @@ cartpole_taylor_run_27(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 13. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 cartpole_taylor_run_28(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -914,7 +916,7 @@ cartpole_taylor_run_28(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 34 of taylor_run's order 14. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 cartpole_taylor_run_31(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -946,7 +948,7 @@ cartpole_taylor_run_31(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 cartpole_taylor_run_32(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -1003,7 +1005,7 @@ cartpole_taylor_run_32(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 34 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 cartpole_taylor_run_35(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -1038,7 +1040,7 @@ cartpole_taylor_run_35(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 17. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 cartpole_taylor_run_36(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -1098,7 +1100,7 @@ cartpole_taylor_run_36(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 34 of taylor_run's order 18. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 cartpole_taylor_run_39(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -1133,7 +1135,7 @@ cartpole_taylor_run_39(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 cartpole_taylor_run_40(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -1192,87 +1194,87 @@ cartpole_taylor_run_40(eomc_real t0, const eomc_real *p, const eomc_real *u,
     return 0;
 }
 
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_5(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_9(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_10(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_13(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_14(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_17(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_18(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_21(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_22(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_25(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_26(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_29(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_30(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_33(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_34(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_37(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_38(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_41(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
@@ -1542,7 +1544,7 @@ const eomc_model_ext cartpole_model_ext = {
 #endif
 #ifndef EOMC_EXTENDED
 /* Lines 0 .. 19 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -1572,7 +1574,7 @@ cartpole_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -1602,7 +1604,7 @@ cartpole_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 34 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_5(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -1628,7 +1630,7 @@ cartpole_taylor_run_5(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -1658,7 +1660,7 @@ cartpole_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 34 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_9(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -1684,7 +1686,7 @@ cartpole_taylor_run_9(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_10(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -1714,7 +1716,7 @@ cartpole_taylor_run_10(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 34 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_13(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -1743,7 +1745,7 @@ cartpole_taylor_run_13(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_14(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -1782,7 +1784,7 @@ cartpole_taylor_run_14(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 34 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_17(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -1811,7 +1813,7 @@ cartpole_taylor_run_17(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_18(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -1850,7 +1852,7 @@ cartpole_taylor_run_18(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 34 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_21(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -1879,7 +1881,7 @@ cartpole_taylor_run_21(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_22(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -1927,7 +1929,7 @@ cartpole_taylor_run_22(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 34 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_25(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -1959,7 +1961,7 @@ cartpole_taylor_run_25(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_26(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2008,7 +2010,7 @@ cartpole_taylor_run_26(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 34 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_29(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2040,7 +2042,7 @@ cartpole_taylor_run_29(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_30(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2091,7 +2093,7 @@ cartpole_taylor_run_30(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 34 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_33(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2126,7 +2128,7 @@ cartpole_taylor_run_33(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_34(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2184,7 +2186,7 @@ cartpole_taylor_run_34(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 34 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_37(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2219,7 +2221,7 @@ cartpole_taylor_run_37(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_38(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2279,7 +2281,7 @@ cartpole_taylor_run_38(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 34 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 cartpole_taylor_run_41(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)

@@ -25,9 +25,11 @@
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
 #define EOMC_WEAK __attribute__((weak))
+#define EOMC_UNCHECKED __attribute__((no_sanitize("alignment", "null", "pointer-overflow")))
 #else
 #define EOMC_NOINLINE
 #define EOMC_WEAK
+#define EOMC_UNCHECKED
 #endif
 
 /* eomc build compiles this file as translation units at once: with
@@ -2304,7 +2306,7 @@ chain5_taylor(int k, int K, eomc_real t0, const eomc_real *p,
  * order 20, each recurrence's sum with its indices fixed (the same
  * arithmetic in the same order); above that 1, for the caller's loop. */
 /* Lines 120 .. 139 of taylor_run's order 1. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_18(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2334,7 +2336,7 @@ chain5_taylor_run_18(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 1. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_20(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2364,7 +2366,7 @@ chain5_taylor_run_20(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 212 of taylor_run's order 1. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_22(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2392,7 +2394,7 @@ chain5_taylor_run_22(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_24(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2422,7 +2424,7 @@ chain5_taylor_run_24(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_26(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2452,7 +2454,7 @@ chain5_taylor_run_26(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_28(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2482,7 +2484,7 @@ chain5_taylor_run_28(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_30(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2512,7 +2514,7 @@ chain5_taylor_run_30(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_32(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2542,7 +2544,7 @@ chain5_taylor_run_32(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_34(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2572,7 +2574,7 @@ chain5_taylor_run_34(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_36(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2602,7 +2604,7 @@ chain5_taylor_run_36(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_38(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2632,7 +2634,7 @@ chain5_taylor_run_38(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_40(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2662,7 +2664,7 @@ chain5_taylor_run_40(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_42(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2692,7 +2694,7 @@ chain5_taylor_run_42(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 212 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_44(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2730,7 +2732,7 @@ chain5_taylor_run_44(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 4. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_46(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2760,7 +2762,7 @@ chain5_taylor_run_46(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 4. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_48(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2790,7 +2792,7 @@ chain5_taylor_run_48(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 4. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_50(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2820,7 +2822,7 @@ chain5_taylor_run_50(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 4. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_52(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2850,7 +2852,7 @@ chain5_taylor_run_52(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 4. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_54(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2880,7 +2882,7 @@ chain5_taylor_run_54(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_56(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2919,7 +2921,7 @@ chain5_taylor_run_56(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_58(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2953,7 +2955,7 @@ chain5_taylor_run_58(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_60(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2990,7 +2992,7 @@ chain5_taylor_run_60(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_61(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3026,7 +3028,7 @@ chain5_taylor_run_61(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_63(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3065,7 +3067,7 @@ chain5_taylor_run_63(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_65(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3095,7 +3097,7 @@ chain5_taylor_run_65(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_67(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3134,7 +3136,7 @@ chain5_taylor_run_67(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_69(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3168,7 +3170,7 @@ chain5_taylor_run_69(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_70(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3207,7 +3209,7 @@ chain5_taylor_run_70(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_72(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3243,7 +3245,7 @@ chain5_taylor_run_72(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_74(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3282,7 +3284,7 @@ chain5_taylor_run_74(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_76(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3312,7 +3314,7 @@ chain5_taylor_run_76(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_78(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3351,7 +3353,7 @@ chain5_taylor_run_78(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_79(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3390,7 +3392,7 @@ chain5_taylor_run_79(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_82(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3427,7 +3429,7 @@ chain5_taylor_run_82(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_84(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3466,7 +3468,7 @@ chain5_taylor_run_84(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_86(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3500,7 +3502,7 @@ chain5_taylor_run_86(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 212 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_88(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3557,7 +3559,7 @@ chain5_taylor_run_88(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_91(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3591,7 +3593,7 @@ chain5_taylor_run_91(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_92(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3630,7 +3632,7 @@ chain5_taylor_run_92(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_95(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3669,7 +3671,7 @@ chain5_taylor_run_95(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_97(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3703,7 +3705,7 @@ chain5_taylor_run_97(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_98(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3733,7 +3735,7 @@ chain5_taylor_run_98(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_100(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3778,7 +3780,7 @@ chain5_taylor_run_100(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_101(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3821,7 +3823,7 @@ chain5_taylor_run_101(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_103(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3860,7 +3862,7 @@ chain5_taylor_run_103(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_106(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3899,7 +3901,7 @@ chain5_taylor_run_106(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_108(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3933,7 +3935,7 @@ chain5_taylor_run_108(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 212 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_110(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4000,7 +4002,7 @@ chain5_taylor_run_110(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_113(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4038,7 +4040,7 @@ chain5_taylor_run_113(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_115(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4082,7 +4084,7 @@ chain5_taylor_run_115(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_116(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4124,7 +4126,7 @@ chain5_taylor_run_116(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_118(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4172,7 +4174,7 @@ chain5_taylor_run_118(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 212 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_121(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4244,7 +4246,7 @@ chain5_taylor_run_121(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_124(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4282,7 +4284,7 @@ chain5_taylor_run_124(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_126(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4326,7 +4328,7 @@ chain5_taylor_run_126(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_128(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4374,7 +4376,7 @@ chain5_taylor_run_128(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_130(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4412,7 +4414,7 @@ chain5_taylor_run_130(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_131(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4442,7 +4444,7 @@ chain5_taylor_run_131(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_133(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4491,7 +4493,7 @@ chain5_taylor_run_133(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_134(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4539,7 +4541,7 @@ chain5_taylor_run_134(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_136(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4587,7 +4589,7 @@ chain5_taylor_run_136(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_138(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4629,7 +4631,7 @@ chain5_taylor_run_138(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_140(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4677,7 +4679,7 @@ chain5_taylor_run_140(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_142(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4707,7 +4709,7 @@ chain5_taylor_run_142(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 13. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_144(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4762,7 +4764,7 @@ chain5_taylor_run_144(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 13. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_145(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4814,7 +4816,7 @@ chain5_taylor_run_145(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 13. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_147(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4862,7 +4864,7 @@ chain5_taylor_run_147(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 13. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_149(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4904,7 +4906,7 @@ chain5_taylor_run_149(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 13. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_151(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4952,7 +4954,7 @@ chain5_taylor_run_151(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 212 of taylor_run's order 13. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_154(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5038,7 +5040,7 @@ chain5_taylor_run_154(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 14. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_157(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5076,7 +5078,7 @@ chain5_taylor_run_157(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 14. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_159(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5120,7 +5122,7 @@ chain5_taylor_run_159(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 14. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_161(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5168,7 +5170,7 @@ chain5_taylor_run_161(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 14. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_163(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5206,7 +5208,7 @@ chain5_taylor_run_163(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 212 of taylor_run's order 14. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_165(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5297,7 +5299,7 @@ chain5_taylor_run_165(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_168(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5339,7 +5341,7 @@ chain5_taylor_run_168(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_170(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5390,7 +5392,7 @@ chain5_taylor_run_170(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_172(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5447,7 +5449,7 @@ chain5_taylor_run_172(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_174(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5489,7 +5491,7 @@ chain5_taylor_run_174(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 212 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_176(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5585,7 +5587,7 @@ chain5_taylor_run_176(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_179(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5627,7 +5629,7 @@ chain5_taylor_run_179(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_181(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5678,7 +5680,7 @@ chain5_taylor_run_181(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_183(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5735,7 +5737,7 @@ chain5_taylor_run_183(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_185(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5777,7 +5779,7 @@ chain5_taylor_run_185(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 212 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_187(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5877,7 +5879,7 @@ chain5_taylor_run_187(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 17. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_190(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5919,7 +5921,7 @@ chain5_taylor_run_190(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 17. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_192(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5970,7 +5972,7 @@ chain5_taylor_run_192(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 17. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_194(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6027,7 +6029,7 @@ chain5_taylor_run_194(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 17. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_196(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6069,7 +6071,7 @@ chain5_taylor_run_196(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 212 of taylor_run's order 17. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_198(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6174,7 +6176,7 @@ chain5_taylor_run_198(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 18. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_201(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6216,7 +6218,7 @@ chain5_taylor_run_201(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 18. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_203(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6267,7 +6269,7 @@ chain5_taylor_run_203(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 18. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_205(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6324,7 +6326,7 @@ chain5_taylor_run_205(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 18. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_207(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6366,7 +6368,7 @@ chain5_taylor_run_207(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_210(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6430,7 +6432,7 @@ chain5_taylor_run_210(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_211(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6491,7 +6493,7 @@ chain5_taylor_run_211(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_212(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6533,7 +6535,7 @@ chain5_taylor_run_212(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_214(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6584,7 +6586,7 @@ chain5_taylor_run_214(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_216(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6641,7 +6643,7 @@ chain5_taylor_run_216(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 chain5_taylor_run_218(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6682,483 +6684,483 @@ chain5_taylor_run_218(eomc_real t0, const eomc_real *p, const eomc_real *u,
     return 0;
 }
 
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_3(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_4(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_5(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_7(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_8(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_9(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_10(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_11(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_12(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_13(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_14(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_15(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_16(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_17(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_19(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_21(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_23(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_25(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_27(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_29(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_31(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_33(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_35(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_37(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_39(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_41(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_43(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_45(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_47(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_49(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_51(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_53(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_55(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_57(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_59(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_62(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_64(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_66(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_68(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_71(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_73(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_75(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_77(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_80(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_81(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_83(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_85(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_87(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_89(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_90(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_93(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_94(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_96(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_99(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_102(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_104(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_105(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_107(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_109(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_111(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_112(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_114(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_117(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_119(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_120(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_122(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_123(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_125(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_127(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_129(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_132(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_135(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_137(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_139(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_141(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_143(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_146(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_148(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_150(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_152(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_153(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_155(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_156(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_158(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_160(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_162(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_164(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_166(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_167(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_169(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_171(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_173(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_175(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_177(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_178(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_180(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_182(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_184(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_186(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_188(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_189(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_191(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_193(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_195(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_197(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_199(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_200(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_202(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_204(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_206(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_208(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_209(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_213(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_215(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_217(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_219(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_220(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
@@ -7906,7 +7908,7 @@ const eomc_model_ext chain5_model_ext = {
 #endif
 #ifndef EOMC_EXTENDED
 /* Lines 0 .. 19 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7936,7 +7938,7 @@ chain5_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7966,7 +7968,7 @@ chain5_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_3(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7996,7 +7998,7 @@ chain5_taylor_run_3(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_4(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8026,7 +8028,7 @@ chain5_taylor_run_4(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_5(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8056,7 +8058,7 @@ chain5_taylor_run_5(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8086,7 +8088,7 @@ chain5_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_7(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8116,7 +8118,7 @@ chain5_taylor_run_7(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_8(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8146,7 +8148,7 @@ chain5_taylor_run_8(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_9(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8176,7 +8178,7 @@ chain5_taylor_run_9(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_10(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8206,7 +8208,7 @@ chain5_taylor_run_10(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 218 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_11(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8241,7 +8243,7 @@ chain5_taylor_run_11(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_12(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8271,7 +8273,7 @@ chain5_taylor_run_12(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_13(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8301,7 +8303,7 @@ chain5_taylor_run_13(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_14(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8331,7 +8333,7 @@ chain5_taylor_run_14(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_15(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8361,7 +8363,7 @@ chain5_taylor_run_15(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_16(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8391,7 +8393,7 @@ chain5_taylor_run_16(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_17(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8421,7 +8423,7 @@ chain5_taylor_run_17(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_19(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8451,7 +8453,7 @@ chain5_taylor_run_19(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_21(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8481,7 +8483,7 @@ chain5_taylor_run_21(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_23(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8511,7 +8513,7 @@ chain5_taylor_run_23(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_25(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8541,7 +8543,7 @@ chain5_taylor_run_25(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_27(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8571,7 +8573,7 @@ chain5_taylor_run_27(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_29(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8601,7 +8603,7 @@ chain5_taylor_run_29(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_31(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8631,7 +8633,7 @@ chain5_taylor_run_31(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 212 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_33(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8664,7 +8666,7 @@ chain5_taylor_run_33(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_35(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8694,7 +8696,7 @@ chain5_taylor_run_35(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_37(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8724,7 +8726,7 @@ chain5_taylor_run_37(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_39(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8754,7 +8756,7 @@ chain5_taylor_run_39(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_41(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8784,7 +8786,7 @@ chain5_taylor_run_41(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_43(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8814,7 +8816,7 @@ chain5_taylor_run_43(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_45(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8844,7 +8846,7 @@ chain5_taylor_run_45(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_47(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8874,7 +8876,7 @@ chain5_taylor_run_47(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_49(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8904,7 +8906,7 @@ chain5_taylor_run_49(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_51(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8934,7 +8936,7 @@ chain5_taylor_run_51(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_53(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8964,7 +8966,7 @@ chain5_taylor_run_53(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 212 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_55(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9007,7 +9009,7 @@ chain5_taylor_run_55(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_57(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9046,7 +9048,7 @@ chain5_taylor_run_57(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_59(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9085,7 +9087,7 @@ chain5_taylor_run_59(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_62(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9124,7 +9126,7 @@ chain5_taylor_run_62(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_64(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9158,7 +9160,7 @@ chain5_taylor_run_64(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 212 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_66(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9206,7 +9208,7 @@ chain5_taylor_run_66(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_68(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9245,7 +9247,7 @@ chain5_taylor_run_68(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_71(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9282,7 +9284,7 @@ chain5_taylor_run_71(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_73(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9321,7 +9323,7 @@ chain5_taylor_run_73(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_75(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9355,7 +9357,7 @@ chain5_taylor_run_75(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 212 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_77(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9407,7 +9409,7 @@ chain5_taylor_run_77(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_80(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9441,7 +9443,7 @@ chain5_taylor_run_80(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_81(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9480,7 +9482,7 @@ chain5_taylor_run_81(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_83(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9516,7 +9518,7 @@ chain5_taylor_run_83(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_85(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9555,7 +9557,7 @@ chain5_taylor_run_85(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_87(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9585,7 +9587,7 @@ chain5_taylor_run_87(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_89(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9624,7 +9626,7 @@ chain5_taylor_run_89(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_90(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9663,7 +9665,7 @@ chain5_taylor_run_90(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_93(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9700,7 +9702,7 @@ chain5_taylor_run_93(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_94(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9736,7 +9738,7 @@ chain5_taylor_run_94(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_96(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9775,7 +9777,7 @@ chain5_taylor_run_96(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 212 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_99(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9837,7 +9839,7 @@ chain5_taylor_run_99(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_102(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9871,7 +9873,7 @@ chain5_taylor_run_102(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_104(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9908,7 +9910,7 @@ chain5_taylor_run_104(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_105(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9944,7 +9946,7 @@ chain5_taylor_run_105(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_107(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9983,7 +9985,7 @@ chain5_taylor_run_107(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_109(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -10013,7 +10015,7 @@ chain5_taylor_run_109(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_111(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -10062,7 +10064,7 @@ chain5_taylor_run_111(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_112(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -10110,7 +10112,7 @@ chain5_taylor_run_112(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_114(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -10158,7 +10160,7 @@ chain5_taylor_run_114(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_117(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -10206,7 +10208,7 @@ chain5_taylor_run_117(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_119(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -10244,7 +10246,7 @@ chain5_taylor_run_119(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_120(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -10274,7 +10276,7 @@ chain5_taylor_run_120(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_122(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -10323,7 +10325,7 @@ chain5_taylor_run_122(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_123(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -10371,7 +10373,7 @@ chain5_taylor_run_123(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_125(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -10419,7 +10421,7 @@ chain5_taylor_run_125(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_127(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -10461,7 +10463,7 @@ chain5_taylor_run_127(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_129(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -10509,7 +10511,7 @@ chain5_taylor_run_129(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 212 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_132(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -10585,7 +10587,7 @@ chain5_taylor_run_132(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_135(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -10623,7 +10625,7 @@ chain5_taylor_run_135(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_137(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -10667,7 +10669,7 @@ chain5_taylor_run_137(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_139(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -10715,7 +10717,7 @@ chain5_taylor_run_139(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_141(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -10753,7 +10755,7 @@ chain5_taylor_run_141(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 212 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_143(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -10834,7 +10836,7 @@ chain5_taylor_run_143(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_146(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -10872,7 +10874,7 @@ chain5_taylor_run_146(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_148(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -10916,7 +10918,7 @@ chain5_taylor_run_148(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_150(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -10964,7 +10966,7 @@ chain5_taylor_run_150(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_152(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11002,7 +11004,7 @@ chain5_taylor_run_152(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_153(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11032,7 +11034,7 @@ chain5_taylor_run_153(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_155(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11087,7 +11089,7 @@ chain5_taylor_run_155(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_156(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11139,7 +11141,7 @@ chain5_taylor_run_156(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_158(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11187,7 +11189,7 @@ chain5_taylor_run_158(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_160(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11229,7 +11231,7 @@ chain5_taylor_run_160(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_162(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11277,7 +11279,7 @@ chain5_taylor_run_162(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_164(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11307,7 +11309,7 @@ chain5_taylor_run_164(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_166(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11365,7 +11367,7 @@ chain5_taylor_run_166(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_167(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11422,7 +11424,7 @@ chain5_taylor_run_167(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_169(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11479,7 +11481,7 @@ chain5_taylor_run_169(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_171(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11527,7 +11529,7 @@ chain5_taylor_run_171(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_173(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11584,7 +11586,7 @@ chain5_taylor_run_173(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_175(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11614,7 +11616,7 @@ chain5_taylor_run_175(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_177(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11672,7 +11674,7 @@ chain5_taylor_run_177(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_178(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11729,7 +11731,7 @@ chain5_taylor_run_178(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_180(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11786,7 +11788,7 @@ chain5_taylor_run_180(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_182(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11834,7 +11836,7 @@ chain5_taylor_run_182(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_184(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11891,7 +11893,7 @@ chain5_taylor_run_184(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_186(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11921,7 +11923,7 @@ chain5_taylor_run_186(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_188(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11985,7 +11987,7 @@ chain5_taylor_run_188(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_189(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12046,7 +12048,7 @@ chain5_taylor_run_189(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_191(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12103,7 +12105,7 @@ chain5_taylor_run_191(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_193(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12151,7 +12153,7 @@ chain5_taylor_run_193(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_195(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12208,7 +12210,7 @@ chain5_taylor_run_195(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_197(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12238,7 +12240,7 @@ chain5_taylor_run_197(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_199(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12302,7 +12304,7 @@ chain5_taylor_run_199(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_200(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12363,7 +12365,7 @@ chain5_taylor_run_200(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_202(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12420,7 +12422,7 @@ chain5_taylor_run_202(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_204(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12468,7 +12470,7 @@ chain5_taylor_run_204(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_206(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12525,7 +12527,7 @@ chain5_taylor_run_206(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_208(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12555,7 +12557,7 @@ chain5_taylor_run_208(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 212 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_209(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12665,7 +12667,7 @@ chain5_taylor_run_209(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_213(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12722,7 +12724,7 @@ chain5_taylor_run_213(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_215(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12770,7 +12772,7 @@ chain5_taylor_run_215(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_217(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12827,7 +12829,7 @@ chain5_taylor_run_217(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_219(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12857,7 +12859,7 @@ chain5_taylor_run_219(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 212 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 chain5_taylor_run_220(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)

@@ -25,9 +25,11 @@
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
 #define EOMC_WEAK __attribute__((weak))
+#define EOMC_UNCHECKED __attribute__((no_sanitize("alignment", "null", "pointer-overflow")))
 #else
 #define EOMC_NOINLINE
 #define EOMC_WEAK
+#define EOMC_UNCHECKED
 #endif
 
 /* eomc build compiles this file as translation units at once: with
@@ -781,7 +783,7 @@ double_pendulum_taylor(int k, int K, eomc_real t0, const eomc_real *p,
  * order 20, each recurrence's sum with its indices fixed (the same
  * arithmetic in the same order); above that 1, for the caller's loop. */
 /* Lines 20 .. 38 of taylor_run's order 1. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 double_pendulum_taylor_run_5(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -811,7 +813,7 @@ double_pendulum_taylor_run_5(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 38 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 double_pendulum_taylor_run_7(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -841,7 +843,7 @@ double_pendulum_taylor_run_7(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 38 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 double_pendulum_taylor_run_9(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -871,7 +873,7 @@ double_pendulum_taylor_run_9(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 38 of taylor_run's order 4. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 double_pendulum_taylor_run_11(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -901,7 +903,7 @@ double_pendulum_taylor_run_11(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 38 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 double_pendulum_taylor_run_13(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -937,7 +939,7 @@ double_pendulum_taylor_run_13(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 double_pendulum_taylor_run_14(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -977,7 +979,7 @@ double_pendulum_taylor_run_14(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 38 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 double_pendulum_taylor_run_17(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -1013,7 +1015,7 @@ double_pendulum_taylor_run_17(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 double_pendulum_taylor_run_18(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -1053,7 +1055,7 @@ double_pendulum_taylor_run_18(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 38 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 double_pendulum_taylor_run_21(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -1089,7 +1091,7 @@ double_pendulum_taylor_run_21(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 double_pendulum_taylor_run_22(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -1141,7 +1143,7 @@ double_pendulum_taylor_run_22(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 38 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 double_pendulum_taylor_run_25(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -1183,7 +1185,7 @@ double_pendulum_taylor_run_25(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 double_pendulum_taylor_run_26(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -1235,7 +1237,7 @@ double_pendulum_taylor_run_26(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 38 of taylor_run's order 13. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 double_pendulum_taylor_run_29(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -1277,7 +1279,7 @@ double_pendulum_taylor_run_29(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 14. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 double_pendulum_taylor_run_30(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -1333,7 +1335,7 @@ double_pendulum_taylor_run_30(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 38 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 double_pendulum_taylor_run_33(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -1381,7 +1383,7 @@ double_pendulum_taylor_run_33(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 double_pendulum_taylor_run_34(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -1443,7 +1445,7 @@ double_pendulum_taylor_run_34(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 38 of taylor_run's order 17. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 double_pendulum_taylor_run_37(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -1491,7 +1493,7 @@ double_pendulum_taylor_run_37(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 18. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 double_pendulum_taylor_run_38(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -1557,7 +1559,7 @@ double_pendulum_taylor_run_38(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 38 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 double_pendulum_taylor_run_41(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -1604,91 +1606,91 @@ double_pendulum_taylor_run_41(eomc_real t0, const eomc_real *p,
     return 0;
 }
 
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_1(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_2(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_3(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_4(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_6(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_8(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_10(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_12(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_15(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_16(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_19(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_20(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_23(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_24(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_27(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_28(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_31(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_32(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_35(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_36(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_39(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_40(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
@@ -1981,7 +1983,7 @@ const eomc_model_ext double_pendulum_model_ext = {
 #endif
 #ifndef EOMC_EXTENDED
 /* Lines 0 .. 19 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_1(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2011,7 +2013,7 @@ double_pendulum_taylor_run_1(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_2(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2041,7 +2043,7 @@ double_pendulum_taylor_run_2(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 40 .. 47 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_3(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2063,7 +2065,7 @@ double_pendulum_taylor_run_3(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_4(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2093,7 +2095,7 @@ double_pendulum_taylor_run_4(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_6(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2123,7 +2125,7 @@ double_pendulum_taylor_run_6(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_8(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2153,7 +2155,7 @@ double_pendulum_taylor_run_8(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_10(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2183,7 +2185,7 @@ double_pendulum_taylor_run_10(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_12(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2223,7 +2225,7 @@ double_pendulum_taylor_run_12(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 38 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_15(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2259,7 +2261,7 @@ double_pendulum_taylor_run_15(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_16(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2299,7 +2301,7 @@ double_pendulum_taylor_run_16(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 38 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_19(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2335,7 +2337,7 @@ double_pendulum_taylor_run_19(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_20(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2379,7 +2381,7 @@ double_pendulum_taylor_run_20(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 38 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_23(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2421,7 +2423,7 @@ double_pendulum_taylor_run_23(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_24(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2471,7 +2473,7 @@ double_pendulum_taylor_run_24(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 38 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_27(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2513,7 +2515,7 @@ double_pendulum_taylor_run_27(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_28(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2569,7 +2571,7 @@ double_pendulum_taylor_run_28(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 38 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_31(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2611,7 +2613,7 @@ double_pendulum_taylor_run_31(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_32(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2673,7 +2675,7 @@ double_pendulum_taylor_run_32(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 38 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_35(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2721,7 +2723,7 @@ double_pendulum_taylor_run_35(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_36(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2787,7 +2789,7 @@ double_pendulum_taylor_run_36(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 38 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_39(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2835,7 +2837,7 @@ double_pendulum_taylor_run_39(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 double_pendulum_taylor_run_40(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)

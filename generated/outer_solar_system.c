@@ -25,9 +25,11 @@
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
 #define EOMC_WEAK __attribute__((weak))
+#define EOMC_UNCHECKED __attribute__((no_sanitize("alignment", "null", "pointer-overflow")))
 #else
 #define EOMC_NOINLINE
 #define EOMC_WEAK
+#define EOMC_UNCHECKED
 #endif
 
 /* eomc build compiles this file as translation units at once: with
@@ -4080,7 +4082,7 @@ outer_solar_system_taylor(int k, int K, eomc_real t0, const eomc_real *p,
  * Written out to order 20, each recurrence's sum with its indices fixed
  * (the same arithmetic in the same order); above that, the loop. */
 /* Lines 340 .. 350 of taylor_run's order 1. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_38(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4101,7 +4103,7 @@ outer_solar_system_taylor_run_38(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_40(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4131,7 +4133,7 @@ outer_solar_system_taylor_run_40(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_42(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4161,7 +4163,7 @@ outer_solar_system_taylor_run_42(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_44(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4191,7 +4193,7 @@ outer_solar_system_taylor_run_44(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_46(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4221,7 +4223,7 @@ outer_solar_system_taylor_run_46(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_48(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4251,7 +4253,7 @@ outer_solar_system_taylor_run_48(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_49(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4281,7 +4283,7 @@ outer_solar_system_taylor_run_49(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_51(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4311,7 +4313,7 @@ outer_solar_system_taylor_run_51(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_53(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4341,7 +4343,7 @@ outer_solar_system_taylor_run_53(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_55(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4371,7 +4373,7 @@ outer_solar_system_taylor_run_55(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_58(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4401,7 +4403,7 @@ outer_solar_system_taylor_run_58(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_60(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4431,7 +4433,7 @@ outer_solar_system_taylor_run_60(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_62(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4461,7 +4463,7 @@ outer_solar_system_taylor_run_62(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_64(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4491,7 +4493,7 @@ outer_solar_system_taylor_run_64(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_66(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4521,7 +4523,7 @@ outer_solar_system_taylor_run_66(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_67(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4551,7 +4553,7 @@ outer_solar_system_taylor_run_67(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_69(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4581,7 +4583,7 @@ outer_solar_system_taylor_run_69(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_71(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4611,7 +4613,7 @@ outer_solar_system_taylor_run_71(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_73(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4641,7 +4643,7 @@ outer_solar_system_taylor_run_73(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 4. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_75(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4671,7 +4673,7 @@ outer_solar_system_taylor_run_75(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 4. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_77(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4701,7 +4703,7 @@ outer_solar_system_taylor_run_77(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 4. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_79(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4731,7 +4733,7 @@ outer_solar_system_taylor_run_79(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 4. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_81(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4761,7 +4763,7 @@ outer_solar_system_taylor_run_81(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 4. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_83(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4791,7 +4793,7 @@ outer_solar_system_taylor_run_83(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 4. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_87(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4821,7 +4823,7 @@ outer_solar_system_taylor_run_87(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 4. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_89(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4851,7 +4853,7 @@ outer_solar_system_taylor_run_89(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 4. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_91(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4881,7 +4883,7 @@ outer_solar_system_taylor_run_91(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_93(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4911,7 +4913,7 @@ outer_solar_system_taylor_run_93(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_95(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4941,7 +4943,7 @@ outer_solar_system_taylor_run_95(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_97(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -4971,7 +4973,7 @@ outer_solar_system_taylor_run_97(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_99(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5021,7 +5023,7 @@ outer_solar_system_taylor_run_99(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_101(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5071,7 +5073,7 @@ outer_solar_system_taylor_run_101(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_105(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5101,7 +5103,7 @@ outer_solar_system_taylor_run_105(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_107(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5131,7 +5133,7 @@ outer_solar_system_taylor_run_107(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 340 .. 350 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_110(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5152,7 +5154,7 @@ outer_solar_system_taylor_run_110(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_111(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5182,7 +5184,7 @@ outer_solar_system_taylor_run_111(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_113(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5212,7 +5214,7 @@ outer_solar_system_taylor_run_113(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_115(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5242,7 +5244,7 @@ outer_solar_system_taylor_run_115(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_117(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5292,7 +5294,7 @@ outer_solar_system_taylor_run_117(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_119(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5342,7 +5344,7 @@ outer_solar_system_taylor_run_119(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_123(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5372,7 +5374,7 @@ outer_solar_system_taylor_run_123(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_125(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5402,7 +5404,7 @@ outer_solar_system_taylor_run_125(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 340 .. 350 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_128(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5423,7 +5425,7 @@ outer_solar_system_taylor_run_128(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_129(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5453,7 +5455,7 @@ outer_solar_system_taylor_run_129(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_131(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5483,7 +5485,7 @@ outer_solar_system_taylor_run_131(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_133(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5513,7 +5515,7 @@ outer_solar_system_taylor_run_133(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_136(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5563,7 +5565,7 @@ outer_solar_system_taylor_run_136(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_138(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5593,7 +5595,7 @@ outer_solar_system_taylor_run_138(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_139(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5623,7 +5625,7 @@ outer_solar_system_taylor_run_139(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_140(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5653,7 +5655,7 @@ outer_solar_system_taylor_run_140(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_141(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5683,7 +5685,7 @@ outer_solar_system_taylor_run_141(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_143(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5713,7 +5715,7 @@ outer_solar_system_taylor_run_143(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_145(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5743,7 +5745,7 @@ outer_solar_system_taylor_run_145(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_148(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5773,7 +5775,7 @@ outer_solar_system_taylor_run_148(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_150(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5823,7 +5825,7 @@ outer_solar_system_taylor_run_150(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_152(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5853,7 +5855,7 @@ outer_solar_system_taylor_run_152(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_154(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5903,7 +5905,7 @@ outer_solar_system_taylor_run_154(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_156(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5933,7 +5935,7 @@ outer_solar_system_taylor_run_156(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_157(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5963,7 +5965,7 @@ outer_solar_system_taylor_run_157(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_158(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -5993,7 +5995,7 @@ outer_solar_system_taylor_run_158(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_159(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6023,7 +6025,7 @@ outer_solar_system_taylor_run_159(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_161(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6053,7 +6055,7 @@ outer_solar_system_taylor_run_161(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_163(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6083,7 +6085,7 @@ outer_solar_system_taylor_run_163(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_165(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6113,7 +6115,7 @@ outer_solar_system_taylor_run_165(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_167(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6143,7 +6145,7 @@ outer_solar_system_taylor_run_167(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_169(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6173,7 +6175,7 @@ outer_solar_system_taylor_run_169(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_172(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6223,7 +6225,7 @@ outer_solar_system_taylor_run_172(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_174(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6253,7 +6255,7 @@ outer_solar_system_taylor_run_174(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_175(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6283,7 +6285,7 @@ outer_solar_system_taylor_run_175(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_176(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6313,7 +6315,7 @@ outer_solar_system_taylor_run_176(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_177(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6343,7 +6345,7 @@ outer_solar_system_taylor_run_177(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_178(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6373,7 +6375,7 @@ outer_solar_system_taylor_run_178(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_180(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6403,7 +6405,7 @@ outer_solar_system_taylor_run_180(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 340 .. 350 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_182(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6424,7 +6426,7 @@ outer_solar_system_taylor_run_182(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_184(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6454,7 +6456,7 @@ outer_solar_system_taylor_run_184(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_186(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6504,7 +6506,7 @@ outer_solar_system_taylor_run_186(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_188(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6534,7 +6536,7 @@ outer_solar_system_taylor_run_188(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_190(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6604,7 +6606,7 @@ outer_solar_system_taylor_run_190(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_192(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6634,7 +6636,7 @@ outer_solar_system_taylor_run_192(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_193(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6664,7 +6666,7 @@ outer_solar_system_taylor_run_193(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_194(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6694,7 +6696,7 @@ outer_solar_system_taylor_run_194(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_195(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6724,7 +6726,7 @@ outer_solar_system_taylor_run_195(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_196(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6754,7 +6756,7 @@ outer_solar_system_taylor_run_196(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_198(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6784,7 +6786,7 @@ outer_solar_system_taylor_run_198(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 340 .. 350 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_200(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6805,7 +6807,7 @@ outer_solar_system_taylor_run_200(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_201(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6835,7 +6837,7 @@ outer_solar_system_taylor_run_201(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_203(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6880,7 +6882,7 @@ outer_solar_system_taylor_run_203(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_205(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6920,7 +6922,7 @@ outer_solar_system_taylor_run_205(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_208(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -6990,7 +6992,7 @@ outer_solar_system_taylor_run_208(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_210(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7020,7 +7022,7 @@ outer_solar_system_taylor_run_210(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_211(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7050,7 +7052,7 @@ outer_solar_system_taylor_run_211(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_212(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7080,7 +7082,7 @@ outer_solar_system_taylor_run_212(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_213(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7110,7 +7112,7 @@ outer_solar_system_taylor_run_213(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_214(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7140,7 +7142,7 @@ outer_solar_system_taylor_run_214(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_216(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7170,7 +7172,7 @@ outer_solar_system_taylor_run_216(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 340 .. 350 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_218(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7191,7 +7193,7 @@ outer_solar_system_taylor_run_218(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_219(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7221,7 +7223,7 @@ outer_solar_system_taylor_run_219(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_221(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7266,7 +7268,7 @@ outer_solar_system_taylor_run_221(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_223(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7306,7 +7308,7 @@ outer_solar_system_taylor_run_223(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_226(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7376,7 +7378,7 @@ outer_solar_system_taylor_run_226(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_228(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7406,7 +7408,7 @@ outer_solar_system_taylor_run_228(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_229(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7436,7 +7438,7 @@ outer_solar_system_taylor_run_229(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_230(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7466,7 +7468,7 @@ outer_solar_system_taylor_run_230(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_231(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7496,7 +7498,7 @@ outer_solar_system_taylor_run_231(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_232(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7526,7 +7528,7 @@ outer_solar_system_taylor_run_232(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_234(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7556,7 +7558,7 @@ outer_solar_system_taylor_run_234(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_235(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7586,7 +7588,7 @@ outer_solar_system_taylor_run_235(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 13. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_238(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7616,7 +7618,7 @@ outer_solar_system_taylor_run_238(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 13. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_240(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7666,7 +7668,7 @@ outer_solar_system_taylor_run_240(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 13. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_242(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7696,7 +7698,7 @@ outer_solar_system_taylor_run_242(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 13. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_243(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7781,7 +7783,7 @@ outer_solar_system_taylor_run_243(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 13. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_245(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7851,7 +7853,7 @@ outer_solar_system_taylor_run_245(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 13. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_252(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7881,7 +7883,7 @@ outer_solar_system_taylor_run_252(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 13. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_253(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7911,7 +7913,7 @@ outer_solar_system_taylor_run_253(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 14. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_256(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7941,7 +7943,7 @@ outer_solar_system_taylor_run_256(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 14. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_258(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -7991,7 +7993,7 @@ outer_solar_system_taylor_run_258(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 14. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_260(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -8021,7 +8023,7 @@ outer_solar_system_taylor_run_260(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 14. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_261(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -8106,7 +8108,7 @@ outer_solar_system_taylor_run_261(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 14. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_263(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -8176,7 +8178,7 @@ outer_solar_system_taylor_run_263(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 14. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_270(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -8206,7 +8208,7 @@ outer_solar_system_taylor_run_270(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 340 .. 350 of taylor_run's order 14. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_272(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -8227,7 +8229,7 @@ outer_solar_system_taylor_run_272(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_273(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -8257,7 +8259,7 @@ outer_solar_system_taylor_run_273(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_275(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -8302,7 +8304,7 @@ outer_solar_system_taylor_run_275(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_277(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -8342,7 +8344,7 @@ outer_solar_system_taylor_run_277(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_280(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -8432,7 +8434,7 @@ outer_solar_system_taylor_run_280(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_282(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -8462,7 +8464,7 @@ outer_solar_system_taylor_run_282(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_283(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -8492,7 +8494,7 @@ outer_solar_system_taylor_run_283(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_284(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -8522,7 +8524,7 @@ outer_solar_system_taylor_run_284(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_285(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -8552,7 +8554,7 @@ outer_solar_system_taylor_run_285(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_286(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -8582,7 +8584,7 @@ outer_solar_system_taylor_run_286(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_287(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -8612,7 +8614,7 @@ outer_solar_system_taylor_run_287(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_289(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -8642,7 +8644,7 @@ outer_solar_system_taylor_run_289(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_291(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -8672,7 +8674,7 @@ outer_solar_system_taylor_run_291(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_293(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -8717,7 +8719,7 @@ outer_solar_system_taylor_run_293(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_295(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -8757,7 +8759,7 @@ outer_solar_system_taylor_run_295(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_298(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -8847,7 +8849,7 @@ outer_solar_system_taylor_run_298(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_300(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -8877,7 +8879,7 @@ outer_solar_system_taylor_run_300(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_301(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -8907,7 +8909,7 @@ outer_solar_system_taylor_run_301(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_302(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -8937,7 +8939,7 @@ outer_solar_system_taylor_run_302(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_303(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -8967,7 +8969,7 @@ outer_solar_system_taylor_run_303(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_304(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -8997,7 +8999,7 @@ outer_solar_system_taylor_run_304(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_305(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -9027,7 +9029,7 @@ outer_solar_system_taylor_run_305(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_306(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -9057,7 +9059,7 @@ outer_solar_system_taylor_run_306(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 340 .. 350 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_308(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -9078,7 +9080,7 @@ outer_solar_system_taylor_run_308(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 17. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_310(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -9108,7 +9110,7 @@ outer_solar_system_taylor_run_310(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 17. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_312(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -9158,7 +9160,7 @@ outer_solar_system_taylor_run_312(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 17. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_314(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -9188,7 +9190,7 @@ outer_solar_system_taylor_run_314(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 17. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_315(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -9293,7 +9295,7 @@ outer_solar_system_taylor_run_315(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 17. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_317(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -9383,7 +9385,7 @@ outer_solar_system_taylor_run_317(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 17. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_325(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -9413,7 +9415,7 @@ outer_solar_system_taylor_run_325(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 18. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_328(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -9443,7 +9445,7 @@ outer_solar_system_taylor_run_328(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 18. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_330(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -9513,7 +9515,7 @@ outer_solar_system_taylor_run_330(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 18. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_332(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -9543,7 +9545,7 @@ outer_solar_system_taylor_run_332(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 18. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_333(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -9648,7 +9650,7 @@ outer_solar_system_taylor_run_333(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 18. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_335(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -9738,7 +9740,7 @@ outer_solar_system_taylor_run_335(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 340 .. 350 of taylor_run's order 18. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_344(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -9759,7 +9761,7 @@ outer_solar_system_taylor_run_344(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_345(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -9789,7 +9791,7 @@ outer_solar_system_taylor_run_345(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_347(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -9834,7 +9836,7 @@ outer_solar_system_taylor_run_347(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_349(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -9874,7 +9876,7 @@ outer_solar_system_taylor_run_349(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_352(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -9964,7 +9966,7 @@ outer_solar_system_taylor_run_352(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_354(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -9994,7 +9996,7 @@ outer_solar_system_taylor_run_354(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_355(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -10024,7 +10026,7 @@ outer_solar_system_taylor_run_355(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_356(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -10054,7 +10056,7 @@ outer_solar_system_taylor_run_356(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_357(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -10084,7 +10086,7 @@ outer_solar_system_taylor_run_357(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_358(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -10114,7 +10116,7 @@ outer_solar_system_taylor_run_358(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_359(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -10144,7 +10146,7 @@ outer_solar_system_taylor_run_359(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_360(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -10174,7 +10176,7 @@ outer_solar_system_taylor_run_360(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 outer_solar_system_taylor_run_361(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -10203,779 +10205,779 @@ outer_solar_system_taylor_run_361(eomc_real t0, const eomc_real *p,
     return 0;
 }
 
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_1(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_2(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_3(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_4(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_5(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_6(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_7(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_8(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_9(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_10(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_11(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_12(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_13(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_14(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_15(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_16(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_17(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_18(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_19(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_20(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_21(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_22(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_23(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_24(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_25(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_26(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_27(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_28(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_29(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_30(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_31(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_32(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_33(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_34(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_35(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_36(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_37(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_39(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_41(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_43(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_45(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_47(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_50(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_52(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_54(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_56(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_57(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_59(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_61(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_63(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_65(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_68(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_70(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_72(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_74(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_76(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_78(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_80(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_82(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_84(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_85(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_86(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_88(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_90(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_92(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_94(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_96(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_98(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_100(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_102(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_103(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_104(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_106(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_108(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_109(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_112(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_114(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_116(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_118(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_120(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_121(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_122(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_124(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_126(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_127(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_130(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_132(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_134(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_135(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_137(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_142(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_144(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_146(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_147(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_149(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_151(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_153(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_155(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_160(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_162(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_164(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_166(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_168(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_170(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_171(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_173(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_179(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_181(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_183(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_185(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_187(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_189(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_191(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_197(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_199(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_202(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_204(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_206(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_207(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_209(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_215(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_217(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_220(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_222(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_224(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_225(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_227(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_233(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_236(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_237(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_239(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_241(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_244(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_246(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_247(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_248(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_249(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_250(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_251(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_254(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_255(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_257(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_259(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_262(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_264(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_265(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_266(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_267(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_268(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_269(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_271(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_274(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_276(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_278(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_279(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_281(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_288(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_290(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_292(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_294(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_296(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_297(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_299(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_307(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_309(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_311(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_313(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_316(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_318(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_319(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_320(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_321(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_322(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_323(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_324(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_326(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_327(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_329(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_331(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_334(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_336(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_337(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_338(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_339(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_340(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_341(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_342(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_343(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_346(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_348(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_350(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_351(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_353(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_362(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
@@ -12308,7 +12310,7 @@ outer_solar_system_jacobian_part2(eomc_real t, const eomc_real *q,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_1(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -12338,7 +12340,7 @@ outer_solar_system_taylor_run_1(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_2(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -12368,7 +12370,7 @@ outer_solar_system_taylor_run_2(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_3(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -12398,7 +12400,7 @@ outer_solar_system_taylor_run_3(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_4(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -12428,7 +12430,7 @@ outer_solar_system_taylor_run_4(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_5(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -12458,7 +12460,7 @@ outer_solar_system_taylor_run_5(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_6(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -12488,7 +12490,7 @@ outer_solar_system_taylor_run_6(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_7(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -12518,7 +12520,7 @@ outer_solar_system_taylor_run_7(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_8(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -12548,7 +12550,7 @@ outer_solar_system_taylor_run_8(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_9(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -12578,7 +12580,7 @@ outer_solar_system_taylor_run_9(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_10(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -12608,7 +12610,7 @@ outer_solar_system_taylor_run_10(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_11(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -12638,7 +12640,7 @@ outer_solar_system_taylor_run_11(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_12(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -12668,7 +12670,7 @@ outer_solar_system_taylor_run_12(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_13(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -12698,7 +12700,7 @@ outer_solar_system_taylor_run_13(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_14(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -12728,7 +12730,7 @@ outer_solar_system_taylor_run_14(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_15(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -12758,7 +12760,7 @@ outer_solar_system_taylor_run_15(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_16(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -12788,7 +12790,7 @@ outer_solar_system_taylor_run_16(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_17(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -12818,7 +12820,7 @@ outer_solar_system_taylor_run_17(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 340 .. 359 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_18(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -12848,7 +12850,7 @@ outer_solar_system_taylor_run_18(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 360 .. 379 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_19(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -12878,7 +12880,7 @@ outer_solar_system_taylor_run_19(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 380 .. 392 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_20(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -12901,7 +12903,7 @@ outer_solar_system_taylor_run_20(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_21(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -12931,7 +12933,7 @@ outer_solar_system_taylor_run_21(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_22(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -12961,7 +12963,7 @@ outer_solar_system_taylor_run_22(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_23(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -12991,7 +12993,7 @@ outer_solar_system_taylor_run_23(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_24(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13021,7 +13023,7 @@ outer_solar_system_taylor_run_24(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_25(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13051,7 +13053,7 @@ outer_solar_system_taylor_run_25(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_26(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13081,7 +13083,7 @@ outer_solar_system_taylor_run_26(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_27(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13111,7 +13113,7 @@ outer_solar_system_taylor_run_27(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_28(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13141,7 +13143,7 @@ outer_solar_system_taylor_run_28(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_29(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13171,7 +13173,7 @@ outer_solar_system_taylor_run_29(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_30(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13201,7 +13203,7 @@ outer_solar_system_taylor_run_30(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_31(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13231,7 +13233,7 @@ outer_solar_system_taylor_run_31(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_32(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13261,7 +13263,7 @@ outer_solar_system_taylor_run_32(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_33(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13291,7 +13293,7 @@ outer_solar_system_taylor_run_33(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_34(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13321,7 +13323,7 @@ outer_solar_system_taylor_run_34(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_35(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13351,7 +13353,7 @@ outer_solar_system_taylor_run_35(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_36(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13381,7 +13383,7 @@ outer_solar_system_taylor_run_36(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_37(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13411,7 +13413,7 @@ outer_solar_system_taylor_run_37(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_39(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13441,7 +13443,7 @@ outer_solar_system_taylor_run_39(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_41(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13471,7 +13473,7 @@ outer_solar_system_taylor_run_41(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_43(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13501,7 +13503,7 @@ outer_solar_system_taylor_run_43(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_45(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13531,7 +13533,7 @@ outer_solar_system_taylor_run_45(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_47(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13561,7 +13563,7 @@ outer_solar_system_taylor_run_47(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_50(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13591,7 +13593,7 @@ outer_solar_system_taylor_run_50(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_52(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13621,7 +13623,7 @@ outer_solar_system_taylor_run_52(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_54(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13651,7 +13653,7 @@ outer_solar_system_taylor_run_54(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 340 .. 350 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_56(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13672,7 +13674,7 @@ outer_solar_system_taylor_run_56(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_57(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13702,7 +13704,7 @@ outer_solar_system_taylor_run_57(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_59(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13732,7 +13734,7 @@ outer_solar_system_taylor_run_59(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_61(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13762,7 +13764,7 @@ outer_solar_system_taylor_run_61(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_63(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13792,7 +13794,7 @@ outer_solar_system_taylor_run_63(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_65(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13822,7 +13824,7 @@ outer_solar_system_taylor_run_65(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_68(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13852,7 +13854,7 @@ outer_solar_system_taylor_run_68(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_70(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13882,7 +13884,7 @@ outer_solar_system_taylor_run_70(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_72(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13912,7 +13914,7 @@ outer_solar_system_taylor_run_72(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 340 .. 350 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_74(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13933,7 +13935,7 @@ outer_solar_system_taylor_run_74(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_76(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13963,7 +13965,7 @@ outer_solar_system_taylor_run_76(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_78(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -13993,7 +13995,7 @@ outer_solar_system_taylor_run_78(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_80(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14023,7 +14025,7 @@ outer_solar_system_taylor_run_80(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_82(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14053,7 +14055,7 @@ outer_solar_system_taylor_run_82(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_84(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14083,7 +14085,7 @@ outer_solar_system_taylor_run_84(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_85(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14113,7 +14115,7 @@ outer_solar_system_taylor_run_85(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_86(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14143,7 +14145,7 @@ outer_solar_system_taylor_run_86(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_88(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14173,7 +14175,7 @@ outer_solar_system_taylor_run_88(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_90(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14203,7 +14205,7 @@ outer_solar_system_taylor_run_90(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 340 .. 350 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_92(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14224,7 +14226,7 @@ outer_solar_system_taylor_run_92(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_94(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14254,7 +14256,7 @@ outer_solar_system_taylor_run_94(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_96(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14284,7 +14286,7 @@ outer_solar_system_taylor_run_96(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_98(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14314,7 +14316,7 @@ outer_solar_system_taylor_run_98(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_100(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14364,7 +14366,7 @@ outer_solar_system_taylor_run_100(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_102(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14394,7 +14396,7 @@ outer_solar_system_taylor_run_102(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_103(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14424,7 +14426,7 @@ outer_solar_system_taylor_run_103(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_104(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14454,7 +14456,7 @@ outer_solar_system_taylor_run_104(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_106(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14484,7 +14486,7 @@ outer_solar_system_taylor_run_106(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_108(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14514,7 +14516,7 @@ outer_solar_system_taylor_run_108(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_109(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14544,7 +14546,7 @@ outer_solar_system_taylor_run_109(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_112(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14574,7 +14576,7 @@ outer_solar_system_taylor_run_112(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_114(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14604,7 +14606,7 @@ outer_solar_system_taylor_run_114(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_116(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14634,7 +14636,7 @@ outer_solar_system_taylor_run_116(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_118(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14684,7 +14686,7 @@ outer_solar_system_taylor_run_118(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_120(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14714,7 +14716,7 @@ outer_solar_system_taylor_run_120(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_121(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14744,7 +14746,7 @@ outer_solar_system_taylor_run_121(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_122(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14774,7 +14776,7 @@ outer_solar_system_taylor_run_122(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_124(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14804,7 +14806,7 @@ outer_solar_system_taylor_run_124(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_126(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14834,7 +14836,7 @@ outer_solar_system_taylor_run_126(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_127(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14864,7 +14866,7 @@ outer_solar_system_taylor_run_127(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_130(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14894,7 +14896,7 @@ outer_solar_system_taylor_run_130(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_132(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14924,7 +14926,7 @@ outer_solar_system_taylor_run_132(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_134(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -14954,7 +14956,7 @@ outer_solar_system_taylor_run_134(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_135(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15004,7 +15006,7 @@ outer_solar_system_taylor_run_135(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_137(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15054,7 +15056,7 @@ outer_solar_system_taylor_run_137(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_142(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15084,7 +15086,7 @@ outer_solar_system_taylor_run_142(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_144(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15114,7 +15116,7 @@ outer_solar_system_taylor_run_144(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 340 .. 350 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_146(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15135,7 +15137,7 @@ outer_solar_system_taylor_run_146(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_147(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15165,7 +15167,7 @@ outer_solar_system_taylor_run_147(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_149(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15210,7 +15212,7 @@ outer_solar_system_taylor_run_149(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_151(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15250,7 +15252,7 @@ outer_solar_system_taylor_run_151(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_153(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15300,7 +15302,7 @@ outer_solar_system_taylor_run_153(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_155(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15350,7 +15352,7 @@ outer_solar_system_taylor_run_155(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_160(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15380,7 +15382,7 @@ outer_solar_system_taylor_run_160(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_162(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15410,7 +15412,7 @@ outer_solar_system_taylor_run_162(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 340 .. 350 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_164(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15431,7 +15433,7 @@ outer_solar_system_taylor_run_164(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_166(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15461,7 +15463,7 @@ outer_solar_system_taylor_run_166(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_168(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15491,7 +15493,7 @@ outer_solar_system_taylor_run_168(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_170(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15521,7 +15523,7 @@ outer_solar_system_taylor_run_170(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_171(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15586,7 +15588,7 @@ outer_solar_system_taylor_run_171(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_173(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15636,7 +15638,7 @@ outer_solar_system_taylor_run_173(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_179(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15666,7 +15668,7 @@ outer_solar_system_taylor_run_179(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_181(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15696,7 +15698,7 @@ outer_solar_system_taylor_run_181(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_183(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15726,7 +15728,7 @@ outer_solar_system_taylor_run_183(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_185(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15771,7 +15773,7 @@ outer_solar_system_taylor_run_185(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_187(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15811,7 +15813,7 @@ outer_solar_system_taylor_run_187(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_189(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15881,7 +15883,7 @@ outer_solar_system_taylor_run_189(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_191(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15951,7 +15953,7 @@ outer_solar_system_taylor_run_191(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_197(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -15981,7 +15983,7 @@ outer_solar_system_taylor_run_197(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_199(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -16011,7 +16013,7 @@ outer_solar_system_taylor_run_199(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_202(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -16041,7 +16043,7 @@ outer_solar_system_taylor_run_202(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_204(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -16091,7 +16093,7 @@ outer_solar_system_taylor_run_204(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_206(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -16121,7 +16123,7 @@ outer_solar_system_taylor_run_206(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_207(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -16191,7 +16193,7 @@ outer_solar_system_taylor_run_207(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_209(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -16261,7 +16263,7 @@ outer_solar_system_taylor_run_209(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_215(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -16291,7 +16293,7 @@ outer_solar_system_taylor_run_215(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_217(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -16321,7 +16323,7 @@ outer_solar_system_taylor_run_217(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_220(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -16351,7 +16353,7 @@ outer_solar_system_taylor_run_220(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_222(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -16401,7 +16403,7 @@ outer_solar_system_taylor_run_222(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_224(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -16431,7 +16433,7 @@ outer_solar_system_taylor_run_224(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_225(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -16501,7 +16503,7 @@ outer_solar_system_taylor_run_225(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_227(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -16571,7 +16573,7 @@ outer_solar_system_taylor_run_227(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_233(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -16601,7 +16603,7 @@ outer_solar_system_taylor_run_233(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 340 .. 350 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_236(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -16622,7 +16624,7 @@ outer_solar_system_taylor_run_236(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_237(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -16652,7 +16654,7 @@ outer_solar_system_taylor_run_237(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_239(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -16697,7 +16699,7 @@ outer_solar_system_taylor_run_239(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_241(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -16737,7 +16739,7 @@ outer_solar_system_taylor_run_241(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_244(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -16807,7 +16809,7 @@ outer_solar_system_taylor_run_244(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_246(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -16837,7 +16839,7 @@ outer_solar_system_taylor_run_246(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_247(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -16867,7 +16869,7 @@ outer_solar_system_taylor_run_247(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_248(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -16897,7 +16899,7 @@ outer_solar_system_taylor_run_248(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_249(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -16927,7 +16929,7 @@ outer_solar_system_taylor_run_249(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_250(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -16957,7 +16959,7 @@ outer_solar_system_taylor_run_250(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_251(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -16987,7 +16989,7 @@ outer_solar_system_taylor_run_251(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 340 .. 350 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_254(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -17008,7 +17010,7 @@ outer_solar_system_taylor_run_254(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_255(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -17038,7 +17040,7 @@ outer_solar_system_taylor_run_255(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_257(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -17083,7 +17085,7 @@ outer_solar_system_taylor_run_257(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_259(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -17123,7 +17125,7 @@ outer_solar_system_taylor_run_259(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_262(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -17193,7 +17195,7 @@ outer_solar_system_taylor_run_262(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_264(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -17223,7 +17225,7 @@ outer_solar_system_taylor_run_264(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_265(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -17253,7 +17255,7 @@ outer_solar_system_taylor_run_265(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_266(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -17283,7 +17285,7 @@ outer_solar_system_taylor_run_266(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_267(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -17313,7 +17315,7 @@ outer_solar_system_taylor_run_267(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_268(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -17343,7 +17345,7 @@ outer_solar_system_taylor_run_268(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_269(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -17373,7 +17375,7 @@ outer_solar_system_taylor_run_269(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_271(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -17403,7 +17405,7 @@ outer_solar_system_taylor_run_271(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_274(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -17433,7 +17435,7 @@ outer_solar_system_taylor_run_274(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_276(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -17483,7 +17485,7 @@ outer_solar_system_taylor_run_276(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_278(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -17513,7 +17515,7 @@ outer_solar_system_taylor_run_278(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_279(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -17603,7 +17605,7 @@ outer_solar_system_taylor_run_279(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_281(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -17693,7 +17695,7 @@ outer_solar_system_taylor_run_281(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_288(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -17723,7 +17725,7 @@ outer_solar_system_taylor_run_288(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 340 .. 350 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_290(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -17744,7 +17746,7 @@ outer_solar_system_taylor_run_290(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_292(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -17774,7 +17776,7 @@ outer_solar_system_taylor_run_292(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_294(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -17824,7 +17826,7 @@ outer_solar_system_taylor_run_294(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_296(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -17854,7 +17856,7 @@ outer_solar_system_taylor_run_296(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_297(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -17944,7 +17946,7 @@ outer_solar_system_taylor_run_297(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_299(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18034,7 +18036,7 @@ outer_solar_system_taylor_run_299(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_307(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18064,7 +18066,7 @@ outer_solar_system_taylor_run_307(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_309(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18094,7 +18096,7 @@ outer_solar_system_taylor_run_309(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_311(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18139,7 +18141,7 @@ outer_solar_system_taylor_run_311(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_313(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18179,7 +18181,7 @@ outer_solar_system_taylor_run_313(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_316(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18269,7 +18271,7 @@ outer_solar_system_taylor_run_316(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_318(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18299,7 +18301,7 @@ outer_solar_system_taylor_run_318(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_319(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18329,7 +18331,7 @@ outer_solar_system_taylor_run_319(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_320(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18359,7 +18361,7 @@ outer_solar_system_taylor_run_320(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_321(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18389,7 +18391,7 @@ outer_solar_system_taylor_run_321(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_322(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18419,7 +18421,7 @@ outer_solar_system_taylor_run_322(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_323(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18449,7 +18451,7 @@ outer_solar_system_taylor_run_323(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_324(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18479,7 +18481,7 @@ outer_solar_system_taylor_run_324(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 340 .. 350 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_326(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18500,7 +18502,7 @@ outer_solar_system_taylor_run_326(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_327(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18530,7 +18532,7 @@ outer_solar_system_taylor_run_327(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_329(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18590,7 +18592,7 @@ outer_solar_system_taylor_run_329(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_331(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18640,7 +18642,7 @@ outer_solar_system_taylor_run_331(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_334(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18730,7 +18732,7 @@ outer_solar_system_taylor_run_334(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_336(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18760,7 +18762,7 @@ outer_solar_system_taylor_run_336(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_337(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18790,7 +18792,7 @@ outer_solar_system_taylor_run_337(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_338(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18820,7 +18822,7 @@ outer_solar_system_taylor_run_338(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_339(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18850,7 +18852,7 @@ outer_solar_system_taylor_run_339(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_340(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18880,7 +18882,7 @@ outer_solar_system_taylor_run_340(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_341(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18910,7 +18912,7 @@ outer_solar_system_taylor_run_341(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_342(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18940,7 +18942,7 @@ outer_solar_system_taylor_run_342(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_343(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -18970,7 +18972,7 @@ outer_solar_system_taylor_run_343(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_346(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -19000,7 +19002,7 @@ outer_solar_system_taylor_run_346(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_348(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -19050,7 +19052,7 @@ outer_solar_system_taylor_run_348(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_350(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -19080,7 +19082,7 @@ outer_solar_system_taylor_run_350(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_351(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -19185,7 +19187,7 @@ outer_solar_system_taylor_run_351(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_353(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -19275,7 +19277,7 @@ outer_solar_system_taylor_run_353(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 340 .. 350 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 outer_solar_system_taylor_run_362(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)

@@ -25,9 +25,11 @@
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
 #define EOMC_WEAK __attribute__((weak))
+#define EOMC_UNCHECKED __attribute__((no_sanitize("alignment", "null", "pointer-overflow")))
 #else
 #define EOMC_NOINLINE
 #define EOMC_WEAK
+#define EOMC_UNCHECKED
 #endif
 
 /* eomc build compiles this file as translation units at once: with
@@ -3692,7 +3694,7 @@ pleiades_taylor(int k, int K, eomc_real t0, const eomc_real *p,
  * Written out to order 20, each recurrence's sum with its indices fixed
  * (the same arithmetic in the same order); above that, the loop. */
 /* Lines 280 .. 299 of taylor_run's order 1. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_36(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3722,7 +3724,7 @@ pleiades_taylor_run_36(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 1. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_38(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3752,7 +3754,7 @@ pleiades_taylor_run_38(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_40(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3782,7 +3784,7 @@ pleiades_taylor_run_40(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_42(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3812,7 +3814,7 @@ pleiades_taylor_run_42(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_44(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3842,7 +3844,7 @@ pleiades_taylor_run_44(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_46(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3872,7 +3874,7 @@ pleiades_taylor_run_46(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_48(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3902,7 +3904,7 @@ pleiades_taylor_run_48(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_50(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3932,7 +3934,7 @@ pleiades_taylor_run_50(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_52(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3962,7 +3964,7 @@ pleiades_taylor_run_52(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_54(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -3992,7 +3994,7 @@ pleiades_taylor_run_54(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 340 .. 351 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_57(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4014,7 +4016,7 @@ pleiades_taylor_run_57(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_58(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4044,7 +4046,7 @@ pleiades_taylor_run_58(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_60(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4074,7 +4076,7 @@ pleiades_taylor_run_60(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_62(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4104,7 +4106,7 @@ pleiades_taylor_run_62(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_64(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4134,7 +4136,7 @@ pleiades_taylor_run_64(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_66(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4164,7 +4166,7 @@ pleiades_taylor_run_66(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_68(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4194,7 +4196,7 @@ pleiades_taylor_run_68(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_70(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4224,7 +4226,7 @@ pleiades_taylor_run_70(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_72(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4254,7 +4256,7 @@ pleiades_taylor_run_72(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_74(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4284,7 +4286,7 @@ pleiades_taylor_run_74(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 4. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_77(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4314,7 +4316,7 @@ pleiades_taylor_run_77(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 4. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_79(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4344,7 +4346,7 @@ pleiades_taylor_run_79(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 4. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_81(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4374,7 +4376,7 @@ pleiades_taylor_run_81(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 4. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_83(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4404,7 +4406,7 @@ pleiades_taylor_run_83(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 4. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_85(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4434,7 +4436,7 @@ pleiades_taylor_run_85(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 4. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_87(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4464,7 +4466,7 @@ pleiades_taylor_run_87(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 4. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_89(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4494,7 +4496,7 @@ pleiades_taylor_run_89(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 4. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_91(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4524,7 +4526,7 @@ pleiades_taylor_run_91(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 340 .. 351 of taylor_run's order 4. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_93(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4546,7 +4548,7 @@ pleiades_taylor_run_93(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_94(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4576,7 +4578,7 @@ pleiades_taylor_run_94(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_96(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4606,7 +4608,7 @@ pleiades_taylor_run_96(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_98(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4636,7 +4638,7 @@ pleiades_taylor_run_98(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_100(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4686,7 +4688,7 @@ pleiades_taylor_run_100(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_102(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4724,7 +4726,7 @@ pleiades_taylor_run_102(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_104(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4754,7 +4756,7 @@ pleiades_taylor_run_104(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_106(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4784,7 +4786,7 @@ pleiades_taylor_run_106(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_108(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4814,7 +4816,7 @@ pleiades_taylor_run_108(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_110(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4844,7 +4846,7 @@ pleiades_taylor_run_110(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_113(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4874,7 +4876,7 @@ pleiades_taylor_run_113(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_115(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4904,7 +4906,7 @@ pleiades_taylor_run_115(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_117(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4949,7 +4951,7 @@ pleiades_taylor_run_117(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_119(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -4999,7 +5001,7 @@ pleiades_taylor_run_119(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_121(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5029,7 +5031,7 @@ pleiades_taylor_run_121(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_123(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5059,7 +5061,7 @@ pleiades_taylor_run_123(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_125(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5089,7 +5091,7 @@ pleiades_taylor_run_125(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_127(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5119,7 +5121,7 @@ pleiades_taylor_run_127(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 340 .. 351 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_129(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5141,7 +5143,7 @@ pleiades_taylor_run_129(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_130(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5171,7 +5173,7 @@ pleiades_taylor_run_130(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_132(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5201,7 +5203,7 @@ pleiades_taylor_run_132(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_134(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5231,7 +5233,7 @@ pleiades_taylor_run_134(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_136(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5281,7 +5283,7 @@ pleiades_taylor_run_136(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_138(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5319,7 +5321,7 @@ pleiades_taylor_run_138(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_140(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5349,7 +5351,7 @@ pleiades_taylor_run_140(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_142(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5379,7 +5381,7 @@ pleiades_taylor_run_142(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_144(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5409,7 +5411,7 @@ pleiades_taylor_run_144(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_146(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5439,7 +5441,7 @@ pleiades_taylor_run_146(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_148(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5469,7 +5471,7 @@ pleiades_taylor_run_148(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_150(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5517,7 +5519,7 @@ pleiades_taylor_run_150(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_152(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5551,7 +5553,7 @@ pleiades_taylor_run_152(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_154(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5601,7 +5603,7 @@ pleiades_taylor_run_154(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_156(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5639,7 +5641,7 @@ pleiades_taylor_run_156(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_158(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5669,7 +5671,7 @@ pleiades_taylor_run_158(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_160(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5699,7 +5701,7 @@ pleiades_taylor_run_160(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_162(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5729,7 +5731,7 @@ pleiades_taylor_run_162(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_164(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5759,7 +5761,7 @@ pleiades_taylor_run_164(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_166(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5789,7 +5791,7 @@ pleiades_taylor_run_166(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_168(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5819,7 +5821,7 @@ pleiades_taylor_run_168(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_170(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5849,7 +5851,7 @@ pleiades_taylor_run_170(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_172(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5905,7 +5907,7 @@ pleiades_taylor_run_172(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_174(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5943,7 +5945,7 @@ pleiades_taylor_run_174(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_175(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -5973,7 +5975,7 @@ pleiades_taylor_run_175(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_177(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6003,7 +6005,7 @@ pleiades_taylor_run_177(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_179(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6033,7 +6035,7 @@ pleiades_taylor_run_179(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_181(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6063,7 +6065,7 @@ pleiades_taylor_run_181(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 340 .. 351 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_183(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6085,7 +6087,7 @@ pleiades_taylor_run_183(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_185(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6115,7 +6117,7 @@ pleiades_taylor_run_185(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_187(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6165,7 +6167,7 @@ pleiades_taylor_run_187(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_189(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6225,7 +6227,7 @@ pleiades_taylor_run_189(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_191(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6295,7 +6297,7 @@ pleiades_taylor_run_191(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_194(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6325,7 +6327,7 @@ pleiades_taylor_run_194(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_196(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6355,7 +6357,7 @@ pleiades_taylor_run_196(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_198(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6385,7 +6387,7 @@ pleiades_taylor_run_198(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_200(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6415,7 +6417,7 @@ pleiades_taylor_run_200(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_202(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6445,7 +6447,7 @@ pleiades_taylor_run_202(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_204(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6493,7 +6495,7 @@ pleiades_taylor_run_204(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_206(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6527,7 +6529,7 @@ pleiades_taylor_run_206(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_208(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6597,7 +6599,7 @@ pleiades_taylor_run_208(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_210(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6643,7 +6645,7 @@ pleiades_taylor_run_210(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_211(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6673,7 +6675,7 @@ pleiades_taylor_run_211(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_213(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6703,7 +6705,7 @@ pleiades_taylor_run_213(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_215(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6733,7 +6735,7 @@ pleiades_taylor_run_215(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_217(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6763,7 +6765,7 @@ pleiades_taylor_run_217(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 340 .. 351 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_219(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6785,7 +6787,7 @@ pleiades_taylor_run_219(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_221(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6815,7 +6817,7 @@ pleiades_taylor_run_221(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_223(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6865,7 +6867,7 @@ pleiades_taylor_run_223(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_225(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6925,7 +6927,7 @@ pleiades_taylor_run_225(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_227(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -6995,7 +6997,7 @@ pleiades_taylor_run_227(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_230(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7025,7 +7027,7 @@ pleiades_taylor_run_230(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_232(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7055,7 +7057,7 @@ pleiades_taylor_run_232(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_234(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7085,7 +7087,7 @@ pleiades_taylor_run_234(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_236(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7115,7 +7117,7 @@ pleiades_taylor_run_236(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 13. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_239(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7145,7 +7147,7 @@ pleiades_taylor_run_239(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 13. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_241(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7195,7 +7197,7 @@ pleiades_taylor_run_241(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 13. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_243(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7270,7 +7272,7 @@ pleiades_taylor_run_243(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 13. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_245(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7340,7 +7342,7 @@ pleiades_taylor_run_245(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 13. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_248(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7370,7 +7372,7 @@ pleiades_taylor_run_248(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 13. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_250(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7400,7 +7402,7 @@ pleiades_taylor_run_250(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 13. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_252(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7430,7 +7432,7 @@ pleiades_taylor_run_252(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 13. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_254(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7460,7 +7462,7 @@ pleiades_taylor_run_254(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 14. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_257(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7490,7 +7492,7 @@ pleiades_taylor_run_257(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 14. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_259(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7540,7 +7542,7 @@ pleiades_taylor_run_259(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 14. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_261(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7615,7 +7617,7 @@ pleiades_taylor_run_261(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 14. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_263(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7685,7 +7687,7 @@ pleiades_taylor_run_263(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 14. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_266(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7715,7 +7717,7 @@ pleiades_taylor_run_266(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 14. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_268(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7745,7 +7747,7 @@ pleiades_taylor_run_268(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 14. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_270(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7775,7 +7777,7 @@ pleiades_taylor_run_270(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 14. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_272(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7805,7 +7807,7 @@ pleiades_taylor_run_272(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_275(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7835,7 +7837,7 @@ pleiades_taylor_run_275(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_277(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7885,7 +7887,7 @@ pleiades_taylor_run_277(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_279(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -7960,7 +7962,7 @@ pleiades_taylor_run_279(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_281(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8050,7 +8052,7 @@ pleiades_taylor_run_281(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_284(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8080,7 +8082,7 @@ pleiades_taylor_run_284(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_286(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8110,7 +8112,7 @@ pleiades_taylor_run_286(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_289(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8140,7 +8142,7 @@ pleiades_taylor_run_289(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_290(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8170,7 +8172,7 @@ pleiades_taylor_run_290(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_293(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8200,7 +8202,7 @@ pleiades_taylor_run_293(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_295(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8250,7 +8252,7 @@ pleiades_taylor_run_295(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_297(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8325,7 +8327,7 @@ pleiades_taylor_run_297(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_299(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8415,7 +8417,7 @@ pleiades_taylor_run_299(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_303(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8445,7 +8447,7 @@ pleiades_taylor_run_303(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_305(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8475,7 +8477,7 @@ pleiades_taylor_run_305(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_307(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8505,7 +8507,7 @@ pleiades_taylor_run_307(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 340 .. 351 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_309(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8527,7 +8529,7 @@ pleiades_taylor_run_309(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 17. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_310(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8557,7 +8559,7 @@ pleiades_taylor_run_310(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 17. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_312(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8605,7 +8607,7 @@ pleiades_taylor_run_312(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 17. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_314(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8639,7 +8641,7 @@ pleiades_taylor_run_314(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 17. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_316(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8735,7 +8737,7 @@ pleiades_taylor_run_316(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 17. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_318(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8789,7 +8791,7 @@ pleiades_taylor_run_318(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 17. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_319(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8819,7 +8821,7 @@ pleiades_taylor_run_319(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 17. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_320(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8849,7 +8851,7 @@ pleiades_taylor_run_320(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 17. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_322(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8879,7 +8881,7 @@ pleiades_taylor_run_322(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 17. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_324(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8909,7 +8911,7 @@ pleiades_taylor_run_324(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 17. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_326(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8939,7 +8941,7 @@ pleiades_taylor_run_326(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 18. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_329(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -8969,7 +8971,7 @@ pleiades_taylor_run_329(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 18. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_331(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9039,7 +9041,7 @@ pleiades_taylor_run_331(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 18. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_333(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9129,7 +9131,7 @@ pleiades_taylor_run_333(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 18. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_335(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9219,7 +9221,7 @@ pleiades_taylor_run_335(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 18. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_339(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9249,7 +9251,7 @@ pleiades_taylor_run_339(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 18. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_341(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9279,7 +9281,7 @@ pleiades_taylor_run_341(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 18. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_343(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9309,7 +9311,7 @@ pleiades_taylor_run_343(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 340 .. 351 of taylor_run's order 18. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_345(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9331,7 +9333,7 @@ pleiades_taylor_run_345(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_346(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9361,7 +9363,7 @@ pleiades_taylor_run_346(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_348(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9409,7 +9411,7 @@ pleiades_taylor_run_348(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_350(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9443,7 +9445,7 @@ pleiades_taylor_run_350(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_352(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9539,7 +9541,7 @@ pleiades_taylor_run_352(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_354(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9593,7 +9595,7 @@ pleiades_taylor_run_354(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_355(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9623,7 +9625,7 @@ pleiades_taylor_run_355(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_356(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9653,7 +9655,7 @@ pleiades_taylor_run_356(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_358(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9683,7 +9685,7 @@ pleiades_taylor_run_358(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_360(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9713,7 +9715,7 @@ pleiades_taylor_run_360(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 pleiades_taylor_run_362(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -9742,811 +9744,811 @@ pleiades_taylor_run_362(eomc_real t0, const eomc_real *p, const eomc_real *u,
     return 0;
 }
 
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_3(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_4(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_5(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_7(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_8(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_9(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_10(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_11(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_12(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_13(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_14(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_15(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_16(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_17(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_18(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_19(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_20(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_21(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_22(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_23(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_24(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_25(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_26(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_27(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_28(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_29(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_30(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_31(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_32(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_33(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_34(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_35(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_37(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_39(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_41(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_43(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_45(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_47(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_49(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_51(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_53(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_55(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_56(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_59(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_61(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_63(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_65(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_67(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_69(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_71(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_73(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_75(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_76(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_78(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_80(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_82(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_84(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_86(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_88(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_90(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_92(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_95(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_97(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_99(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_101(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_103(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_105(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_107(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_109(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_111(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_112(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_114(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_116(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_118(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_120(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_122(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_124(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_126(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_128(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_131(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_133(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_135(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_137(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_139(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_141(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_143(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_145(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_147(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_149(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_151(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_153(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_155(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_157(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_159(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_161(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_163(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_165(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_167(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_169(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_171(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_173(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_176(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_178(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_180(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_182(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_184(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_186(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_188(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_190(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_192(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_193(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_195(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_197(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_199(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_201(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_203(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_205(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_207(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_209(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_212(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_214(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_216(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_218(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_220(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_222(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_224(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_226(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_228(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_229(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_231(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_233(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_235(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_237(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_238(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_240(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_242(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_244(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_246(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_247(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_249(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_251(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_253(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_255(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_256(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_258(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_260(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_262(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_264(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_265(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_267(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_269(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_271(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_273(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_274(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_276(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_278(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_280(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_282(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_283(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_285(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_287(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_288(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_291(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_292(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_294(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_296(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_298(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_300(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_301(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_302(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_304(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_306(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_308(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_311(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_313(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_315(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_317(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_321(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_323(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_325(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_327(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_328(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_330(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_332(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_334(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_336(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_337(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_338(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_340(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_342(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_344(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_347(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_349(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_351(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_353(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_357(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_359(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_361(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_363(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
@@ -11717,7 +11719,7 @@ const eomc_model_ext pleiades_model_ext = {
 #endif
 #ifndef EOMC_EXTENDED
 /* Lines 0 .. 19 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11747,7 +11749,7 @@ pleiades_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11777,7 +11779,7 @@ pleiades_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_3(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11807,7 +11809,7 @@ pleiades_taylor_run_3(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_4(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11837,7 +11839,7 @@ pleiades_taylor_run_4(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_5(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11867,7 +11869,7 @@ pleiades_taylor_run_5(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11897,7 +11899,7 @@ pleiades_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_7(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11927,7 +11929,7 @@ pleiades_taylor_run_7(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_8(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11957,7 +11959,7 @@ pleiades_taylor_run_8(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_9(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -11987,7 +11989,7 @@ pleiades_taylor_run_9(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_10(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12017,7 +12019,7 @@ pleiades_taylor_run_10(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_11(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12047,7 +12049,7 @@ pleiades_taylor_run_11(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_12(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12077,7 +12079,7 @@ pleiades_taylor_run_12(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_13(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12107,7 +12109,7 @@ pleiades_taylor_run_13(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_14(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12137,7 +12139,7 @@ pleiades_taylor_run_14(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_15(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12167,7 +12169,7 @@ pleiades_taylor_run_15(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_16(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12197,7 +12199,7 @@ pleiades_taylor_run_16(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_17(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12227,7 +12229,7 @@ pleiades_taylor_run_17(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 340 .. 359 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_18(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12257,7 +12259,7 @@ pleiades_taylor_run_18(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 360 .. 379 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_19(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12287,7 +12289,7 @@ pleiades_taylor_run_19(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 380 .. 399 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_20(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12317,7 +12319,7 @@ pleiades_taylor_run_20(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 400 .. 404 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_21(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12332,7 +12334,7 @@ pleiades_taylor_run_21(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_22(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12362,7 +12364,7 @@ pleiades_taylor_run_22(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_23(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12392,7 +12394,7 @@ pleiades_taylor_run_23(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_24(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12422,7 +12424,7 @@ pleiades_taylor_run_24(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_25(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12452,7 +12454,7 @@ pleiades_taylor_run_25(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_26(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12482,7 +12484,7 @@ pleiades_taylor_run_26(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_27(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12512,7 +12514,7 @@ pleiades_taylor_run_27(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_28(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12542,7 +12544,7 @@ pleiades_taylor_run_28(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_29(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12572,7 +12574,7 @@ pleiades_taylor_run_29(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_30(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12602,7 +12604,7 @@ pleiades_taylor_run_30(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_31(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12632,7 +12634,7 @@ pleiades_taylor_run_31(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_32(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12662,7 +12664,7 @@ pleiades_taylor_run_32(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_33(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12692,7 +12694,7 @@ pleiades_taylor_run_33(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_34(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12722,7 +12724,7 @@ pleiades_taylor_run_34(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_35(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12752,7 +12754,7 @@ pleiades_taylor_run_35(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_37(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12782,7 +12784,7 @@ pleiades_taylor_run_37(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 340 .. 351 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_39(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12804,7 +12806,7 @@ pleiades_taylor_run_39(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_41(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12834,7 +12836,7 @@ pleiades_taylor_run_41(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_43(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12864,7 +12866,7 @@ pleiades_taylor_run_43(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_45(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12894,7 +12896,7 @@ pleiades_taylor_run_45(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_47(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12924,7 +12926,7 @@ pleiades_taylor_run_47(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_49(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12954,7 +12956,7 @@ pleiades_taylor_run_49(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_51(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -12984,7 +12986,7 @@ pleiades_taylor_run_51(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_53(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13014,7 +13016,7 @@ pleiades_taylor_run_53(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_55(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13044,7 +13046,7 @@ pleiades_taylor_run_55(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_56(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13074,7 +13076,7 @@ pleiades_taylor_run_56(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_59(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13104,7 +13106,7 @@ pleiades_taylor_run_59(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_61(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13134,7 +13136,7 @@ pleiades_taylor_run_61(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_63(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13164,7 +13166,7 @@ pleiades_taylor_run_63(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_65(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13194,7 +13196,7 @@ pleiades_taylor_run_65(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_67(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13224,7 +13226,7 @@ pleiades_taylor_run_67(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_69(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13254,7 +13256,7 @@ pleiades_taylor_run_69(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_71(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13284,7 +13286,7 @@ pleiades_taylor_run_71(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_73(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13314,7 +13316,7 @@ pleiades_taylor_run_73(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 340 .. 351 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_75(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13336,7 +13338,7 @@ pleiades_taylor_run_75(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_76(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13366,7 +13368,7 @@ pleiades_taylor_run_76(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_78(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13396,7 +13398,7 @@ pleiades_taylor_run_78(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_80(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13426,7 +13428,7 @@ pleiades_taylor_run_80(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_82(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13456,7 +13458,7 @@ pleiades_taylor_run_82(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_84(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13486,7 +13488,7 @@ pleiades_taylor_run_84(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_86(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13516,7 +13518,7 @@ pleiades_taylor_run_86(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_88(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13546,7 +13548,7 @@ pleiades_taylor_run_88(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_90(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13576,7 +13578,7 @@ pleiades_taylor_run_90(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_92(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13606,7 +13608,7 @@ pleiades_taylor_run_92(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_95(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13636,7 +13638,7 @@ pleiades_taylor_run_95(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_97(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13666,7 +13668,7 @@ pleiades_taylor_run_97(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_99(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13711,7 +13713,7 @@ pleiades_taylor_run_99(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_101(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13761,7 +13763,7 @@ pleiades_taylor_run_101(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_103(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13791,7 +13793,7 @@ pleiades_taylor_run_103(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_105(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13821,7 +13823,7 @@ pleiades_taylor_run_105(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_107(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13851,7 +13853,7 @@ pleiades_taylor_run_107(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_109(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13881,7 +13883,7 @@ pleiades_taylor_run_109(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 340 .. 351 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_111(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13903,7 +13905,7 @@ pleiades_taylor_run_111(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_112(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13933,7 +13935,7 @@ pleiades_taylor_run_112(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_114(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13963,7 +13965,7 @@ pleiades_taylor_run_114(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_116(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -13993,7 +13995,7 @@ pleiades_taylor_run_116(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_118(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14043,7 +14045,7 @@ pleiades_taylor_run_118(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_120(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14081,7 +14083,7 @@ pleiades_taylor_run_120(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_122(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14111,7 +14113,7 @@ pleiades_taylor_run_122(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_124(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14141,7 +14143,7 @@ pleiades_taylor_run_124(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_126(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14171,7 +14173,7 @@ pleiades_taylor_run_126(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_128(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14201,7 +14203,7 @@ pleiades_taylor_run_128(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_131(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14231,7 +14233,7 @@ pleiades_taylor_run_131(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_133(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14261,7 +14263,7 @@ pleiades_taylor_run_133(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_135(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14306,7 +14308,7 @@ pleiades_taylor_run_135(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_137(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14356,7 +14358,7 @@ pleiades_taylor_run_137(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_139(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14386,7 +14388,7 @@ pleiades_taylor_run_139(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_141(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14416,7 +14418,7 @@ pleiades_taylor_run_141(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_143(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14446,7 +14448,7 @@ pleiades_taylor_run_143(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_145(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14476,7 +14478,7 @@ pleiades_taylor_run_145(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 340 .. 351 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_147(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14498,7 +14500,7 @@ pleiades_taylor_run_147(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_149(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14528,7 +14530,7 @@ pleiades_taylor_run_149(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_151(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14578,7 +14580,7 @@ pleiades_taylor_run_151(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_153(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14623,7 +14625,7 @@ pleiades_taylor_run_153(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_155(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14673,7 +14675,7 @@ pleiades_taylor_run_155(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_157(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14703,7 +14705,7 @@ pleiades_taylor_run_157(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_159(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14733,7 +14735,7 @@ pleiades_taylor_run_159(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_161(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14763,7 +14765,7 @@ pleiades_taylor_run_161(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_163(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14793,7 +14795,7 @@ pleiades_taylor_run_163(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 340 .. 351 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_165(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14815,7 +14817,7 @@ pleiades_taylor_run_165(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_167(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14845,7 +14847,7 @@ pleiades_taylor_run_167(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_169(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14875,7 +14877,7 @@ pleiades_taylor_run_169(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_171(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14935,7 +14937,7 @@ pleiades_taylor_run_171(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_173(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -14985,7 +14987,7 @@ pleiades_taylor_run_173(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_176(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15015,7 +15017,7 @@ pleiades_taylor_run_176(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_178(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15045,7 +15047,7 @@ pleiades_taylor_run_178(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_180(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15075,7 +15077,7 @@ pleiades_taylor_run_180(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_182(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15105,7 +15107,7 @@ pleiades_taylor_run_182(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_184(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15135,7 +15137,7 @@ pleiades_taylor_run_184(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_186(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15183,7 +15185,7 @@ pleiades_taylor_run_186(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_188(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15217,7 +15219,7 @@ pleiades_taylor_run_188(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_190(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15287,7 +15289,7 @@ pleiades_taylor_run_190(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_192(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15333,7 +15335,7 @@ pleiades_taylor_run_192(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_193(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15363,7 +15365,7 @@ pleiades_taylor_run_193(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_195(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15393,7 +15395,7 @@ pleiades_taylor_run_195(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_197(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15423,7 +15425,7 @@ pleiades_taylor_run_197(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_199(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15453,7 +15455,7 @@ pleiades_taylor_run_199(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 340 .. 351 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_201(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15475,7 +15477,7 @@ pleiades_taylor_run_201(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_203(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15505,7 +15507,7 @@ pleiades_taylor_run_203(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_205(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15555,7 +15557,7 @@ pleiades_taylor_run_205(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_207(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15615,7 +15617,7 @@ pleiades_taylor_run_207(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_209(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15685,7 +15687,7 @@ pleiades_taylor_run_209(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_212(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15715,7 +15717,7 @@ pleiades_taylor_run_212(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_214(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15745,7 +15747,7 @@ pleiades_taylor_run_214(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_216(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15775,7 +15777,7 @@ pleiades_taylor_run_216(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_218(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15805,7 +15807,7 @@ pleiades_taylor_run_218(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_220(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15835,7 +15837,7 @@ pleiades_taylor_run_220(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_222(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15883,7 +15885,7 @@ pleiades_taylor_run_222(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_224(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15917,7 +15919,7 @@ pleiades_taylor_run_224(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_226(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -15987,7 +15989,7 @@ pleiades_taylor_run_226(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_228(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16033,7 +16035,7 @@ pleiades_taylor_run_228(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_229(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16063,7 +16065,7 @@ pleiades_taylor_run_229(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_231(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16093,7 +16095,7 @@ pleiades_taylor_run_231(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_233(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16123,7 +16125,7 @@ pleiades_taylor_run_233(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_235(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16153,7 +16155,7 @@ pleiades_taylor_run_235(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 340 .. 351 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_237(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16175,7 +16177,7 @@ pleiades_taylor_run_237(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_238(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16205,7 +16207,7 @@ pleiades_taylor_run_238(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_240(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16253,7 +16255,7 @@ pleiades_taylor_run_240(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_242(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16287,7 +16289,7 @@ pleiades_taylor_run_242(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_244(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16363,7 +16365,7 @@ pleiades_taylor_run_244(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_246(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16409,7 +16411,7 @@ pleiades_taylor_run_246(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_247(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16439,7 +16441,7 @@ pleiades_taylor_run_247(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_249(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16469,7 +16471,7 @@ pleiades_taylor_run_249(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_251(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16499,7 +16501,7 @@ pleiades_taylor_run_251(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_253(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16529,7 +16531,7 @@ pleiades_taylor_run_253(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 340 .. 351 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_255(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16551,7 +16553,7 @@ pleiades_taylor_run_255(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_256(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16581,7 +16583,7 @@ pleiades_taylor_run_256(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_258(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16629,7 +16631,7 @@ pleiades_taylor_run_258(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_260(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16663,7 +16665,7 @@ pleiades_taylor_run_260(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_262(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16739,7 +16741,7 @@ pleiades_taylor_run_262(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_264(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16785,7 +16787,7 @@ pleiades_taylor_run_264(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_265(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16815,7 +16817,7 @@ pleiades_taylor_run_265(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_267(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16845,7 +16847,7 @@ pleiades_taylor_run_267(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_269(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16875,7 +16877,7 @@ pleiades_taylor_run_269(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_271(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16905,7 +16907,7 @@ pleiades_taylor_run_271(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 340 .. 351 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_273(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16927,7 +16929,7 @@ pleiades_taylor_run_273(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_274(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -16957,7 +16959,7 @@ pleiades_taylor_run_274(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_276(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -17005,7 +17007,7 @@ pleiades_taylor_run_276(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_278(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -17039,7 +17041,7 @@ pleiades_taylor_run_278(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_280(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -17129,7 +17131,7 @@ pleiades_taylor_run_280(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_282(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -17183,7 +17185,7 @@ pleiades_taylor_run_282(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_283(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -17213,7 +17215,7 @@ pleiades_taylor_run_283(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_285(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -17243,7 +17245,7 @@ pleiades_taylor_run_285(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_287(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -17273,7 +17275,7 @@ pleiades_taylor_run_287(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_288(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -17303,7 +17305,7 @@ pleiades_taylor_run_288(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 340 .. 351 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_291(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -17325,7 +17327,7 @@ pleiades_taylor_run_291(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_292(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -17355,7 +17357,7 @@ pleiades_taylor_run_292(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_294(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -17403,7 +17405,7 @@ pleiades_taylor_run_294(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_296(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -17437,7 +17439,7 @@ pleiades_taylor_run_296(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_298(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -17527,7 +17529,7 @@ pleiades_taylor_run_298(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_300(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -17581,7 +17583,7 @@ pleiades_taylor_run_300(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_301(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -17611,7 +17613,7 @@ pleiades_taylor_run_301(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_302(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -17641,7 +17643,7 @@ pleiades_taylor_run_302(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_304(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -17671,7 +17673,7 @@ pleiades_taylor_run_304(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_306(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -17701,7 +17703,7 @@ pleiades_taylor_run_306(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_308(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -17731,7 +17733,7 @@ pleiades_taylor_run_308(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_311(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -17761,7 +17763,7 @@ pleiades_taylor_run_311(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_313(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -17811,7 +17813,7 @@ pleiades_taylor_run_313(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_315(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -17901,7 +17903,7 @@ pleiades_taylor_run_315(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_317(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -17991,7 +17993,7 @@ pleiades_taylor_run_317(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_321(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -18021,7 +18023,7 @@ pleiades_taylor_run_321(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_323(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -18051,7 +18053,7 @@ pleiades_taylor_run_323(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_325(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -18081,7 +18083,7 @@ pleiades_taylor_run_325(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 340 .. 351 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_327(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -18103,7 +18105,7 @@ pleiades_taylor_run_327(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_328(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -18133,7 +18135,7 @@ pleiades_taylor_run_328(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_330(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -18199,7 +18201,7 @@ pleiades_taylor_run_330(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 80 .. 99 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_332(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -18237,7 +18239,7 @@ pleiades_taylor_run_332(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 120 .. 139 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_334(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -18333,7 +18335,7 @@ pleiades_taylor_run_334(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 160 .. 179 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_336(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -18387,7 +18389,7 @@ pleiades_taylor_run_336(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 180 .. 199 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_337(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -18417,7 +18419,7 @@ pleiades_taylor_run_337(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 200 .. 219 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_338(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -18447,7 +18449,7 @@ pleiades_taylor_run_338(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 240 .. 259 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_340(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -18477,7 +18479,7 @@ pleiades_taylor_run_340(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 280 .. 299 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_342(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -18507,7 +18509,7 @@ pleiades_taylor_run_342(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 320 .. 339 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_344(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -18537,7 +18539,7 @@ pleiades_taylor_run_344(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_347(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -18567,7 +18569,7 @@ pleiades_taylor_run_347(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_349(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -18617,7 +18619,7 @@ pleiades_taylor_run_349(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 100 .. 119 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_351(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -18707,7 +18709,7 @@ pleiades_taylor_run_351(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 140 .. 159 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_353(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -18797,7 +18799,7 @@ pleiades_taylor_run_353(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 220 .. 239 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_357(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -18827,7 +18829,7 @@ pleiades_taylor_run_357(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 260 .. 279 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_359(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -18857,7 +18859,7 @@ pleiades_taylor_run_359(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 300 .. 319 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_361(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -18887,7 +18889,7 @@ pleiades_taylor_run_361(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 340 .. 351 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 pleiades_taylor_run_363(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)

@@ -26,9 +26,11 @@
 #if defined(__GNUC__)
 #define EOMC_NOINLINE __attribute__((noinline))
 #define EOMC_WEAK __attribute__((weak))
+#define EOMC_UNCHECKED __attribute__((no_sanitize("alignment", "null", "pointer-overflow")))
 #else
 #define EOMC_NOINLINE
 #define EOMC_WEAK
+#define EOMC_UNCHECKED
 #endif
 
 /* eomc build compiles this file as translation units at once: with
@@ -702,7 +704,7 @@ spinning_hoop_taylor(int k, int K, eomc_real t0, const eomc_real *p,
  * Written out to order 20, each recurrence's sum with its indices fixed
  * (the same arithmetic in the same order); above that, the loop. */
 /* Lines 20 .. 39 of taylor_run's order 1. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 spinning_hoop_taylor_run_5(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -732,7 +734,7 @@ spinning_hoop_taylor_run_5(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 37 of taylor_run's order 2. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 spinning_hoop_taylor_run_7(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -760,7 +762,7 @@ spinning_hoop_taylor_run_7(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 37 of taylor_run's order 3. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 spinning_hoop_taylor_run_9(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -788,7 +790,7 @@ spinning_hoop_taylor_run_9(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 37 of taylor_run's order 4. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 spinning_hoop_taylor_run_11(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -816,7 +818,7 @@ spinning_hoop_taylor_run_11(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 5. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 spinning_hoop_taylor_run_12(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -853,7 +855,7 @@ spinning_hoop_taylor_run_12(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 37 of taylor_run's order 6. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 spinning_hoop_taylor_run_15(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -885,7 +887,7 @@ spinning_hoop_taylor_run_15(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 7. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 spinning_hoop_taylor_run_16(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -927,7 +929,7 @@ spinning_hoop_taylor_run_16(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 37 of taylor_run's order 8. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 spinning_hoop_taylor_run_19(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -959,7 +961,7 @@ spinning_hoop_taylor_run_19(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 9. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 spinning_hoop_taylor_run_20(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -1003,7 +1005,7 @@ spinning_hoop_taylor_run_20(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 37 of taylor_run's order 10. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 spinning_hoop_taylor_run_23(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -1037,7 +1039,7 @@ spinning_hoop_taylor_run_23(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 11. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 spinning_hoop_taylor_run_24(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -1088,7 +1090,7 @@ spinning_hoop_taylor_run_24(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 37 of taylor_run's order 12. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 spinning_hoop_taylor_run_27(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -1124,7 +1126,7 @@ spinning_hoop_taylor_run_27(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 13. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 spinning_hoop_taylor_run_28(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -1181,7 +1183,7 @@ spinning_hoop_taylor_run_28(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 37 of taylor_run's order 14. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 spinning_hoop_taylor_run_31(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -1217,7 +1219,7 @@ spinning_hoop_taylor_run_31(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 15. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 spinning_hoop_taylor_run_32(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -1280,7 +1282,7 @@ spinning_hoop_taylor_run_32(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 37 of taylor_run's order 16. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 spinning_hoop_taylor_run_35(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -1320,7 +1322,7 @@ spinning_hoop_taylor_run_35(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 17. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 spinning_hoop_taylor_run_36(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -1389,7 +1391,7 @@ spinning_hoop_taylor_run_36(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 37 of taylor_run's order 18. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 spinning_hoop_taylor_run_39(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -1429,7 +1431,7 @@ spinning_hoop_taylor_run_39(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 19. */
-static EOMC_NOINLINE int
+static EOMC_NOINLINE EOMC_UNCHECKED int
 spinning_hoop_taylor_run_40(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -1497,91 +1499,91 @@ spinning_hoop_taylor_run_40(eomc_real t0, const eomc_real *p,
     return 0;
 }
 
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_3(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_4(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_8(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_10(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_13(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_14(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_17(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_18(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_21(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_22(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_25(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_26(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_29(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_30(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_33(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_34(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_37(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_38(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_41(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
@@ -1888,7 +1890,7 @@ const eomc_model_ext spinning_hoop_model_ext = {
 #endif
 #ifndef EOMC_EXTENDED
 /* Lines 0 .. 19 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -1918,7 +1920,7 @@ spinning_hoop_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -1948,7 +1950,7 @@ spinning_hoop_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 42 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_3(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -1961,7 +1963,7 @@ spinning_hoop_taylor_run_3(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_4(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -1991,7 +1993,7 @@ spinning_hoop_taylor_run_4(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2021,7 +2023,7 @@ spinning_hoop_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_8(eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
     void *ctx)
@@ -2051,7 +2053,7 @@ spinning_hoop_taylor_run_8(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_10(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2081,7 +2083,7 @@ spinning_hoop_taylor_run_10(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 37 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_13(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2111,7 +2113,7 @@ spinning_hoop_taylor_run_13(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_14(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2153,7 +2155,7 @@ spinning_hoop_taylor_run_14(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 37 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_17(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2185,7 +2187,7 @@ spinning_hoop_taylor_run_17(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_18(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2227,7 +2229,7 @@ spinning_hoop_taylor_run_18(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 37 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_21(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2259,7 +2261,7 @@ spinning_hoop_taylor_run_21(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_22(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2310,7 +2312,7 @@ spinning_hoop_taylor_run_22(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 37 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_25(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2346,7 +2348,7 @@ spinning_hoop_taylor_run_25(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_26(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2401,7 +2403,7 @@ spinning_hoop_taylor_run_26(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 37 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_29(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2437,7 +2439,7 @@ spinning_hoop_taylor_run_29(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_30(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2494,7 +2496,7 @@ spinning_hoop_taylor_run_30(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 37 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_33(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2532,7 +2534,7 @@ spinning_hoop_taylor_run_33(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_34(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2596,7 +2598,7 @@ spinning_hoop_taylor_run_34(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 37 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_37(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2636,7 +2638,7 @@ spinning_hoop_taylor_run_37(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_38(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
@@ -2705,7 +2707,7 @@ spinning_hoop_taylor_run_38(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 20 .. 37 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART int
+EOMC_PART EOMC_UNCHECKED int
 spinning_hoop_taylor_run_41(eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)

@@ -428,7 +428,9 @@ print_series_parts(Printer *pr, const LowTaylor *ty)
             snprintf(fname, sizeof fname, "%s_taylor_run_%d", pr->md->name, part + 1);
             emit_line(pr, "/* Lines %d .. %d of taylor_run's order %d%s. */", i - se->start[k],
                       end - 1 - se->start[k], k, second ? ", in the fourth unit" : "");
-            emit_head(pr, second ? "EOMC_PART int" : "static EOMC_NOINLINE int", fname, params);
+            emit_head(pr, second ? "EOMC_PART EOMC_UNCHECKED int"
+                                 : "static EOMC_NOINLINE EOMC_UNCHECKED int",
+                      fname, params);
             emit_line(pr, "    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, "
                           "(void)ctx;");
             for (int j = i; j < end; j++)
@@ -440,7 +442,7 @@ print_series_parts(Printer *pr, const LowTaylor *ty)
     for (int part = 0; part < nparts; part++) { /* called before they are defined */
         snprintf(fname, sizeof fname, "%s_taylor_run_%d", pr->md->name, part + 1);
         if (in4[part])
-            emit_decl(pr, "EOMC_PART int", fname, params, ";");
+            emit_decl(pr, "EOMC_PART EOMC_UNCHECKED int", fname, params, ";");
     }
     free(in4);
     free((int *)cells.place);

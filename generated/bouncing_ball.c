@@ -417,7 +417,7 @@ bouncing_ball_taylor_run(int K, eomc_real t0, const eomc_real *p,
                 X[j * 2 + i] = T[state[i] * S + j];
         return 0;
     }
-    eomc_real W[84]; /* slot s's coefficient j at W[j * 4 + s], but the
+    eomc_real W[84]; /* a slot's coefficient j at W[j * 4 + its column], but the
                    * state's: X[j * 2 + i], q's then v's */
     if (K >= 3)
         X[6] = 0.0; /* at every step */
@@ -579,7 +579,7 @@ bouncing_ball_taylor_run4(int K, const double *t0s, const double *ps,
     const eomc_v4 *p = (const eomc_v4 *)ps, *u = (const eomc_v4 *)us;
     eomc_v4 *T = (eomc_v4 *)Ts, *X = (eomc_v4 *)Xs;
     (void)S, (void)T, (void)t0, (void)p, (void)u;
-    eomc_v4 W[84]; /* slot s's coefficient j at W[j * 4 + s], but the
+    eomc_v4 W[84]; /* a slot's coefficient j at W[j * 4 + its column], but the
                    * state's: X[j * 2 + i], q's then v's */
     if (K >= 3)
         X[6] = EOMC_V4C(0.0); /* at every step */

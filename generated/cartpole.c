@@ -451,11 +451,9 @@ cartpole_taylor(int k, int K, eomc_real t0, const eomc_real *p,
  * arithmetic in the same order); above that 1, for the caller's loop. */
 /* Lines 40 .. 42 of taylor_run's order 0. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-cartpole_taylor_run_3(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+cartpole_taylor_run_3(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     {
         const eomc_real M0[4] = {W[26], W[23], W[23], W[27]};
         if (solve(ctx, 0, M0, W + 40))
@@ -467,12 +465,9 @@ cartpole_taylor_run_3(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 1. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-cartpole_taylor_run_4(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+cartpole_taylor_run_4(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[45] = X[5] * W[4];
     W[46] = -X[5] * W[3];
     W[52] = X[3] * X[7] * 2.0;
@@ -493,16 +488,13 @@ cartpole_taylor_run_4(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[72] = -W[71];
     W[61] = X[3] * W[50] + X[7] * W[8];
     W[67] = W[8] * W[51] + W[50] * W[9];
-    return 0;
 }
 
 /* Lines 20 .. 34 of taylor_run's order 2. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-cartpole_taylor_run_7(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+cartpole_taylor_run_7(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[118] = W[109] + W[117];
     W[104] = W[3] * W[103] + W[45] * W[61] + W[87] * W[19];
     W[105] = W[13] * W[104];
@@ -523,12 +515,9 @@ cartpole_taylor_run_7(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 3. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-cartpole_taylor_run_8(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+cartpole_taylor_run_8(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[129] = (X[5] * W[88] + 2.0 * X[9] * W[46] + 3.0 * X[13] * W[4]) / 3.0;
     W[130] = -((X[5] * W[87] + 2.0 * X[9] * W[45] + 3.0 * X[13] * W[3])) / 3.0;
     W[136] = (X[3] * X[15] + X[7] * X[11]) * 2.0;
@@ -549,16 +538,13 @@ cartpole_taylor_run_8(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[156] = -W[155];
     W[145] = X[3] * W[134] + X[7] * W[92] + X[11] * W[50] + X[15] * W[8];
     W[151] = W[8] * W[135] + W[50] * W[93] + W[92] * W[51] + W[134] * W[9];
-    return 0;
 }
 
 /* Lines 20 .. 34 of taylor_run's order 4. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-cartpole_taylor_run_11(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+cartpole_taylor_run_11(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[202] = W[193] + W[201];
     W[188] = W[3] * W[187] + W[45] * W[145] + W[87] * W[103] + W[129] * W[61] + W[171] * W[19];
     W[189] = W[13] * W[188];
@@ -579,12 +565,9 @@ cartpole_taylor_run_11(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 5. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-cartpole_taylor_run_12(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+cartpole_taylor_run_12(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[213] = (X[5] * W[172] + 2.0 * X[9] * W[130] + 3.0 * X[13] * W[88] + 4.0 * X[17] * W[46]
             + 5.0 * X[21] * W[4]) / 5.0;
     W[214] = -((X[5] * W[171] + 2.0 * X[9] * W[129] + 3.0 * X[13] * W[87] + 4.0 * X[17] * W[45]
@@ -611,16 +594,13 @@ cartpole_taylor_run_12(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[229] = X[3] * W[218] + X[7] * W[176] + X[11] * W[134] + X[15] * W[92] + X[19] * W[50] + X[23] * W[8];
     W[235] = W[8] * W[219] + W[50] * W[177] + W[92] * W[135] + W[134] * W[93] + W[176] * W[51]
             + W[218] * W[9];
-    return 0;
 }
 
 /* Lines 20 .. 34 of taylor_run's order 6. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-cartpole_taylor_run_15(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+cartpole_taylor_run_15(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[286] = W[277] + W[285];
     W[272] = W[3] * W[271] + W[45] * W[229] + W[87] * W[187] + W[129] * W[145] + W[171] * W[103]
             + W[213] * W[61] + W[255] * W[19];
@@ -644,12 +624,9 @@ cartpole_taylor_run_15(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 7. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-cartpole_taylor_run_16(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+cartpole_taylor_run_16(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[297] = (X[5] * W[256] + 2.0 * X[9] * W[214] + 3.0 * X[13] * W[172] + 4.0 * X[17] * W[130]
             + 5.0 * X[21] * W[88] + 6.0 * X[25] * W[46] + 7.0 * X[29] * W[4]) / 7.0;
     W[298] = -((X[5] * W[255] + 2.0 * X[9] * W[213] + 3.0 * X[13] * W[171] + 4.0 * X[17] * W[129]
@@ -679,16 +656,13 @@ cartpole_taylor_run_16(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + X[23] * W[92] + X[27] * W[50] + X[31] * W[8];
     W[319] = W[8] * W[303] + W[50] * W[261] + W[92] * W[219] + W[134] * W[177] + W[176] * W[135]
             + W[218] * W[93] + W[260] * W[51] + W[302] * W[9];
-    return 0;
 }
 
 /* Lines 20 .. 34 of taylor_run's order 8. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-cartpole_taylor_run_19(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+cartpole_taylor_run_19(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[370] = W[361] + W[369];
     W[356] = W[3] * W[355] + W[45] * W[313] + W[87] * W[271] + W[129] * W[229] + W[171] * W[187]
             + W[213] * W[145] + W[255] * W[103] + W[297] * W[61] + W[339] * W[19];
@@ -712,12 +686,9 @@ cartpole_taylor_run_19(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 9. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-cartpole_taylor_run_20(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+cartpole_taylor_run_20(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[381] = (X[5] * W[340] + 2.0 * X[9] * W[298] + 3.0 * X[13] * W[256] + 4.0 * X[17] * W[214]
             + 5.0 * X[21] * W[172] + 6.0 * X[25] * W[130] + 7.0 * X[29] * W[88] + 8.0 * X[33] * W[46]
             + 9.0 * X[37] * W[4]) / 9.0;
@@ -749,16 +720,13 @@ cartpole_taylor_run_20(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + X[23] * W[176] + X[27] * W[134] + X[31] * W[92] + X[35] * W[50] + X[39] * W[8];
     W[403] = W[8] * W[387] + W[50] * W[345] + W[92] * W[303] + W[134] * W[261] + W[176] * W[219]
             + W[218] * W[177] + W[260] * W[135] + W[302] * W[93] + W[344] * W[51] + W[386] * W[9];
-    return 0;
 }
 
 /* Lines 20 .. 34 of taylor_run's order 10. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-cartpole_taylor_run_23(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+cartpole_taylor_run_23(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[454] = W[445] + W[453];
     W[440] = W[3] * W[439] + W[45] * W[397] + W[87] * W[355] + W[129] * W[313] + W[171] * W[271]
             + W[213] * W[229] + W[255] * W[187] + W[297] * W[145] + W[339] * W[103] + W[381] * W[61]
@@ -785,12 +753,9 @@ cartpole_taylor_run_23(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 11. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-cartpole_taylor_run_24(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+cartpole_taylor_run_24(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[465] = (X[5] * W[424] + 2.0 * X[9] * W[382] + 3.0 * X[13] * W[340] + 4.0 * X[17] * W[298]
             + 5.0 * X[21] * W[256] + 6.0 * X[25] * W[214] + 7.0 * X[29] * W[172] + 8.0 * X[33] * W[130]
             + 9.0 * X[37] * W[88] + 10.0 * X[41] * W[46] + 11.0 * X[45] * W[4]) / 11.0;
@@ -829,16 +794,13 @@ cartpole_taylor_run_24(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[487] = W[8] * W[471] + W[50] * W[429] + W[92] * W[387] + W[134] * W[345] + W[176] * W[303]
             + W[218] * W[261] + W[260] * W[219] + W[302] * W[177] + W[344] * W[135] + W[386] * W[93]
             + W[428] * W[51] + W[470] * W[9];
-    return 0;
 }
 
 /* Lines 20 .. 34 of taylor_run's order 12. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-cartpole_taylor_run_27(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+cartpole_taylor_run_27(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[538] = W[529] + W[537];
     W[524] = W[3] * W[523] + W[45] * W[481] + W[87] * W[439] + W[129] * W[397] + W[171] * W[355]
             + W[213] * W[313] + W[255] * W[271] + W[297] * W[229] + W[339] * W[187] + W[381] * W[145]
@@ -865,12 +827,9 @@ cartpole_taylor_run_27(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 13. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-cartpole_taylor_run_28(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+cartpole_taylor_run_28(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[549] = (X[5] * W[508] + 2.0 * X[9] * W[466] + 3.0 * X[13] * W[424] + 4.0 * X[17] * W[382]
             + 5.0 * X[21] * W[340] + 6.0 * X[25] * W[298] + 7.0 * X[29] * W[256] + 8.0 * X[33] * W[214]
             + 9.0 * X[37] * W[172] + 10.0 * X[41] * W[130] + 11.0 * X[45] * W[88] + 12.0 * X[49] * W[46]
@@ -912,16 +871,13 @@ cartpole_taylor_run_28(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[571] = W[8] * W[555] + W[50] * W[513] + W[92] * W[471] + W[134] * W[429] + W[176] * W[387]
             + W[218] * W[345] + W[260] * W[303] + W[302] * W[261] + W[344] * W[219] + W[386] * W[177]
             + W[428] * W[135] + W[470] * W[93] + W[512] * W[51] + W[554] * W[9];
-    return 0;
 }
 
 /* Lines 20 .. 34 of taylor_run's order 14. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-cartpole_taylor_run_31(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+cartpole_taylor_run_31(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[622] = W[613] + W[621];
     W[608] = W[3] * W[607] + W[45] * W[565] + W[87] * W[523] + W[129] * W[481] + W[171] * W[439]
             + W[213] * W[397] + W[255] * W[355] + W[297] * W[313] + W[339] * W[271] + W[381] * W[229]
@@ -948,12 +904,9 @@ cartpole_taylor_run_31(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 15. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-cartpole_taylor_run_32(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+cartpole_taylor_run_32(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[633] = (X[5] * W[592] + 2.0 * X[9] * W[550] + 3.0 * X[13] * W[508] + 4.0 * X[17] * W[466]
             + 5.0 * X[21] * W[424] + 6.0 * X[25] * W[382] + 7.0 * X[29] * W[340] + 8.0 * X[33] * W[298]
             + 9.0 * X[37] * W[256] + 10.0 * X[41] * W[214] + 11.0 * X[45] * W[172] + 12.0 * X[49] * W[130]
@@ -1001,16 +954,13 @@ cartpole_taylor_run_32(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[218] * W[429] + W[260] * W[387] + W[302] * W[345] + W[344] * W[303] + W[386] * W[261]
             + W[428] * W[219] + W[470] * W[177] + W[512] * W[135] + W[554] * W[93] + W[596] * W[51]
             + W[638] * W[9];
-    return 0;
 }
 
 /* Lines 20 .. 34 of taylor_run's order 16. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-cartpole_taylor_run_35(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+cartpole_taylor_run_35(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[706] = W[697] + W[705];
     W[692] = W[3] * W[691] + W[45] * W[649] + W[87] * W[607] + W[129] * W[565] + W[171] * W[523]
             + W[213] * W[481] + W[255] * W[439] + W[297] * W[397] + W[339] * W[355] + W[381] * W[313]
@@ -1040,12 +990,9 @@ cartpole_taylor_run_35(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 17. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-cartpole_taylor_run_36(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+cartpole_taylor_run_36(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[717] = (X[5] * W[676] + 2.0 * X[9] * W[634] + 3.0 * X[13] * W[592] + 4.0 * X[17] * W[550]
             + 5.0 * X[21] * W[508] + 6.0 * X[25] * W[466] + 7.0 * X[29] * W[424] + 8.0 * X[33] * W[382]
             + 9.0 * X[37] * W[340] + 10.0 * X[41] * W[298] + 11.0 * X[45] * W[256] + 12.0 * X[49] * W[214]
@@ -1096,16 +1043,13 @@ cartpole_taylor_run_36(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[218] * W[513] + W[260] * W[471] + W[302] * W[429] + W[344] * W[387] + W[386] * W[345]
             + W[428] * W[303] + W[470] * W[261] + W[512] * W[219] + W[554] * W[177] + W[596] * W[135]
             + W[638] * W[93] + W[680] * W[51] + W[722] * W[9];
-    return 0;
 }
 
 /* Lines 20 .. 34 of taylor_run's order 18. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-cartpole_taylor_run_39(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+cartpole_taylor_run_39(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[790] = W[781] + W[789];
     W[776] = W[3] * W[775] + W[45] * W[733] + W[87] * W[691] + W[129] * W[649] + W[171] * W[607]
             + W[213] * W[565] + W[255] * W[523] + W[297] * W[481] + W[339] * W[439] + W[381] * W[397]
@@ -1135,12 +1079,9 @@ cartpole_taylor_run_39(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 19. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-cartpole_taylor_run_40(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+cartpole_taylor_run_40(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[801] = (X[5] * W[760] + 2.0 * X[9] * W[718] + 3.0 * X[13] * W[676] + 4.0 * X[17] * W[634]
             + 5.0 * X[21] * W[592] + 6.0 * X[25] * W[550] + 7.0 * X[29] * W[508] + 8.0 * X[33] * W[466]
             + 9.0 * X[37] * W[424] + 10.0 * X[41] * W[382] + 11.0 * X[45] * W[340] + 12.0 * X[49] * W[298]
@@ -1191,93 +1132,61 @@ cartpole_taylor_run_40(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[218] * W[597] + W[260] * W[555] + W[302] * W[513] + W[344] * W[471] + W[386] * W[429]
             + W[428] * W[387] + W[470] * W[345] + W[512] * W[303] + W[554] * W[261] + W[596] * W[219]
             + W[638] * W[177] + W[680] * W[135] + W[722] * W[93] + W[764] * W[51] + W[806] * W[9];
-    return 0;
 }
 
+EOMC_PART EOMC_UNCHECKED void
+cartpole_taylor_run_1(const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+cartpole_taylor_run_2(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
+cartpole_taylor_run_5(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+cartpole_taylor_run_6(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
+cartpole_taylor_run_9(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+cartpole_taylor_run_10(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_5(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
+cartpole_taylor_run_13(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+cartpole_taylor_run_14(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
+cartpole_taylor_run_17(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+cartpole_taylor_run_18(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_9(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
+cartpole_taylor_run_21(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+cartpole_taylor_run_22(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_10(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
+cartpole_taylor_run_25(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+cartpole_taylor_run_26(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_13(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
+cartpole_taylor_run_29(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+cartpole_taylor_run_30(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_14(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
+cartpole_taylor_run_33(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+cartpole_taylor_run_34(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_17(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
+cartpole_taylor_run_37(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+cartpole_taylor_run_38(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_18(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_21(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_22(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_25(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_26(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_29(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_30(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_33(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_34(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_37(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_38(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_41(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
+cartpole_taylor_run_41(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
 static int
 cartpole_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *T, eomc_real *X, eomc_tay_solve solve, void *ctx)
@@ -1286,147 +1195,126 @@ cartpole_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     if (K > 20)
         return 1;
     (void)S, (void)T, (void)t0, (void)p, (void)u;
-    eomc_real W[882]; /* slot s's coefficient j at W[j * 42 + s], but the
+    eomc_real W[882]; /* a slot's coefficient j at W[j * 42 + its column], but the
                    * state's: X[j * 4 + i], q's then v's */
     /* order 0 */
-    if (cartpole_taylor_run_1(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (cartpole_taylor_run_2(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (cartpole_taylor_run_3(t0, p, u, W, X, solve, ctx))
+    cartpole_taylor_run_1(p, u, W, X);
+    cartpole_taylor_run_2(W, X);
+    if (cartpole_taylor_run_3(W, X, solve, ctx))
         return -1;
     if (K == 1)
         goto out;
     /* order 1 */
-    if (cartpole_taylor_run_4(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (cartpole_taylor_run_5(t0, p, u, W, X, solve, ctx))
+    cartpole_taylor_run_4(W, X);
+    if (cartpole_taylor_run_5(W, X, solve, ctx))
         return -1;
     if (K == 2)
         goto out;
     /* order 2 */
-    if (cartpole_taylor_run_6(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (cartpole_taylor_run_7(t0, p, u, W, X, solve, ctx))
+    cartpole_taylor_run_6(W, X);
+    if (cartpole_taylor_run_7(W, X, solve, ctx))
         return -1;
     if (K == 3)
         goto out;
     /* order 3 */
-    if (cartpole_taylor_run_8(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (cartpole_taylor_run_9(t0, p, u, W, X, solve, ctx))
+    cartpole_taylor_run_8(W, X);
+    if (cartpole_taylor_run_9(W, X, solve, ctx))
         return -1;
     if (K == 4)
         goto out;
     /* order 4 */
-    if (cartpole_taylor_run_10(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (cartpole_taylor_run_11(t0, p, u, W, X, solve, ctx))
+    cartpole_taylor_run_10(W, X);
+    if (cartpole_taylor_run_11(W, X, solve, ctx))
         return -1;
     if (K == 5)
         goto out;
     /* order 5 */
-    if (cartpole_taylor_run_12(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (cartpole_taylor_run_13(t0, p, u, W, X, solve, ctx))
+    cartpole_taylor_run_12(W, X);
+    if (cartpole_taylor_run_13(W, X, solve, ctx))
         return -1;
     if (K == 6)
         goto out;
     /* order 6 */
-    if (cartpole_taylor_run_14(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (cartpole_taylor_run_15(t0, p, u, W, X, solve, ctx))
+    cartpole_taylor_run_14(W, X);
+    if (cartpole_taylor_run_15(W, X, solve, ctx))
         return -1;
     if (K == 7)
         goto out;
     /* order 7 */
-    if (cartpole_taylor_run_16(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (cartpole_taylor_run_17(t0, p, u, W, X, solve, ctx))
+    cartpole_taylor_run_16(W, X);
+    if (cartpole_taylor_run_17(W, X, solve, ctx))
         return -1;
     if (K == 8)
         goto out;
     /* order 8 */
-    if (cartpole_taylor_run_18(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (cartpole_taylor_run_19(t0, p, u, W, X, solve, ctx))
+    cartpole_taylor_run_18(W, X);
+    if (cartpole_taylor_run_19(W, X, solve, ctx))
         return -1;
     if (K == 9)
         goto out;
     /* order 9 */
-    if (cartpole_taylor_run_20(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (cartpole_taylor_run_21(t0, p, u, W, X, solve, ctx))
+    cartpole_taylor_run_20(W, X);
+    if (cartpole_taylor_run_21(W, X, solve, ctx))
         return -1;
     if (K == 10)
         goto out;
     /* order 10 */
-    if (cartpole_taylor_run_22(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (cartpole_taylor_run_23(t0, p, u, W, X, solve, ctx))
+    cartpole_taylor_run_22(W, X);
+    if (cartpole_taylor_run_23(W, X, solve, ctx))
         return -1;
     if (K == 11)
         goto out;
     /* order 11 */
-    if (cartpole_taylor_run_24(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (cartpole_taylor_run_25(t0, p, u, W, X, solve, ctx))
+    cartpole_taylor_run_24(W, X);
+    if (cartpole_taylor_run_25(W, X, solve, ctx))
         return -1;
     if (K == 12)
         goto out;
     /* order 12 */
-    if (cartpole_taylor_run_26(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (cartpole_taylor_run_27(t0, p, u, W, X, solve, ctx))
+    cartpole_taylor_run_26(W, X);
+    if (cartpole_taylor_run_27(W, X, solve, ctx))
         return -1;
     if (K == 13)
         goto out;
     /* order 13 */
-    if (cartpole_taylor_run_28(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (cartpole_taylor_run_29(t0, p, u, W, X, solve, ctx))
+    cartpole_taylor_run_28(W, X);
+    if (cartpole_taylor_run_29(W, X, solve, ctx))
         return -1;
     if (K == 14)
         goto out;
     /* order 14 */
-    if (cartpole_taylor_run_30(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (cartpole_taylor_run_31(t0, p, u, W, X, solve, ctx))
+    cartpole_taylor_run_30(W, X);
+    if (cartpole_taylor_run_31(W, X, solve, ctx))
         return -1;
     if (K == 15)
         goto out;
     /* order 15 */
-    if (cartpole_taylor_run_32(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (cartpole_taylor_run_33(t0, p, u, W, X, solve, ctx))
+    cartpole_taylor_run_32(W, X);
+    if (cartpole_taylor_run_33(W, X, solve, ctx))
         return -1;
     if (K == 16)
         goto out;
     /* order 16 */
-    if (cartpole_taylor_run_34(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (cartpole_taylor_run_35(t0, p, u, W, X, solve, ctx))
+    cartpole_taylor_run_34(W, X);
+    if (cartpole_taylor_run_35(W, X, solve, ctx))
         return -1;
     if (K == 17)
         goto out;
     /* order 17 */
-    if (cartpole_taylor_run_36(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (cartpole_taylor_run_37(t0, p, u, W, X, solve, ctx))
+    cartpole_taylor_run_36(W, X);
+    if (cartpole_taylor_run_37(W, X, solve, ctx))
         return -1;
     if (K == 18)
         goto out;
     /* order 18 */
-    if (cartpole_taylor_run_38(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (cartpole_taylor_run_39(t0, p, u, W, X, solve, ctx))
+    cartpole_taylor_run_38(W, X);
+    if (cartpole_taylor_run_39(W, X, solve, ctx))
         return -1;
     if (K == 19)
         goto out;
     /* order 19 */
-    if (cartpole_taylor_run_40(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (cartpole_taylor_run_41(t0, p, u, W, X, solve, ctx))
+    cartpole_taylor_run_40(W, X);
+    if (cartpole_taylor_run_41(W, X, solve, ctx))
         return -1;
 out:
     return 0;
@@ -1518,6 +1406,7 @@ const eomc_model_ext cartpole_model_ext = {
 #endif /* EOMC_UNIT 3 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 4
+#include "eomc_taylor.h"
 /* The twin's names, linked beside the model's. */
 #if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
 #define cartpole_taylor_run_1 cartpole_taylor_run_1_ext
@@ -1544,12 +1433,10 @@ const eomc_model_ext cartpole_model_ext = {
 #endif
 #ifndef EOMC_EXTENDED
 /* Lines 0 .. 19 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+cartpole_taylor_run_1(const eomc_real *p, const eomc_real *u,
+    eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1] = p[2];
     W[3] = sin(X[1]);
     W[4] = cos(X[1]);
@@ -1570,16 +1457,12 @@ cartpole_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[7] = W[1] * W[6];
     W[28] = W[13] * W[15];
     W[17] = W[16] * W[3];
-    return 0;
 }
 
 /* Lines 20 .. 39 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+cartpole_taylor_run_2(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[8] = X[2] + W[7];
     W[18] = W[14] * W[17];
     W[29] = W[12] + W[28];
@@ -1600,16 +1483,13 @@ cartpole_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[5] = X[3];
     W[40] = W[30];
     W[41] = W[38];
-    return 0;
 }
 
 /* Lines 20 .. 34 of taylor_run's order 1, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_5(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+cartpole_taylor_run_5(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[76] = W[67] + W[75];
     W[62] = W[3] * W[61] + W[45] * W[19];
     W[63] = W[13] * W[62];
@@ -1630,12 +1510,9 @@ cartpole_taylor_run_5(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+cartpole_taylor_run_6(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[87] = (X[5] * W[46] + 2.0 * X[9] * W[4]) / 2.0;
     W[88] = -((X[5] * W[45] + 2.0 * X[9] * W[3])) / 2.0;
     W[94] = X[3] * X[11] * 2.0 + X[7] * X[7];
@@ -1656,16 +1533,13 @@ cartpole_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[114] = -W[113];
     W[103] = X[3] * W[92] + X[7] * W[50] + X[11] * W[8];
     W[109] = W[8] * W[93] + W[50] * W[51] + W[92] * W[9];
-    return 0;
 }
 
 /* Lines 20 .. 34 of taylor_run's order 3, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_9(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+cartpole_taylor_run_9(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[160] = W[151] + W[159];
     W[146] = W[3] * W[145] + W[45] * W[103] + W[87] * W[61] + W[129] * W[19];
     W[147] = W[13] * W[146];
@@ -1686,12 +1560,9 @@ cartpole_taylor_run_9(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_10(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+cartpole_taylor_run_10(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[171] = (X[5] * W[130] + 2.0 * X[9] * W[88] + 3.0 * X[13] * W[46] + 4.0 * X[17] * W[4]) / 4.0;
     W[172] = -((X[5] * W[129] + 2.0 * X[9] * W[87] + 3.0 * X[13] * W[45] + 4.0 * X[17] * W[3])) / 4.0;
     W[178] = (X[3] * X[19] + X[7] * X[15]) * 2.0 + X[11] * X[11];
@@ -1712,16 +1583,13 @@ cartpole_taylor_run_10(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[198] = -W[197];
     W[187] = X[3] * W[176] + X[7] * W[134] + X[11] * W[92] + X[15] * W[50] + X[19] * W[8];
     W[193] = W[8] * W[177] + W[50] * W[135] + W[92] * W[93] + W[134] * W[51] + W[176] * W[9];
-    return 0;
 }
 
 /* Lines 20 .. 34 of taylor_run's order 5, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_13(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+cartpole_taylor_run_13(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[244] = W[235] + W[243];
     W[230] = W[3] * W[229] + W[45] * W[187] + W[87] * W[145] + W[129] * W[103] + W[171] * W[61]
             + W[213] * W[19];
@@ -1745,12 +1613,9 @@ cartpole_taylor_run_13(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_14(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+cartpole_taylor_run_14(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[255] = (X[5] * W[214] + 2.0 * X[9] * W[172] + 3.0 * X[13] * W[130] + 4.0 * X[17] * W[88]
             + 5.0 * X[21] * W[46] + 6.0 * X[25] * W[4]) / 6.0;
     W[256] = -((X[5] * W[213] + 2.0 * X[9] * W[171] + 3.0 * X[13] * W[129] + 4.0 * X[17] * W[87]
@@ -1780,16 +1645,13 @@ cartpole_taylor_run_14(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + X[27] * W[8];
     W[277] = W[8] * W[261] + W[50] * W[219] + W[92] * W[177] + W[134] * W[135] + W[176] * W[93]
             + W[218] * W[51] + W[260] * W[9];
-    return 0;
 }
 
 /* Lines 20 .. 34 of taylor_run's order 7, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_17(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+cartpole_taylor_run_17(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[328] = W[319] + W[327];
     W[314] = W[3] * W[313] + W[45] * W[271] + W[87] * W[229] + W[129] * W[187] + W[171] * W[145]
             + W[213] * W[103] + W[255] * W[61] + W[297] * W[19];
@@ -1813,12 +1675,9 @@ cartpole_taylor_run_17(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_18(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+cartpole_taylor_run_18(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[339] = (X[5] * W[298] + 2.0 * X[9] * W[256] + 3.0 * X[13] * W[214] + 4.0 * X[17] * W[172]
             + 5.0 * X[21] * W[130] + 6.0 * X[25] * W[88] + 7.0 * X[29] * W[46] + 8.0 * X[33] * W[4]) / 8.0;
     W[340] = -((X[5] * W[297] + 2.0 * X[9] * W[255] + 3.0 * X[13] * W[213] + 4.0 * X[17] * W[171]
@@ -1848,16 +1707,13 @@ cartpole_taylor_run_18(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + X[23] * W[134] + X[27] * W[92] + X[31] * W[50] + X[35] * W[8];
     W[361] = W[8] * W[345] + W[50] * W[303] + W[92] * W[261] + W[134] * W[219] + W[176] * W[177]
             + W[218] * W[135] + W[260] * W[93] + W[302] * W[51] + W[344] * W[9];
-    return 0;
 }
 
 /* Lines 20 .. 34 of taylor_run's order 9, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_21(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+cartpole_taylor_run_21(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[412] = W[403] + W[411];
     W[398] = W[3] * W[397] + W[45] * W[355] + W[87] * W[313] + W[129] * W[271] + W[171] * W[229]
             + W[213] * W[187] + W[255] * W[145] + W[297] * W[103] + W[339] * W[61] + W[381] * W[19];
@@ -1881,12 +1737,9 @@ cartpole_taylor_run_21(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_22(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+cartpole_taylor_run_22(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[423] = (X[5] * W[382] + 2.0 * X[9] * W[340] + 3.0 * X[13] * W[298] + 4.0 * X[17] * W[256]
             + 5.0 * X[21] * W[214] + 6.0 * X[25] * W[172] + 7.0 * X[29] * W[130] + 8.0 * X[33] * W[88]
             + 9.0 * X[37] * W[46] + 10.0 * X[41] * W[4]) / 10.0;
@@ -1925,16 +1778,13 @@ cartpole_taylor_run_22(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[445] = W[8] * W[429] + W[50] * W[387] + W[92] * W[345] + W[134] * W[303] + W[176] * W[261]
             + W[218] * W[219] + W[260] * W[177] + W[302] * W[135] + W[344] * W[93] + W[386] * W[51]
             + W[428] * W[9];
-    return 0;
 }
 
 /* Lines 20 .. 34 of taylor_run's order 11, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_25(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+cartpole_taylor_run_25(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[496] = W[487] + W[495];
     W[482] = W[3] * W[481] + W[45] * W[439] + W[87] * W[397] + W[129] * W[355] + W[171] * W[313]
             + W[213] * W[271] + W[255] * W[229] + W[297] * W[187] + W[339] * W[145] + W[381] * W[103]
@@ -1961,12 +1811,9 @@ cartpole_taylor_run_25(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_26(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+cartpole_taylor_run_26(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[507] = (X[5] * W[466] + 2.0 * X[9] * W[424] + 3.0 * X[13] * W[382] + 4.0 * X[17] * W[340]
             + 5.0 * X[21] * W[298] + 6.0 * X[25] * W[256] + 7.0 * X[29] * W[214] + 8.0 * X[33] * W[172]
             + 9.0 * X[37] * W[130] + 10.0 * X[41] * W[88] + 11.0 * X[45] * W[46] + 12.0 * X[49] * W[4]) / 12.0;
@@ -2006,16 +1853,13 @@ cartpole_taylor_run_26(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[529] = W[8] * W[513] + W[50] * W[471] + W[92] * W[429] + W[134] * W[387] + W[176] * W[345]
             + W[218] * W[303] + W[260] * W[261] + W[302] * W[219] + W[344] * W[177] + W[386] * W[135]
             + W[428] * W[93] + W[470] * W[51] + W[512] * W[9];
-    return 0;
 }
 
 /* Lines 20 .. 34 of taylor_run's order 13, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_29(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+cartpole_taylor_run_29(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[580] = W[571] + W[579];
     W[566] = W[3] * W[565] + W[45] * W[523] + W[87] * W[481] + W[129] * W[439] + W[171] * W[397]
             + W[213] * W[355] + W[255] * W[313] + W[297] * W[271] + W[339] * W[229] + W[381] * W[187]
@@ -2042,12 +1886,9 @@ cartpole_taylor_run_29(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_30(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+cartpole_taylor_run_30(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[591] = (X[5] * W[550] + 2.0 * X[9] * W[508] + 3.0 * X[13] * W[466] + 4.0 * X[17] * W[424]
             + 5.0 * X[21] * W[382] + 6.0 * X[25] * W[340] + 7.0 * X[29] * W[298] + 8.0 * X[33] * W[256]
             + 9.0 * X[37] * W[214] + 10.0 * X[41] * W[172] + 11.0 * X[45] * W[130] + 12.0 * X[49] * W[88]
@@ -2089,16 +1930,13 @@ cartpole_taylor_run_30(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[613] = W[8] * W[597] + W[50] * W[555] + W[92] * W[513] + W[134] * W[471] + W[176] * W[429]
             + W[218] * W[387] + W[260] * W[345] + W[302] * W[303] + W[344] * W[261] + W[386] * W[219]
             + W[428] * W[177] + W[470] * W[135] + W[512] * W[93] + W[554] * W[51] + W[596] * W[9];
-    return 0;
 }
 
 /* Lines 20 .. 34 of taylor_run's order 15, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_33(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+cartpole_taylor_run_33(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[664] = W[655] + W[663];
     W[650] = W[3] * W[649] + W[45] * W[607] + W[87] * W[565] + W[129] * W[523] + W[171] * W[481]
             + W[213] * W[439] + W[255] * W[397] + W[297] * W[355] + W[339] * W[313] + W[381] * W[271]
@@ -2128,12 +1966,9 @@ cartpole_taylor_run_33(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_34(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+cartpole_taylor_run_34(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[675] = (X[5] * W[634] + 2.0 * X[9] * W[592] + 3.0 * X[13] * W[550] + 4.0 * X[17] * W[508]
             + 5.0 * X[21] * W[466] + 6.0 * X[25] * W[424] + 7.0 * X[29] * W[382] + 8.0 * X[33] * W[340]
             + 9.0 * X[37] * W[298] + 10.0 * X[41] * W[256] + 11.0 * X[45] * W[214] + 12.0 * X[49] * W[172]
@@ -2182,16 +2017,13 @@ cartpole_taylor_run_34(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[218] * W[471] + W[260] * W[429] + W[302] * W[387] + W[344] * W[345] + W[386] * W[303]
             + W[428] * W[261] + W[470] * W[219] + W[512] * W[177] + W[554] * W[135] + W[596] * W[93]
             + W[638] * W[51] + W[680] * W[9];
-    return 0;
 }
 
 /* Lines 20 .. 34 of taylor_run's order 17, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_37(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+cartpole_taylor_run_37(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[748] = W[739] + W[747];
     W[734] = W[3] * W[733] + W[45] * W[691] + W[87] * W[649] + W[129] * W[607] + W[171] * W[565]
             + W[213] * W[523] + W[255] * W[481] + W[297] * W[439] + W[339] * W[397] + W[381] * W[355]
@@ -2221,12 +2053,9 @@ cartpole_taylor_run_37(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_38(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+cartpole_taylor_run_38(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[759] = (X[5] * W[718] + 2.0 * X[9] * W[676] + 3.0 * X[13] * W[634] + 4.0 * X[17] * W[592]
             + 5.0 * X[21] * W[550] + 6.0 * X[25] * W[508] + 7.0 * X[29] * W[466] + 8.0 * X[33] * W[424]
             + 9.0 * X[37] * W[382] + 10.0 * X[41] * W[340] + 11.0 * X[45] * W[298] + 12.0 * X[49] * W[256]
@@ -2277,16 +2106,13 @@ cartpole_taylor_run_38(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[218] * W[555] + W[260] * W[513] + W[302] * W[471] + W[344] * W[429] + W[386] * W[387]
             + W[428] * W[345] + W[470] * W[303] + W[512] * W[261] + W[554] * W[219] + W[596] * W[177]
             + W[638] * W[135] + W[680] * W[93] + W[722] * W[51] + W[764] * W[9];
-    return 0;
 }
 
 /* Lines 20 .. 34 of taylor_run's order 19, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-cartpole_taylor_run_41(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+cartpole_taylor_run_41(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[832] = W[823] + W[831];
     W[818] = W[3] * W[817] + W[45] * W[775] + W[87] * W[733] + W[129] * W[691] + W[171] * W[649]
             + W[213] * W[607] + W[255] * W[565] + W[297] * W[523] + W[339] * W[481] + W[381] * W[439]

@@ -2306,12 +2306,9 @@ chain5_taylor(int k, int K, eomc_real t0, const eomc_real *p,
  * order 20, each recurrence's sum with its indices fixed (the same
  * arithmetic in the same order); above that 1, for the caller's loop. */
 /* Lines 120 .. 139 of taylor_run's order 1. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_18(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_18(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[391] = W[383] + W[385];
     W[298] = W[11] * W[297] + W[229] * W[79];
     W[301] = W[12] * W[300] + W[230] * W[82];
@@ -2332,16 +2329,12 @@ chain5_taylor_run_18(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[408] = W[219] + W[303];
     W[411] = W[220] + W[306];
     W[304] = W[5] * W[303] + W[223] * W[85];
-    return 0;
 }
 
 /* Lines 160 .. 179 of taylor_run's order 1. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_20(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_20(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[302] = W[299] + W[301];
     W[330] = W[327] + W[329];
     W[358] = W[355] + W[357];
@@ -2362,16 +2355,13 @@ chain5_taylor_run_20(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[425] = W[2] * W[422] + W[220] * W[204];
     W[308] = W[305] + W[307];
     W[336] = W[333] + W[335];
-    return 0;
 }
 
 /* Lines 200 .. 212 of taylor_run's order 1. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_22(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+chain5_taylor_run_22(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[23] = X[18] / 2.0;
     X[24] = X[19] / 2.0;
     W[431] = W[414] * W[213] + W[309] * W[214] + W[338] * W[215] + W[360] * W[216] + W[375] * W[217]
@@ -2394,12 +2384,9 @@ chain5_taylor_run_22(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 2. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_24(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_24(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[474] = W[5] * W[472] + W[223] * W[254] + W[441] * W[36];
     W[449] = W[443] + W[447];
     W[450] = W[444] + W[448];
@@ -2420,16 +2407,12 @@ chain5_taylor_run_24(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[460] = -((W[240] * W[241] + 2.0 * W[458] * W[23])) / 2.0;
     W[496] = W[57] * W[453];
     W[529] = W[453] + W[528];
-    return 0;
 }
 
 /* Lines 60 .. 79 of taylor_run's order 2. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_26(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_26(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[485] = W[46] * W[484] + W[264] * W[266] + W[482] * W[48];
     W[486] = W[46] * W[483] + W[264] * W[265] + W[482] * W[47];
     W[488] = W[24] * W[487] + W[242] * W[269] + W[460] * W[51];
@@ -2450,16 +2433,12 @@ chain5_taylor_run_26(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[506] = W[23] * W[461] + W[241] * W[243] + W[459] * W[25];
     W[507] = W[24] * W[462] + W[242] * W[244] + W[460] * W[26];
     W[531] = W[23] * W[530] + W[241] * W[312] + W[459] * W[94];
-    return 0;
 }
 
 /* Lines 100 .. 119 of taylor_run's order 2. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_28(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_28(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[538] = W[17] * W[537] + W[235] * W[319] + W[453] * W[101];
     W[541] = W[18] * W[540] + W[236] * W[322] + W[454] * W[104];
     W[566] = W[17] * W[565] + W[235] * W[347] + W[453] * W[129];
@@ -2480,16 +2459,12 @@ chain5_taylor_run_28(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[595] = W[33] * W[564];
     W[596] = W[33] * W[589];
     W[607] = W[602] + W[604];
-    return 0;
 }
 
 /* Lines 140 .. 159 of taylor_run's order 2. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_30(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_30(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[525] = W[6] * W[524] + W[224] * W[306] + W[442] * W[88];
     W[550] = W[5] * W[549] + W[223] * W[331] + W[441] * W[113];
     W[553] = W[6] * W[552] + W[224] * W[334] + W[442] * W[116];
@@ -2510,16 +2485,12 @@ chain5_taylor_run_30(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[614] = W[12] * W[613] + W[230] * W[395] + W[448] * W[177];
     W[627] = W[1] * W[626] + W[219] * W[408] + W[437] * W[190];
     W[630] = W[2] * W[629] + W[220] * W[411] + W[438] * W[193];
-    return 0;
 }
 
 /* Lines 180 .. 199 of taylor_run's order 2. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_32(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_32(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[623] = W[497] + W[622];
     W[634] = W[633] - W[614];
     W[527] = W[33] * W[526];
@@ -2540,16 +2511,12 @@ chain5_taylor_run_32(eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[30] = X[25] / 3.0;
     X[31] = X[26] / 3.0;
     X[32] = X[27] / 3.0;
-    return 0;
 }
 
 /* Lines 0 .. 19 of taylor_run's order 3. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_34(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_34(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[655] = (X[10] * W[438] + 2.0 * X[20] * W[220] + 3.0 * X[30] * W[2]) / 3.0;
     W[656] = -((X[10] * W[437] + 2.0 * X[20] * W[219] + 3.0 * X[30] * W[1])) / 3.0;
     W[658] = X[30] + X[31];
@@ -2570,16 +2537,12 @@ chain5_taylor_run_34(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[700] = X[38] + W[695];
     W[720] = W[62] * W[659];
     W[691] = W[6] * W[690] + W[224] * W[472] + W[442] * W[254] + W[660] * W[36];
-    return 0;
 }
 
 /* Lines 40 .. 59 of taylor_run's order 3. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_36(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_36(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[751] = W[672] + W[750];
     W[776] = W[665] + W[671];
     W[779] = W[666] + W[672];
@@ -2600,16 +2563,12 @@ chain5_taylor_run_36(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[802] = W[671] + W[677];
     W[817] = W[698] + W[815];
     W[818] = W[699] + W[816];
-    return 0;
 }
 
 /* Lines 80 .. 99 of taylor_run's order 3. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_38(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_38(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[753] = W[24] * W[752] + W[242] * W[534] + W[460] * W[316] + W[678] * W[98];
     W[778] = W[23] * W[777] + W[241] * W[559] + W[459] * W[341] + W[677] * W[123];
     W[781] = W[24] * W[780] + W[242] * W[562] + W[460] * W[344] + W[678] * W[126];
@@ -2630,16 +2589,12 @@ chain5_taylor_run_38(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[822] = W[709] + W[820];
     W[728] = W[17] * W[727] + W[235] * W[509] + W[453] * W[291] + W[671] * W[73];
     W[731] = W[18] * W[730] + W[236] * W[512] + W[454] * W[294] + W[672] * W[76];
-    return 0;
 }
 
 /* Lines 120 .. 139 of taylor_run's order 3. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_40(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_40(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[827] = W[819] + W[821];
     W[734] = W[11] * W[733] + W[229] * W[515] + W[447] * W[297] + W[665] * W[79];
     W[737] = W[12] * W[736] + W[230] * W[518] + W[448] * W[300] + W[666] * W[82];
@@ -2660,16 +2615,12 @@ chain5_taylor_run_40(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[844] = W[655] + W[739];
     W[847] = W[656] + W[742];
     W[740] = W[5] * W[739] + W[223] * W[521] + W[441] * W[303] + W[659] * W[85];
-    return 0;
 }
 
 /* Lines 160 .. 179 of taylor_run's order 3. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_42(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_42(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[738] = W[735] + W[737];
     W[766] = W[763] + W[765];
     W[794] = W[791] + W[793];
@@ -2690,16 +2641,13 @@ chain5_taylor_run_42(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[861] = W[2] * W[858] + W[220] * W[640] + W[438] * W[422] + W[656] * W[204];
     W[744] = W[741] + W[743];
     W[772] = W[769] + W[771];
-    return 0;
 }
 
 /* Lines 200 .. 212 of taylor_run's order 3. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_44(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+chain5_taylor_run_44(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[43] = X[38] / 4.0;
     X[44] = X[39] / 4.0;
     W[867] = W[414] * W[649] + W[632] * W[431] + W[850] * W[213] + W[309] * W[650] + W[527] * W[432]
@@ -2732,12 +2680,9 @@ chain5_taylor_run_44(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 4. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_46(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_46(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[910] = W[5] * W[908] + W[223] * W[690] + W[441] * W[472] + W[659] * W[254] + W[877] * W[36];
     W[885] = W[879] + W[883];
     W[886] = W[880] + W[884];
@@ -2758,16 +2703,12 @@ chain5_taylor_run_46(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[896] = -((W[240] * W[677] + 2.0 * W[458] * W[459] + 3.0 * W[676] * W[241] + 4.0 * W[894] * W[23])) / 4.0;
     W[932] = W[57] * W[889];
     W[965] = W[889] + W[964];
-    return 0;
 }
 
 /* Lines 60 .. 79 of taylor_run's order 4. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_48(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_48(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[921] = W[46] * W[920] + W[264] * W[702] + W[482] * W[484] + W[700] * W[266] + W[918] * W[48];
     W[922] = W[46] * W[919] + W[264] * W[701] + W[482] * W[483] + W[700] * W[265] + W[918] * W[47];
     W[924] = W[24] * W[923] + W[242] * W[705] + W[460] * W[487] + W[678] * W[269] + W[896] * W[51];
@@ -2788,16 +2729,12 @@ chain5_taylor_run_48(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[942] = W[23] * W[897] + W[241] * W[679] + W[459] * W[461] + W[677] * W[243] + W[895] * W[25];
     W[943] = W[24] * W[898] + W[242] * W[680] + W[460] * W[462] + W[678] * W[244] + W[896] * W[26];
     W[967] = W[23] * W[966] + W[241] * W[748] + W[459] * W[530] + W[677] * W[312] + W[895] * W[94];
-    return 0;
 }
 
 /* Lines 100 .. 119 of taylor_run's order 4. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_50(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_50(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[974] = W[17] * W[973] + W[235] * W[755] + W[453] * W[537] + W[671] * W[319] + W[889] * W[101];
     W[977] = W[18] * W[976] + W[236] * W[758] + W[454] * W[540] + W[672] * W[322] + W[890] * W[104];
     W[1002] = W[17] * W[1001] + W[235] * W[783] + W[453] * W[565] + W[671] * W[347] + W[889] * W[129];
@@ -2818,16 +2755,12 @@ chain5_taylor_run_50(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1031] = W[33] * W[1000];
     W[1032] = W[33] * W[1025];
     W[1043] = W[1038] + W[1040];
-    return 0;
 }
 
 /* Lines 140 .. 159 of taylor_run's order 4. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_52(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_52(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[961] = W[6] * W[960] + W[224] * W[742] + W[442] * W[524] + W[660] * W[306] + W[878] * W[88];
     W[986] = W[5] * W[985] + W[223] * W[767] + W[441] * W[549] + W[659] * W[331] + W[877] * W[113];
     W[989] = W[6] * W[988] + W[224] * W[770] + W[442] * W[552] + W[660] * W[334] + W[878] * W[116];
@@ -2848,16 +2781,12 @@ chain5_taylor_run_52(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1050] = W[12] * W[1049] + W[230] * W[831] + W[448] * W[613] + W[666] * W[395] + W[884] * W[177];
     W[1063] = W[1] * W[1062] + W[219] * W[844] + W[437] * W[626] + W[655] * W[408] + W[873] * W[190];
     W[1066] = W[2] * W[1065] + W[220] * W[847] + W[438] * W[629] + W[656] * W[411] + W[874] * W[193];
-    return 0;
 }
 
 /* Lines 180 .. 199 of taylor_run's order 4. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_54(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_54(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1059] = W[933] + W[1058];
     W[1070] = W[1069] - W[1050];
     W[963] = W[33] * W[962];
@@ -2878,16 +2807,12 @@ chain5_taylor_run_54(eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[50] = X[45] / 5.0;
     X[51] = X[46] / 5.0;
     X[52] = X[47] / 5.0;
-    return 0;
 }
 
 /* Lines 0 .. 19 of taylor_run's order 5. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_56(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_56(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1091] = (X[10] * W[874] + 2.0 * X[20] * W[656] + 3.0 * X[30] * W[438] + 4.0 * X[40] * W[220]
             + 5.0 * X[50] * W[2]) / 5.0;
     W[1092] = -((X[10] * W[873] + 2.0 * X[20] * W[655] + 3.0 * X[30] * W[437] + 4.0 * X[40] * W[219]
@@ -2917,16 +2842,12 @@ chain5_taylor_run_56(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1156] = W[62] * W[1095];
     W[1127] = W[6] * W[1126] + W[224] * W[908] + W[442] * W[690] + W[660] * W[472] + W[878] * W[254]
             + W[1096] * W[36];
-    return 0;
 }
 
 /* Lines 40 .. 59 of taylor_run's order 5. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_58(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_58(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1187] = W[1108] + W[1186];
     W[1212] = W[1101] + W[1107];
     W[1215] = W[1102] + W[1108];
@@ -2951,16 +2872,12 @@ chain5_taylor_run_58(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1238] = W[1107] + W[1113];
     W[1253] = W[1134] + W[1251];
     W[1254] = W[1135] + W[1252];
-    return 0;
 }
 
 /* Lines 80 .. 99 of taylor_run's order 5. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_60(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_60(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1189] = W[24] * W[1188] + W[242] * W[970] + W[460] * W[752] + W[678] * W[534] + W[896] * W[316]
             + W[1114] * W[98];
     W[1214] = W[23] * W[1213] + W[241] * W[995] + W[459] * W[777] + W[677] * W[559] + W[895] * W[341]
@@ -2988,16 +2905,12 @@ chain5_taylor_run_60(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1107] * W[73];
     W[1167] = W[18] * W[1166] + W[236] * W[948] + W[454] * W[730] + W[672] * W[512] + W[890] * W[294]
             + W[1108] * W[76];
-    return 0;
 }
 
 /* Lines 100 .. 119 of taylor_run's order 5. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_61(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_61(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1192] = W[17] * W[1191] + W[235] * W[973] + W[453] * W[755] + W[671] * W[537] + W[889] * W[319]
             + W[1107] * W[101];
     W[1195] = W[18] * W[1194] + W[236] * W[976] + W[454] * W[758] + W[672] * W[540] + W[890] * W[322]
@@ -3024,16 +2937,12 @@ chain5_taylor_run_61(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1249] = W[33] * W[1218];
     W[1250] = W[33] * W[1243];
     W[1261] = W[1256] + W[1258];
-    return 0;
 }
 
 /* Lines 140 .. 159 of taylor_run's order 5. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_63(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_63(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1179] = W[6] * W[1178] + W[224] * W[960] + W[442] * W[742] + W[660] * W[524] + W[878] * W[306]
             + W[1096] * W[88];
     W[1204] = W[5] * W[1203] + W[223] * W[985] + W[441] * W[767] + W[659] * W[549] + W[877] * W[331]
@@ -3063,16 +2972,12 @@ chain5_taylor_run_63(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1091] * W[190];
     W[1284] = W[2] * W[1283] + W[220] * W[1065] + W[438] * W[847] + W[656] * W[629] + W[874] * W[411]
             + W[1092] * W[193];
-    return 0;
 }
 
 /* Lines 180 .. 199 of taylor_run's order 5. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_65(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_65(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1277] = W[1151] + W[1276];
     W[1288] = W[1287] - W[1268];
     W[1181] = W[33] * W[1180];
@@ -3093,16 +2998,12 @@ chain5_taylor_run_65(eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[60] = X[55] / 6.0;
     X[61] = X[56] / 6.0;
     X[62] = X[57] / 6.0;
-    return 0;
 }
 
 /* Lines 0 .. 19 of taylor_run's order 6. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_67(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_67(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1309] = (X[10] * W[1092] + 2.0 * X[20] * W[874] + 3.0 * X[30] * W[656] + 4.0 * X[40] * W[438]
             + 5.0 * X[50] * W[220] + 6.0 * X[60] * W[2]) / 6.0;
     W[1310] = -((X[10] * W[1091] + 2.0 * X[20] * W[873] + 3.0 * X[30] * W[655] + 4.0 * X[40] * W[437]
@@ -3132,16 +3033,12 @@ chain5_taylor_run_67(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1374] = W[62] * W[1313];
     W[1345] = W[6] * W[1344] + W[224] * W[1126] + W[442] * W[908] + W[660] * W[690] + W[878] * W[472]
             + W[1096] * W[254] + W[1314] * W[36];
-    return 0;
 }
 
 /* Lines 40 .. 59 of taylor_run's order 6. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_69(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_69(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1405] = W[1326] + W[1404];
     W[1430] = W[1319] + W[1325];
     W[1433] = W[1320] + W[1326];
@@ -3166,16 +3063,12 @@ chain5_taylor_run_69(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1456] = W[1325] + W[1331];
     W[1471] = W[1352] + W[1469];
     W[1472] = W[1353] + W[1470];
-    return 0;
 }
 
 /* Lines 60 .. 79 of taylor_run's order 6. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_70(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_70(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1357] = W[46] * W[1356] + W[264] * W[1138] + W[482] * W[920] + W[700] * W[702] + W[918] * W[484]
             + W[1136] * W[266] + W[1354] * W[48];
     W[1358] = W[46] * W[1355] + W[264] * W[1137] + W[482] * W[919] + W[700] * W[701] + W[918] * W[483]
@@ -3205,16 +3098,12 @@ chain5_taylor_run_70(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1114] * W[244] + W[1332] * W[26];
     W[1403] = W[23] * W[1402] + W[241] * W[1184] + W[459] * W[966] + W[677] * W[748] + W[895] * W[530]
             + W[1113] * W[312] + W[1331] * W[94];
-    return 0;
 }
 
 /* Lines 100 .. 119 of taylor_run's order 6. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_72(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_72(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1410] = W[17] * W[1409] + W[235] * W[1191] + W[453] * W[973] + W[671] * W[755] + W[889] * W[537]
             + W[1107] * W[319] + W[1325] * W[101];
     W[1413] = W[18] * W[1412] + W[236] * W[1194] + W[454] * W[976] + W[672] * W[758] + W[890] * W[540]
@@ -3241,16 +3130,12 @@ chain5_taylor_run_72(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1467] = W[33] * W[1436];
     W[1468] = W[33] * W[1461];
     W[1479] = W[1474] + W[1476];
-    return 0;
 }
 
 /* Lines 140 .. 159 of taylor_run's order 6. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_74(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_74(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1397] = W[6] * W[1396] + W[224] * W[1178] + W[442] * W[960] + W[660] * W[742] + W[878] * W[524]
             + W[1096] * W[306] + W[1314] * W[88];
     W[1422] = W[5] * W[1421] + W[223] * W[1203] + W[441] * W[985] + W[659] * W[767] + W[877] * W[549]
@@ -3280,16 +3165,12 @@ chain5_taylor_run_74(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1091] * W[408] + W[1309] * W[190];
     W[1502] = W[2] * W[1501] + W[220] * W[1283] + W[438] * W[1065] + W[656] * W[847] + W[874] * W[629]
             + W[1092] * W[411] + W[1310] * W[193];
-    return 0;
 }
 
 /* Lines 180 .. 199 of taylor_run's order 6. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_76(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_76(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1495] = W[1369] + W[1494];
     W[1506] = W[1505] - W[1486];
     W[1399] = W[33] * W[1398];
@@ -3310,16 +3191,12 @@ chain5_taylor_run_76(eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[70] = X[65] / 7.0;
     X[71] = X[66] / 7.0;
     X[72] = X[67] / 7.0;
-    return 0;
 }
 
 /* Lines 0 .. 19 of taylor_run's order 7. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_78(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_78(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1527] = (X[10] * W[1310] + 2.0 * X[20] * W[1092] + 3.0 * X[30] * W[874] + 4.0 * X[40] * W[656]
             + 5.0 * X[50] * W[438] + 6.0 * X[60] * W[220] + 7.0 * X[70] * W[2]) / 7.0;
     W[1528] = -((X[10] * W[1309] + 2.0 * X[20] * W[1091] + 3.0 * X[30] * W[873] + 4.0 * X[40] * W[655]
@@ -3349,16 +3226,12 @@ chain5_taylor_run_78(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1592] = W[62] * W[1531];
     W[1563] = W[6] * W[1562] + W[224] * W[1344] + W[442] * W[1126] + W[660] * W[908] + W[878] * W[690]
             + W[1096] * W[472] + W[1314] * W[254] + W[1532] * W[36];
-    return 0;
 }
 
 /* Lines 20 .. 39 of taylor_run's order 7. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_79(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_79(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1564] = W[5] * W[1562] + W[223] * W[1344] + W[441] * W[1126] + W[659] * W[908] + W[877] * W[690]
             + W[1095] * W[472] + W[1313] * W[254] + W[1531] * W[36];
     W[1539] = W[1533] + W[1537];
@@ -3388,16 +3261,12 @@ chain5_taylor_run_79(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + 5.0 * W[1112] * W[459] + 6.0 * W[1330] * W[241] + 7.0 * W[1548] * W[23])) / 7.0;
     W[1586] = W[57] * W[1543];
     W[1619] = W[1543] + W[1618];
-    return 0;
 }
 
 /* Lines 80 .. 99 of taylor_run's order 7. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_82(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_82(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1625] = W[24] * W[1624] + W[242] * W[1406] + W[460] * W[1188] + W[678] * W[970] + W[896] * W[752]
             + W[1114] * W[534] + W[1332] * W[316] + W[1550] * W[98];
     W[1650] = W[23] * W[1649] + W[241] * W[1431] + W[459] * W[1213] + W[677] * W[995] + W[895] * W[777]
@@ -3425,16 +3294,12 @@ chain5_taylor_run_82(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1107] * W[509] + W[1325] * W[291] + W[1543] * W[73];
     W[1603] = W[18] * W[1602] + W[236] * W[1384] + W[454] * W[1166] + W[672] * W[948] + W[890] * W[730]
             + W[1108] * W[512] + W[1326] * W[294] + W[1544] * W[76];
-    return 0;
 }
 
 /* Lines 120 .. 139 of taylor_run's order 7. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_84(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_84(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1699] = W[1691] + W[1693];
     W[1606] = W[11] * W[1605] + W[229] * W[1387] + W[447] * W[1169] + W[665] * W[951] + W[883] * W[733]
             + W[1101] * W[515] + W[1319] * W[297] + W[1537] * W[79];
@@ -3464,16 +3329,12 @@ chain5_taylor_run_84(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1719] = W[1528] + W[1614];
     W[1612] = W[5] * W[1611] + W[223] * W[1393] + W[441] * W[1175] + W[659] * W[957] + W[877] * W[739]
             + W[1095] * W[521] + W[1313] * W[303] + W[1531] * W[85];
-    return 0;
 }
 
 /* Lines 160 .. 179 of taylor_run's order 7. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_86(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_86(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1610] = W[1607] + W[1609];
     W[1638] = W[1635] + W[1637];
     W[1666] = W[1663] + W[1665];
@@ -3498,16 +3359,13 @@ chain5_taylor_run_86(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1092] * W[640] + W[1310] * W[422] + W[1528] * W[204];
     W[1616] = W[1613] + W[1615];
     W[1644] = W[1641] + W[1643];
-    return 0;
 }
 
 /* Lines 200 .. 212 of taylor_run's order 7. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_88(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+chain5_taylor_run_88(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[83] = X[78] / 8.0;
     X[84] = X[79] / 8.0;
     W[1739] = W[414] * W[1521] + W[632] * W[1303] + W[850] * W[1085] + W[1068] * W[867] + W[1286] * W[649]
@@ -3559,12 +3417,9 @@ chain5_taylor_run_88(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 8. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_91(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_91(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1841] = W[1762] + W[1840];
     W[1866] = W[1755] + W[1761];
     W[1869] = W[1756] + W[1762];
@@ -3589,16 +3444,12 @@ chain5_taylor_run_91(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1892] = W[1761] + W[1767];
     W[1907] = W[1788] + W[1905];
     W[1908] = W[1789] + W[1906];
-    return 0;
 }
 
 /* Lines 60 .. 79 of taylor_run's order 8. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_92(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_92(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1793] = W[46] * W[1792] + W[264] * W[1574] + W[482] * W[1356] + W[700] * W[1138] + W[918] * W[920]
             + W[1136] * W[702] + W[1354] * W[484] + W[1572] * W[266] + W[1790] * W[48];
     W[1794] = W[46] * W[1791] + W[264] * W[1573] + W[482] * W[1355] + W[700] * W[1137] + W[918] * W[919]
@@ -3628,16 +3479,12 @@ chain5_taylor_run_92(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1114] * W[680] + W[1332] * W[462] + W[1550] * W[244] + W[1768] * W[26];
     W[1839] = W[23] * W[1838] + W[241] * W[1620] + W[459] * W[1402] + W[677] * W[1184] + W[895] * W[966]
             + W[1113] * W[748] + W[1331] * W[530] + W[1549] * W[312] + W[1767] * W[94];
-    return 0;
 }
 
 /* Lines 120 .. 139 of taylor_run's order 8. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_95(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_95(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1917] = W[1909] + W[1911];
     W[1824] = W[11] * W[1823] + W[229] * W[1605] + W[447] * W[1387] + W[665] * W[1169] + W[883] * W[951]
             + W[1101] * W[733] + W[1319] * W[515] + W[1537] * W[297] + W[1755] * W[79];
@@ -3667,16 +3514,12 @@ chain5_taylor_run_95(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1937] = W[1746] + W[1832];
     W[1830] = W[5] * W[1829] + W[223] * W[1611] + W[441] * W[1393] + W[659] * W[1175] + W[877] * W[957]
             + W[1095] * W[739] + W[1313] * W[521] + W[1531] * W[303] + W[1749] * W[85];
-    return 0;
 }
 
 /* Lines 160 .. 179 of taylor_run's order 8. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_97(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_97(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1828] = W[1825] + W[1827];
     W[1856] = W[1853] + W[1855];
     W[1884] = W[1881] + W[1883];
@@ -3701,16 +3544,12 @@ chain5_taylor_run_97(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1092] * W[858] + W[1310] * W[640] + W[1528] * W[422] + W[1746] * W[204];
     W[1834] = W[1831] + W[1833];
     W[1862] = W[1859] + W[1861];
-    return 0;
 }
 
 /* Lines 180 .. 199 of taylor_run's order 8. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_98(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_98(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1931] = W[1805] + W[1930];
     W[1942] = W[1941] - W[1922];
     W[1835] = W[33] * W[1834];
@@ -3731,16 +3570,12 @@ chain5_taylor_run_98(eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[90] = X[85] / 9.0;
     X[91] = X[86] / 9.0;
     X[92] = X[87] / 9.0;
-    return 0;
 }
 
 /* Lines 0 .. 19 of taylor_run's order 9. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_100(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_100(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1963] = (X[10] * W[1746] + 2.0 * X[20] * W[1528] + 3.0 * X[30] * W[1310] + 4.0 * X[40] * W[1092]
             + 5.0 * X[50] * W[874] + 6.0 * X[60] * W[656] + 7.0 * X[70] * W[438] + 8.0 * X[80] * W[220]
             + 9.0 * X[90] * W[2]) / 9.0;
@@ -3776,16 +3611,12 @@ chain5_taylor_run_100(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2028] = W[62] * W[1967];
     W[1999] = W[6] * W[1998] + W[224] * W[1780] + W[442] * W[1562] + W[660] * W[1344] + W[878] * W[1126]
             + W[1096] * W[908] + W[1314] * W[690] + W[1532] * W[472] + W[1750] * W[254] + W[1968] * W[36];
-    return 0;
 }
 
 /* Lines 20 .. 39 of taylor_run's order 9. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_101(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_101(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2000] = W[5] * W[1998] + W[223] * W[1780] + W[441] * W[1562] + W[659] * W[1344] + W[877] * W[1126]
             + W[1095] * W[908] + W[1313] * W[690] + W[1531] * W[472] + W[1749] * W[254] + W[1967] * W[36];
     W[1975] = W[1969] + W[1973];
@@ -3819,16 +3650,12 @@ chain5_taylor_run_101(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + 9.0 * W[1984] * W[23])) / 9.0;
     W[2022] = W[57] * W[1979];
     W[2055] = W[1979] + W[2054];
-    return 0;
 }
 
 /* Lines 60 .. 79 of taylor_run's order 9. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_103(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_103(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2011] = W[46] * W[2010] + W[264] * W[1792] + W[482] * W[1574] + W[700] * W[1356] + W[918] * W[1138]
             + W[1136] * W[920] + W[1354] * W[702] + W[1572] * W[484] + W[1790] * W[266] + W[2008] * W[48];
     W[2012] = W[46] * W[2009] + W[264] * W[1791] + W[482] * W[1573] + W[700] * W[1355] + W[918] * W[1137]
@@ -3858,16 +3685,12 @@ chain5_taylor_run_103(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1114] * W[898] + W[1332] * W[680] + W[1550] * W[462] + W[1768] * W[244] + W[1986] * W[26];
     W[2057] = W[23] * W[2056] + W[241] * W[1838] + W[459] * W[1620] + W[677] * W[1402] + W[895] * W[1184]
             + W[1113] * W[966] + W[1331] * W[748] + W[1549] * W[530] + W[1767] * W[312] + W[1985] * W[94];
-    return 0;
 }
 
 /* Lines 120 .. 139 of taylor_run's order 9. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_106(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_106(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2135] = W[2127] + W[2129];
     W[2042] = W[11] * W[2041] + W[229] * W[1823] + W[447] * W[1605] + W[665] * W[1387] + W[883] * W[1169]
             + W[1101] * W[951] + W[1319] * W[733] + W[1537] * W[515] + W[1755] * W[297] + W[1973] * W[79];
@@ -3897,16 +3720,12 @@ chain5_taylor_run_106(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2155] = W[1964] + W[2050];
     W[2048] = W[5] * W[2047] + W[223] * W[1829] + W[441] * W[1611] + W[659] * W[1393] + W[877] * W[1175]
             + W[1095] * W[957] + W[1313] * W[739] + W[1531] * W[521] + W[1749] * W[303] + W[1967] * W[85];
-    return 0;
 }
 
 /* Lines 160 .. 179 of taylor_run's order 9. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_108(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_108(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2046] = W[2043] + W[2045];
     W[2074] = W[2071] + W[2073];
     W[2102] = W[2099] + W[2101];
@@ -3931,16 +3750,13 @@ chain5_taylor_run_108(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1092] * W[1076] + W[1310] * W[858] + W[1528] * W[640] + W[1746] * W[422] + W[1964] * W[204];
     W[2052] = W[2049] + W[2051];
     W[2080] = W[2077] + W[2079];
-    return 0;
 }
 
 /* Lines 200 .. 212 of taylor_run's order 9. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_110(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+chain5_taylor_run_110(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[103] = X[98] / 10.0;
     X[104] = X[99] / 10.0;
     W[2175] = W[414] * W[1957] + W[632] * W[1739] + W[850] * W[1521] + W[1068] * W[1303] + W[1286] * W[1085]
@@ -4002,12 +3818,9 @@ chain5_taylor_run_110(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 10. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_113(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_113(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2277] = W[2198] + W[2276];
     W[2302] = W[2191] + W[2197];
     W[2305] = W[2192] + W[2198];
@@ -4036,16 +3849,12 @@ chain5_taylor_run_113(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2328] = W[2197] + W[2203];
     W[2343] = W[2224] + W[2341];
     W[2344] = W[2225] + W[2342];
-    return 0;
 }
 
 /* Lines 80 .. 99 of taylor_run's order 10. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_115(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_115(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2279] = W[24] * W[2278] + W[242] * W[2060] + W[460] * W[1842] + W[678] * W[1624] + W[896] * W[1406]
             + W[1114] * W[1188] + W[1332] * W[970] + W[1550] * W[752] + W[1768] * W[534] + W[1986] * W[316]
             + W[2204] * W[98];
@@ -4080,16 +3889,12 @@ chain5_taylor_run_115(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2257] = W[18] * W[2256] + W[236] * W[2038] + W[454] * W[1820] + W[672] * W[1602] + W[890] * W[1384]
             + W[1108] * W[1166] + W[1326] * W[948] + W[1544] * W[730] + W[1762] * W[512] + W[1980] * W[294]
             + W[2198] * W[76];
-    return 0;
 }
 
 /* Lines 100 .. 119 of taylor_run's order 10. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_116(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_116(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2282] = W[17] * W[2281] + W[235] * W[2063] + W[453] * W[1845] + W[671] * W[1627] + W[889] * W[1409]
             + W[1107] * W[1191] + W[1325] * W[973] + W[1543] * W[755] + W[1761] * W[537] + W[1979] * W[319]
             + W[2197] * W[101];
@@ -4122,16 +3927,12 @@ chain5_taylor_run_116(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2339] = W[33] * W[2308];
     W[2340] = W[33] * W[2333];
     W[2351] = W[2346] + W[2348];
-    return 0;
 }
 
 /* Lines 140 .. 159 of taylor_run's order 10. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_118(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_118(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2269] = W[6] * W[2268] + W[224] * W[2050] + W[442] * W[1832] + W[660] * W[1614] + W[878] * W[1396]
             + W[1096] * W[1178] + W[1314] * W[960] + W[1532] * W[742] + W[1750] * W[524] + W[1968] * W[306]
             + W[2186] * W[88];
@@ -4170,16 +3971,13 @@ chain5_taylor_run_118(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2374] = W[2] * W[2373] + W[220] * W[2155] + W[438] * W[1937] + W[656] * W[1719] + W[874] * W[1501]
             + W[1092] * W[1283] + W[1310] * W[1065] + W[1528] * W[847] + W[1746] * W[629] + W[1964] * W[411]
             + W[2182] * W[193];
-    return 0;
 }
 
 /* Lines 200 .. 212 of taylor_run's order 10. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_121(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+chain5_taylor_run_121(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[113] = X[108] / 11.0;
     X[114] = X[109] / 11.0;
     W[2393] = W[414] * W[2175] + W[632] * W[1957] + W[850] * W[1739] + W[1068] * W[1521] + W[1286] * W[1303]
@@ -4246,12 +4044,9 @@ chain5_taylor_run_121(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 11. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_124(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_124(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2495] = W[2416] + W[2494];
     W[2520] = W[2409] + W[2415];
     W[2523] = W[2410] + W[2416];
@@ -4280,16 +4075,12 @@ chain5_taylor_run_124(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2546] = W[2415] + W[2421];
     W[2561] = W[2442] + W[2559];
     W[2562] = W[2443] + W[2560];
-    return 0;
 }
 
 /* Lines 80 .. 99 of taylor_run's order 11. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_126(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_126(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2497] = W[24] * W[2496] + W[242] * W[2278] + W[460] * W[2060] + W[678] * W[1842] + W[896] * W[1624]
             + W[1114] * W[1406] + W[1332] * W[1188] + W[1550] * W[970] + W[1768] * W[752] + W[1986] * W[534]
             + W[2204] * W[316] + W[2422] * W[98];
@@ -4324,16 +4115,12 @@ chain5_taylor_run_126(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2475] = W[18] * W[2474] + W[236] * W[2256] + W[454] * W[2038] + W[672] * W[1820] + W[890] * W[1602]
             + W[1108] * W[1384] + W[1326] * W[1166] + W[1544] * W[948] + W[1762] * W[730] + W[1980] * W[512]
             + W[2198] * W[294] + W[2416] * W[76];
-    return 0;
 }
 
 /* Lines 120 .. 139 of taylor_run's order 11. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_128(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_128(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2571] = W[2563] + W[2565];
     W[2478] = W[11] * W[2477] + W[229] * W[2259] + W[447] * W[2041] + W[665] * W[1823] + W[883] * W[1605]
             + W[1101] * W[1387] + W[1319] * W[1169] + W[1537] * W[951] + W[1755] * W[733] + W[1973] * W[515]
@@ -4372,16 +4159,12 @@ chain5_taylor_run_128(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2484] = W[5] * W[2483] + W[223] * W[2265] + W[441] * W[2047] + W[659] * W[1829] + W[877] * W[1611]
             + W[1095] * W[1393] + W[1313] * W[1175] + W[1531] * W[957] + W[1749] * W[739] + W[1967] * W[521]
             + W[2185] * W[303] + W[2403] * W[85];
-    return 0;
 }
 
 /* Lines 160 .. 179 of taylor_run's order 11. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_130(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_130(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2482] = W[2479] + W[2481];
     W[2510] = W[2507] + W[2509];
     W[2538] = W[2535] + W[2537];
@@ -4410,16 +4193,12 @@ chain5_taylor_run_130(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2182] * W[422] + W[2400] * W[204];
     W[2488] = W[2485] + W[2487];
     W[2516] = W[2513] + W[2515];
-    return 0;
 }
 
 /* Lines 180 .. 199 of taylor_run's order 11. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_131(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_131(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2585] = W[2459] + W[2584];
     W[2596] = W[2595] - W[2576];
     W[2489] = W[33] * W[2488];
@@ -4440,16 +4219,12 @@ chain5_taylor_run_131(eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[120] = X[115] / 12.0;
     X[121] = X[116] / 12.0;
     X[122] = X[117] / 12.0;
-    return 0;
 }
 
 /* Lines 0 .. 19 of taylor_run's order 12. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_133(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_133(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2617] = (X[10] * W[2400] + 2.0 * X[20] * W[2182] + 3.0 * X[30] * W[1964] + 4.0 * X[40] * W[1746]
             + 5.0 * X[50] * W[1528] + 6.0 * X[60] * W[1310] + 7.0 * X[70] * W[1092] + 8.0 * X[80] * W[874]
             + 9.0 * X[90] * W[656] + 10.0 * X[100] * W[438] + 11.0 * X[110] * W[220] + 12.0 * X[120] * W[2]) / 12.0;
@@ -4489,16 +4264,12 @@ chain5_taylor_run_133(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2653] = W[6] * W[2652] + W[224] * W[2434] + W[442] * W[2216] + W[660] * W[1998] + W[878] * W[1780]
             + W[1096] * W[1562] + W[1314] * W[1344] + W[1532] * W[1126] + W[1750] * W[908] + W[1968] * W[690]
             + W[2186] * W[472] + W[2404] * W[254] + W[2622] * W[36];
-    return 0;
 }
 
 /* Lines 20 .. 39 of taylor_run's order 12. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_134(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_134(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2654] = W[5] * W[2652] + W[223] * W[2434] + W[441] * W[2216] + W[659] * W[1998] + W[877] * W[1780]
             + W[1095] * W[1562] + W[1313] * W[1344] + W[1531] * W[1126] + W[1749] * W[908] + W[1967] * W[690]
             + W[2185] * W[472] + W[2403] * W[254] + W[2621] * W[36];
@@ -4537,16 +4308,12 @@ chain5_taylor_run_134(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + 9.0 * W[1984] * W[677] + 10.0 * W[2202] * W[459] + 11.0 * W[2420] * W[241] + 12.0 * W[2638] * W[23])) / 12.0;
     W[2676] = W[57] * W[2633];
     W[2709] = W[2633] + W[2708];
-    return 0;
 }
 
 /* Lines 60 .. 79 of taylor_run's order 12. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_136(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_136(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2665] = W[46] * W[2664] + W[264] * W[2446] + W[482] * W[2228] + W[700] * W[2010] + W[918] * W[1792]
             + W[1136] * W[1574] + W[1354] * W[1356] + W[1572] * W[1138] + W[1790] * W[920] + W[2008] * W[702]
             + W[2226] * W[484] + W[2444] * W[266] + W[2662] * W[48];
@@ -4585,16 +4352,12 @@ chain5_taylor_run_136(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2711] = W[23] * W[2710] + W[241] * W[2492] + W[459] * W[2274] + W[677] * W[2056] + W[895] * W[1838]
             + W[1113] * W[1620] + W[1331] * W[1402] + W[1549] * W[1184] + W[1767] * W[966] + W[1985] * W[748]
             + W[2203] * W[530] + W[2421] * W[312] + W[2639] * W[94];
-    return 0;
 }
 
 /* Lines 100 .. 119 of taylor_run's order 12. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_138(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_138(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2718] = W[17] * W[2717] + W[235] * W[2499] + W[453] * W[2281] + W[671] * W[2063] + W[889] * W[1845]
             + W[1107] * W[1627] + W[1325] * W[1409] + W[1543] * W[1191] + W[1761] * W[973] + W[1979] * W[755]
             + W[2197] * W[537] + W[2415] * W[319] + W[2633] * W[101];
@@ -4627,16 +4390,12 @@ chain5_taylor_run_138(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2775] = W[33] * W[2744];
     W[2776] = W[33] * W[2769];
     W[2787] = W[2782] + W[2784];
-    return 0;
 }
 
 /* Lines 140 .. 159 of taylor_run's order 12. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_140(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_140(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2705] = W[6] * W[2704] + W[224] * W[2486] + W[442] * W[2268] + W[660] * W[2050] + W[878] * W[1832]
             + W[1096] * W[1614] + W[1314] * W[1396] + W[1532] * W[1178] + W[1750] * W[960] + W[1968] * W[742]
             + W[2186] * W[524] + W[2404] * W[306] + W[2622] * W[88];
@@ -4675,16 +4434,12 @@ chain5_taylor_run_140(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2810] = W[2] * W[2809] + W[220] * W[2591] + W[438] * W[2373] + W[656] * W[2155] + W[874] * W[1937]
             + W[1092] * W[1719] + W[1310] * W[1501] + W[1528] * W[1283] + W[1746] * W[1065] + W[1964] * W[847]
             + W[2182] * W[629] + W[2400] * W[411] + W[2618] * W[193];
-    return 0;
 }
 
 /* Lines 180 .. 199 of taylor_run's order 12. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_142(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_142(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2803] = W[2677] + W[2802];
     W[2814] = W[2813] - W[2794];
     W[2707] = W[33] * W[2706];
@@ -4705,16 +4460,12 @@ chain5_taylor_run_142(eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[130] = X[125] / 13.0;
     X[131] = X[126] / 13.0;
     X[132] = X[127] / 13.0;
-    return 0;
 }
 
 /* Lines 0 .. 19 of taylor_run's order 13. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_144(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_144(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2835] = (X[10] * W[2618] + 2.0 * X[20] * W[2400] + 3.0 * X[30] * W[2182] + 4.0 * X[40] * W[1964]
             + 5.0 * X[50] * W[1746] + 6.0 * X[60] * W[1528] + 7.0 * X[70] * W[1310] + 8.0 * X[80] * W[1092]
             + 9.0 * X[90] * W[874] + 10.0 * X[100] * W[656] + 11.0 * X[110] * W[438] + 12.0 * X[120] * W[220]
@@ -4760,16 +4511,12 @@ chain5_taylor_run_144(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2871] = W[6] * W[2870] + W[224] * W[2652] + W[442] * W[2434] + W[660] * W[2216] + W[878] * W[1998]
             + W[1096] * W[1780] + W[1314] * W[1562] + W[1532] * W[1344] + W[1750] * W[1126] + W[1968] * W[908]
             + W[2186] * W[690] + W[2404] * W[472] + W[2622] * W[254] + W[2840] * W[36];
-    return 0;
 }
 
 /* Lines 20 .. 39 of taylor_run's order 13. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_145(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_145(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2872] = W[5] * W[2870] + W[223] * W[2652] + W[441] * W[2434] + W[659] * W[2216] + W[877] * W[1998]
             + W[1095] * W[1780] + W[1313] * W[1562] + W[1531] * W[1344] + W[1749] * W[1126] + W[1967] * W[908]
             + W[2185] * W[690] + W[2403] * W[472] + W[2621] * W[254] + W[2839] * W[36];
@@ -4812,16 +4559,12 @@ chain5_taylor_run_145(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + 13.0 * W[2856] * W[23])) / 13.0;
     W[2894] = W[57] * W[2851];
     W[2927] = W[2851] + W[2926];
-    return 0;
 }
 
 /* Lines 60 .. 79 of taylor_run's order 13. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_147(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_147(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2883] = W[46] * W[2882] + W[264] * W[2664] + W[482] * W[2446] + W[700] * W[2228] + W[918] * W[2010]
             + W[1136] * W[1792] + W[1354] * W[1574] + W[1572] * W[1356] + W[1790] * W[1138] + W[2008] * W[920]
             + W[2226] * W[702] + W[2444] * W[484] + W[2662] * W[266] + W[2880] * W[48];
@@ -4860,16 +4603,12 @@ chain5_taylor_run_147(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2929] = W[23] * W[2928] + W[241] * W[2710] + W[459] * W[2492] + W[677] * W[2274] + W[895] * W[2056]
             + W[1113] * W[1838] + W[1331] * W[1620] + W[1549] * W[1402] + W[1767] * W[1184] + W[1985] * W[966]
             + W[2203] * W[748] + W[2421] * W[530] + W[2639] * W[312] + W[2857] * W[94];
-    return 0;
 }
 
 /* Lines 100 .. 119 of taylor_run's order 13. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_149(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_149(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2936] = W[17] * W[2935] + W[235] * W[2717] + W[453] * W[2499] + W[671] * W[2281] + W[889] * W[2063]
             + W[1107] * W[1845] + W[1325] * W[1627] + W[1543] * W[1409] + W[1761] * W[1191] + W[1979] * W[973]
             + W[2197] * W[755] + W[2415] * W[537] + W[2633] * W[319] + W[2851] * W[101];
@@ -4902,16 +4641,12 @@ chain5_taylor_run_149(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2993] = W[33] * W[2962];
     W[2994] = W[33] * W[2987];
     W[3005] = W[3000] + W[3002];
-    return 0;
 }
 
 /* Lines 140 .. 159 of taylor_run's order 13. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_151(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_151(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2923] = W[6] * W[2922] + W[224] * W[2704] + W[442] * W[2486] + W[660] * W[2268] + W[878] * W[2050]
             + W[1096] * W[1832] + W[1314] * W[1614] + W[1532] * W[1396] + W[1750] * W[1178] + W[1968] * W[960]
             + W[2186] * W[742] + W[2404] * W[524] + W[2622] * W[306] + W[2840] * W[88];
@@ -4950,16 +4685,13 @@ chain5_taylor_run_151(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3028] = W[2] * W[3027] + W[220] * W[2809] + W[438] * W[2591] + W[656] * W[2373] + W[874] * W[2155]
             + W[1092] * W[1937] + W[1310] * W[1719] + W[1528] * W[1501] + W[1746] * W[1283] + W[1964] * W[1065]
             + W[2182] * W[847] + W[2400] * W[629] + W[2618] * W[411] + W[2836] * W[193];
-    return 0;
 }
 
 /* Lines 200 .. 212 of taylor_run's order 13. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_154(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+chain5_taylor_run_154(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[143] = X[138] / 14.0;
     X[144] = X[139] / 14.0;
     W[3047] = W[414] * W[2829] + W[632] * W[2611] + W[850] * W[2393] + W[1068] * W[2175] + W[1286] * W[1957]
@@ -5040,12 +4772,9 @@ chain5_taylor_run_154(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 14. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_157(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_157(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3149] = W[3070] + W[3148];
     W[3174] = W[3063] + W[3069];
     W[3177] = W[3064] + W[3070];
@@ -5074,16 +4803,12 @@ chain5_taylor_run_157(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3200] = W[3069] + W[3075];
     W[3215] = W[3096] + W[3213];
     W[3216] = W[3097] + W[3214];
-    return 0;
 }
 
 /* Lines 80 .. 99 of taylor_run's order 14. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_159(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_159(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3151] = W[24] * W[3150] + W[242] * W[2932] + W[460] * W[2714] + W[678] * W[2496] + W[896] * W[2278]
             + W[1114] * W[2060] + W[1332] * W[1842] + W[1550] * W[1624] + W[1768] * W[1406] + W[1986] * W[1188]
             + W[2204] * W[970] + W[2422] * W[752] + W[2640] * W[534] + W[2858] * W[316] + W[3076] * W[98];
@@ -5118,16 +4843,12 @@ chain5_taylor_run_159(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3129] = W[18] * W[3128] + W[236] * W[2910] + W[454] * W[2692] + W[672] * W[2474] + W[890] * W[2256]
             + W[1108] * W[2038] + W[1326] * W[1820] + W[1544] * W[1602] + W[1762] * W[1384] + W[1980] * W[1166]
             + W[2198] * W[948] + W[2416] * W[730] + W[2634] * W[512] + W[2852] * W[294] + W[3070] * W[76];
-    return 0;
 }
 
 /* Lines 120 .. 139 of taylor_run's order 14. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_161(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_161(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3225] = W[3217] + W[3219];
     W[3132] = W[11] * W[3131] + W[229] * W[2913] + W[447] * W[2695] + W[665] * W[2477] + W[883] * W[2259]
             + W[1101] * W[2041] + W[1319] * W[1823] + W[1537] * W[1605] + W[1755] * W[1387] + W[1973] * W[1169]
@@ -5166,16 +4887,12 @@ chain5_taylor_run_161(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3138] = W[5] * W[3137] + W[223] * W[2919] + W[441] * W[2701] + W[659] * W[2483] + W[877] * W[2265]
             + W[1095] * W[2047] + W[1313] * W[1829] + W[1531] * W[1611] + W[1749] * W[1393] + W[1967] * W[1175]
             + W[2185] * W[957] + W[2403] * W[739] + W[2621] * W[521] + W[2839] * W[303] + W[3057] * W[85];
-    return 0;
 }
 
 /* Lines 160 .. 179 of taylor_run's order 14. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_163(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_163(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3136] = W[3133] + W[3135];
     W[3164] = W[3161] + W[3163];
     W[3192] = W[3189] + W[3191];
@@ -5204,16 +4921,13 @@ chain5_taylor_run_163(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2182] * W[1076] + W[2400] * W[858] + W[2618] * W[640] + W[2836] * W[422] + W[3054] * W[204];
     W[3142] = W[3139] + W[3141];
     W[3170] = W[3167] + W[3169];
-    return 0;
 }
 
 /* Lines 200 .. 212 of taylor_run's order 14. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_165(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+chain5_taylor_run_165(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[153] = X[148] / 15.0;
     X[154] = X[149] / 15.0;
     W[3265] = W[414] * W[3047] + W[632] * W[2829] + W[850] * W[2611] + W[1068] * W[2393] + W[1286] * W[2175]
@@ -5299,12 +5013,9 @@ chain5_taylor_run_165(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 15. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_168(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_168(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3367] = W[3288] + W[3366];
     W[3392] = W[3281] + W[3287];
     W[3395] = W[3282] + W[3288];
@@ -5337,16 +5048,12 @@ chain5_taylor_run_168(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3418] = W[3287] + W[3293];
     W[3433] = W[3314] + W[3431];
     W[3434] = W[3315] + W[3432];
-    return 0;
 }
 
 /* Lines 80 .. 99 of taylor_run's order 15. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_170(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_170(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3369] = W[24] * W[3368] + W[242] * W[3150] + W[460] * W[2932] + W[678] * W[2714] + W[896] * W[2496]
             + W[1114] * W[2278] + W[1332] * W[2060] + W[1550] * W[1842] + W[1768] * W[1624] + W[1986] * W[1406]
             + W[2204] * W[1188] + W[2422] * W[970] + W[2640] * W[752] + W[2858] * W[534] + W[3076] * W[316]
@@ -5388,16 +5095,12 @@ chain5_taylor_run_170(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1108] * W[2256] + W[1326] * W[2038] + W[1544] * W[1820] + W[1762] * W[1602] + W[1980] * W[1384]
             + W[2198] * W[1166] + W[2416] * W[948] + W[2634] * W[730] + W[2852] * W[512] + W[3070] * W[294]
             + W[3288] * W[76];
-    return 0;
 }
 
 /* Lines 120 .. 139 of taylor_run's order 15. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_172(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_172(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3443] = W[3435] + W[3437];
     W[3350] = W[11] * W[3349] + W[229] * W[3131] + W[447] * W[2913] + W[665] * W[2695] + W[883] * W[2477]
             + W[1101] * W[2259] + W[1319] * W[2041] + W[1537] * W[1823] + W[1755] * W[1605] + W[1973] * W[1387]
@@ -5445,16 +5148,12 @@ chain5_taylor_run_172(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1095] * W[2265] + W[1313] * W[2047] + W[1531] * W[1829] + W[1749] * W[1611] + W[1967] * W[1393]
             + W[2185] * W[1175] + W[2403] * W[957] + W[2621] * W[739] + W[2839] * W[521] + W[3057] * W[303]
             + W[3275] * W[85];
-    return 0;
 }
 
 /* Lines 160 .. 179 of taylor_run's order 15. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_174(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_174(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3354] = W[3351] + W[3353];
     W[3382] = W[3379] + W[3381];
     W[3410] = W[3407] + W[3409];
@@ -5487,16 +5186,13 @@ chain5_taylor_run_174(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[3272] * W[204];
     W[3360] = W[3357] + W[3359];
     W[3388] = W[3385] + W[3387];
-    return 0;
 }
 
 /* Lines 200 .. 212 of taylor_run's order 15. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_176(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+chain5_taylor_run_176(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[163] = X[158] / 16.0;
     X[164] = X[159] / 16.0;
     W[3483] = W[414] * W[3265] + W[632] * W[3047] + W[850] * W[2829] + W[1068] * W[2611] + W[1286] * W[2393]
@@ -5587,12 +5283,9 @@ chain5_taylor_run_176(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 16. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_179(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_179(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3585] = W[3506] + W[3584];
     W[3610] = W[3499] + W[3505];
     W[3613] = W[3500] + W[3506];
@@ -5625,16 +5318,12 @@ chain5_taylor_run_179(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3636] = W[3505] + W[3511];
     W[3651] = W[3532] + W[3649];
     W[3652] = W[3533] + W[3650];
-    return 0;
 }
 
 /* Lines 80 .. 99 of taylor_run's order 16. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_181(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_181(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3587] = W[24] * W[3586] + W[242] * W[3368] + W[460] * W[3150] + W[678] * W[2932] + W[896] * W[2714]
             + W[1114] * W[2496] + W[1332] * W[2278] + W[1550] * W[2060] + W[1768] * W[1842] + W[1986] * W[1624]
             + W[2204] * W[1406] + W[2422] * W[1188] + W[2640] * W[970] + W[2858] * W[752] + W[3076] * W[534]
@@ -5676,16 +5365,12 @@ chain5_taylor_run_181(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1108] * W[2474] + W[1326] * W[2256] + W[1544] * W[2038] + W[1762] * W[1820] + W[1980] * W[1602]
             + W[2198] * W[1384] + W[2416] * W[1166] + W[2634] * W[948] + W[2852] * W[730] + W[3070] * W[512]
             + W[3288] * W[294] + W[3506] * W[76];
-    return 0;
 }
 
 /* Lines 120 .. 139 of taylor_run's order 16. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_183(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_183(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3661] = W[3653] + W[3655];
     W[3568] = W[11] * W[3567] + W[229] * W[3349] + W[447] * W[3131] + W[665] * W[2913] + W[883] * W[2695]
             + W[1101] * W[2477] + W[1319] * W[2259] + W[1537] * W[2041] + W[1755] * W[1823] + W[1973] * W[1605]
@@ -5733,16 +5418,12 @@ chain5_taylor_run_183(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1095] * W[2483] + W[1313] * W[2265] + W[1531] * W[2047] + W[1749] * W[1829] + W[1967] * W[1611]
             + W[2185] * W[1393] + W[2403] * W[1175] + W[2621] * W[957] + W[2839] * W[739] + W[3057] * W[521]
             + W[3275] * W[303] + W[3493] * W[85];
-    return 0;
 }
 
 /* Lines 160 .. 179 of taylor_run's order 16. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_185(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_185(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3572] = W[3569] + W[3571];
     W[3600] = W[3597] + W[3599];
     W[3628] = W[3625] + W[3627];
@@ -5775,16 +5456,13 @@ chain5_taylor_run_185(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[3272] * W[422] + W[3490] * W[204];
     W[3578] = W[3575] + W[3577];
     W[3606] = W[3603] + W[3605];
-    return 0;
 }
 
 /* Lines 200 .. 212 of taylor_run's order 16. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_187(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+chain5_taylor_run_187(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[173] = X[168] / 17.0;
     X[174] = X[169] / 17.0;
     W[3701] = W[414] * W[3483] + W[632] * W[3265] + W[850] * W[3047] + W[1068] * W[2829] + W[1286] * W[2611]
@@ -5879,12 +5557,9 @@ chain5_taylor_run_187(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 17. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_190(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_190(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3803] = W[3724] + W[3802];
     W[3828] = W[3717] + W[3723];
     W[3831] = W[3718] + W[3724];
@@ -5917,16 +5592,12 @@ chain5_taylor_run_190(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3854] = W[3723] + W[3729];
     W[3869] = W[3750] + W[3867];
     W[3870] = W[3751] + W[3868];
-    return 0;
 }
 
 /* Lines 80 .. 99 of taylor_run's order 17. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_192(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_192(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3805] = W[24] * W[3804] + W[242] * W[3586] + W[460] * W[3368] + W[678] * W[3150] + W[896] * W[2932]
             + W[1114] * W[2714] + W[1332] * W[2496] + W[1550] * W[2278] + W[1768] * W[2060] + W[1986] * W[1842]
             + W[2204] * W[1624] + W[2422] * W[1406] + W[2640] * W[1188] + W[2858] * W[970] + W[3076] * W[752]
@@ -5968,16 +5639,12 @@ chain5_taylor_run_192(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1108] * W[2692] + W[1326] * W[2474] + W[1544] * W[2256] + W[1762] * W[2038] + W[1980] * W[1820]
             + W[2198] * W[1602] + W[2416] * W[1384] + W[2634] * W[1166] + W[2852] * W[948] + W[3070] * W[730]
             + W[3288] * W[512] + W[3506] * W[294] + W[3724] * W[76];
-    return 0;
 }
 
 /* Lines 120 .. 139 of taylor_run's order 17. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_194(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_194(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3879] = W[3871] + W[3873];
     W[3786] = W[11] * W[3785] + W[229] * W[3567] + W[447] * W[3349] + W[665] * W[3131] + W[883] * W[2913]
             + W[1101] * W[2695] + W[1319] * W[2477] + W[1537] * W[2259] + W[1755] * W[2041] + W[1973] * W[1823]
@@ -6025,16 +5692,12 @@ chain5_taylor_run_194(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1095] * W[2701] + W[1313] * W[2483] + W[1531] * W[2265] + W[1749] * W[2047] + W[1967] * W[1829]
             + W[2185] * W[1611] + W[2403] * W[1393] + W[2621] * W[1175] + W[2839] * W[957] + W[3057] * W[739]
             + W[3275] * W[521] + W[3493] * W[303] + W[3711] * W[85];
-    return 0;
 }
 
 /* Lines 160 .. 179 of taylor_run's order 17. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_196(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_196(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3790] = W[3787] + W[3789];
     W[3818] = W[3815] + W[3817];
     W[3846] = W[3843] + W[3845];
@@ -6067,16 +5730,13 @@ chain5_taylor_run_196(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[3272] * W[640] + W[3490] * W[422] + W[3708] * W[204];
     W[3796] = W[3793] + W[3795];
     W[3824] = W[3821] + W[3823];
-    return 0;
 }
 
 /* Lines 200 .. 212 of taylor_run's order 17. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_198(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+chain5_taylor_run_198(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[183] = X[178] / 18.0;
     X[184] = X[179] / 18.0;
     W[3919] = W[414] * W[3701] + W[632] * W[3483] + W[850] * W[3265] + W[1068] * W[3047] + W[1286] * W[2829]
@@ -6176,12 +5836,9 @@ chain5_taylor_run_198(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 18. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_201(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_201(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4021] = W[3942] + W[4020];
     W[4046] = W[3935] + W[3941];
     W[4049] = W[3936] + W[3942];
@@ -6214,16 +5871,12 @@ chain5_taylor_run_201(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[4072] = W[3941] + W[3947];
     W[4087] = W[3968] + W[4085];
     W[4088] = W[3969] + W[4086];
-    return 0;
 }
 
 /* Lines 80 .. 99 of taylor_run's order 18. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_203(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_203(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4023] = W[24] * W[4022] + W[242] * W[3804] + W[460] * W[3586] + W[678] * W[3368] + W[896] * W[3150]
             + W[1114] * W[2932] + W[1332] * W[2714] + W[1550] * W[2496] + W[1768] * W[2278] + W[1986] * W[2060]
             + W[2204] * W[1842] + W[2422] * W[1624] + W[2640] * W[1406] + W[2858] * W[1188] + W[3076] * W[970]
@@ -6265,16 +5918,12 @@ chain5_taylor_run_203(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1108] * W[2910] + W[1326] * W[2692] + W[1544] * W[2474] + W[1762] * W[2256] + W[1980] * W[2038]
             + W[2198] * W[1820] + W[2416] * W[1602] + W[2634] * W[1384] + W[2852] * W[1166] + W[3070] * W[948]
             + W[3288] * W[730] + W[3506] * W[512] + W[3724] * W[294] + W[3942] * W[76];
-    return 0;
 }
 
 /* Lines 120 .. 139 of taylor_run's order 18. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_205(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_205(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4097] = W[4089] + W[4091];
     W[4004] = W[11] * W[4003] + W[229] * W[3785] + W[447] * W[3567] + W[665] * W[3349] + W[883] * W[3131]
             + W[1101] * W[2913] + W[1319] * W[2695] + W[1537] * W[2477] + W[1755] * W[2259] + W[1973] * W[2041]
@@ -6322,16 +5971,12 @@ chain5_taylor_run_205(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1095] * W[2919] + W[1313] * W[2701] + W[1531] * W[2483] + W[1749] * W[2265] + W[1967] * W[2047]
             + W[2185] * W[1829] + W[2403] * W[1611] + W[2621] * W[1393] + W[2839] * W[1175] + W[3057] * W[957]
             + W[3275] * W[739] + W[3493] * W[521] + W[3711] * W[303] + W[3929] * W[85];
-    return 0;
 }
 
 /* Lines 160 .. 179 of taylor_run's order 18. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_207(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_207(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4008] = W[4005] + W[4007];
     W[4036] = W[4033] + W[4035];
     W[4064] = W[4061] + W[4063];
@@ -6364,16 +6009,12 @@ chain5_taylor_run_207(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[3272] * W[858] + W[3490] * W[640] + W[3708] * W[422] + W[3926] * W[204];
     W[4014] = W[4011] + W[4013];
     W[4042] = W[4039] + W[4041];
-    return 0;
 }
 
 /* Lines 0 .. 19 of taylor_run's order 19. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_210(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_210(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4143] = (X[10] * W[3926] + 2.0 * X[20] * W[3708] + 3.0 * X[30] * W[3490] + 4.0 * X[40] * W[3272]
             + 5.0 * X[50] * W[3054] + 6.0 * X[60] * W[2836] + 7.0 * X[70] * W[2618] + 8.0 * X[80] * W[2400]
             + 9.0 * X[90] * W[2182] + 10.0 * X[100] * W[1964] + 11.0 * X[110] * W[1746] + 12.0 * X[120] * W[1528]
@@ -6428,16 +6069,12 @@ chain5_taylor_run_210(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1096] * W[3088] + W[1314] * W[2870] + W[1532] * W[2652] + W[1750] * W[2434] + W[1968] * W[2216]
             + W[2186] * W[1998] + W[2404] * W[1780] + W[2622] * W[1562] + W[2840] * W[1344] + W[3058] * W[1126]
             + W[3276] * W[908] + W[3494] * W[690] + W[3712] * W[472] + W[3930] * W[254] + W[4148] * W[36];
-    return 0;
 }
 
 /* Lines 20 .. 39 of taylor_run's order 19. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_211(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_211(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4180] = W[5] * W[4178] + W[223] * W[3960] + W[441] * W[3742] + W[659] * W[3524] + W[877] * W[3306]
             + W[1095] * W[3088] + W[1313] * W[2870] + W[1531] * W[2652] + W[1749] * W[2434] + W[1967] * W[2216]
             + W[2185] * W[1998] + W[2403] * W[1780] + W[2621] * W[1562] + W[2839] * W[1344] + W[3057] * W[1126]
@@ -6489,16 +6126,12 @@ chain5_taylor_run_211(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + 17.0 * W[3728] * W[459] + 18.0 * W[3946] * W[241] + 19.0 * W[4164] * W[23])) / 19.0;
     W[4202] = W[57] * W[4159];
     W[4235] = W[4159] + W[4234];
-    return 0;
 }
 
 /* Lines 40 .. 59 of taylor_run's order 19. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_212(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_212(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4239] = W[4160] + W[4238];
     W[4264] = W[4153] + W[4159];
     W[4267] = W[4154] + W[4160];
@@ -6531,16 +6164,12 @@ chain5_taylor_run_212(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[4290] = W[4159] + W[4165];
     W[4305] = W[4186] + W[4303];
     W[4306] = W[4187] + W[4304];
-    return 0;
 }
 
 /* Lines 80 .. 99 of taylor_run's order 19. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_214(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_214(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4241] = W[24] * W[4240] + W[242] * W[4022] + W[460] * W[3804] + W[678] * W[3586] + W[896] * W[3368]
             + W[1114] * W[3150] + W[1332] * W[2932] + W[1550] * W[2714] + W[1768] * W[2496] + W[1986] * W[2278]
             + W[2204] * W[2060] + W[2422] * W[1842] + W[2640] * W[1624] + W[2858] * W[1406] + W[3076] * W[1188]
@@ -6582,16 +6211,12 @@ chain5_taylor_run_214(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1108] * W[3128] + W[1326] * W[2910] + W[1544] * W[2692] + W[1762] * W[2474] + W[1980] * W[2256]
             + W[2198] * W[2038] + W[2416] * W[1820] + W[2634] * W[1602] + W[2852] * W[1384] + W[3070] * W[1166]
             + W[3288] * W[948] + W[3506] * W[730] + W[3724] * W[512] + W[3942] * W[294] + W[4160] * W[76];
-    return 0;
 }
 
 /* Lines 120 .. 139 of taylor_run's order 19. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_216(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_216(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4315] = W[4307] + W[4309];
     W[4222] = W[11] * W[4221] + W[229] * W[4003] + W[447] * W[3785] + W[665] * W[3567] + W[883] * W[3349]
             + W[1101] * W[3131] + W[1319] * W[2913] + W[1537] * W[2695] + W[1755] * W[2477] + W[1973] * W[2259]
@@ -6639,16 +6264,12 @@ chain5_taylor_run_216(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1095] * W[3137] + W[1313] * W[2919] + W[1531] * W[2701] + W[1749] * W[2483] + W[1967] * W[2265]
             + W[2185] * W[2047] + W[2403] * W[1829] + W[2621] * W[1611] + W[2839] * W[1393] + W[3057] * W[1175]
             + W[3275] * W[957] + W[3493] * W[739] + W[3711] * W[521] + W[3929] * W[303] + W[4147] * W[85];
-    return 0;
 }
 
 /* Lines 160 .. 179 of taylor_run's order 19. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-chain5_taylor_run_218(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+chain5_taylor_run_218(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4226] = W[4223] + W[4225];
     W[4254] = W[4251] + W[4253];
     W[4282] = W[4279] + W[4281];
@@ -6681,489 +6302,259 @@ chain5_taylor_run_218(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[3272] * W[1076] + W[3490] * W[858] + W[3708] * W[640] + W[3926] * W[422] + W[4144] * W[204];
     W[4232] = W[4229] + W[4231];
     W[4260] = W[4257] + W[4259];
-    return 0;
 }
 
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_3(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_4(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_5(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_7(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_8(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_9(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_10(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_11(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_12(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_13(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_14(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_15(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_16(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_17(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_19(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_21(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_23(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_25(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_27(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_29(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_31(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_33(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_35(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_37(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_39(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_41(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_43(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_45(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_47(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_49(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_51(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_53(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_55(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_57(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_59(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_62(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_64(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_66(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_68(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_71(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_73(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_75(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_77(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_80(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_81(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_83(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_85(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_87(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_89(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_90(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_93(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_94(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_96(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_99(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_102(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_104(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_105(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_107(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_109(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_111(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_112(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_114(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_117(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_119(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_120(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_122(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_123(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_125(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_127(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_129(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_132(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_135(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_137(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_139(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_141(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_143(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_146(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_148(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_150(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_152(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_153(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_155(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_156(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_158(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_160(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_162(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_164(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_166(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_167(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_169(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_171(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_173(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_175(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_177(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_178(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_180(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_182(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_184(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_186(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_188(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_189(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_191(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_193(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_195(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_197(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_199(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_200(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_202(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_204(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_206(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_208(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_209(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_213(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_215(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_217(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_219(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_220(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_1(const eomc_real *p, eomc_real *restrict W,
+    eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_2(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_3(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_4(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_5(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_6(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_7(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_8(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_9(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_10(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED int
+chain5_taylor_run_11(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_12(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_13(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_14(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_15(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_16(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_17(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_19(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_21(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_23(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_25(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_27(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_29(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_31(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED int
+chain5_taylor_run_33(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_35(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_37(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_39(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_41(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_43(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_45(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_47(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_49(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_51(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_53(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED int
+chain5_taylor_run_55(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_57(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_59(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_62(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_64(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED int
+chain5_taylor_run_66(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_68(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_71(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_73(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_75(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED int
+chain5_taylor_run_77(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_80(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_81(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_83(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_85(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_87(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_89(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_90(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_93(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_94(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_96(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED int
+chain5_taylor_run_99(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_102(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_104(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_105(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_107(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_109(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_111(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_112(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_114(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_117(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_119(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_120(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_122(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_123(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_125(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_127(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_129(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED int
+chain5_taylor_run_132(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_135(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_137(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_139(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_141(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED int
+chain5_taylor_run_143(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_146(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_148(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_150(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_152(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_153(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_155(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_156(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_158(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_160(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_162(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_164(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_166(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_167(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_169(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_171(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_173(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_175(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_177(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_178(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_180(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_182(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_184(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_186(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_188(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_189(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_191(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_193(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_195(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_197(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_199(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_200(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_202(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_204(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_206(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_208(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED int
+chain5_taylor_run_209(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_213(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_215(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_217(eomc_real *restrict W);
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_219(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED int
+chain5_taylor_run_220(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx);
 static int
 chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     eomc_real *T, eomc_real *X, eomc_tay_solve solve, void *ctx)
@@ -7172,505 +6563,305 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     if (K > 20)
         return 1;
     (void)S, (void)T, (void)t0, (void)p, (void)u;
-    eomc_real W[4578]; /* slot s's coefficient j at W[j * 218 + s], but the
+    eomc_real W[4578]; /* a slot's coefficient j at W[j * 218 + its column], but the
                    * state's: X[j * 10 + i], q's then v's */
     /* order 0 */
-    if (chain5_taylor_run_1(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_2(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_3(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_4(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_5(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_6(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_7(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_8(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_9(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_10(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_11(t0, p, u, W, X, solve, ctx))
+    chain5_taylor_run_1(p, W, X);
+    chain5_taylor_run_2(W, X);
+    chain5_taylor_run_3(W);
+    chain5_taylor_run_4(W);
+    chain5_taylor_run_5(W);
+    chain5_taylor_run_6(W);
+    chain5_taylor_run_7(W);
+    chain5_taylor_run_8(W);
+    chain5_taylor_run_9(W);
+    chain5_taylor_run_10(W);
+    if (chain5_taylor_run_11(W, X, solve, ctx))
         return -1;
     if (K == 1)
         goto out;
     /* order 1 */
-    if (chain5_taylor_run_12(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_13(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_14(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_15(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_16(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_17(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_18(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_19(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_20(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_21(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_22(t0, p, u, W, X, solve, ctx))
+    chain5_taylor_run_12(W, X);
+    chain5_taylor_run_13(W, X);
+    chain5_taylor_run_14(W);
+    chain5_taylor_run_15(W);
+    chain5_taylor_run_16(W);
+    chain5_taylor_run_17(W);
+    chain5_taylor_run_18(W);
+    chain5_taylor_run_19(W);
+    chain5_taylor_run_20(W);
+    chain5_taylor_run_21(W, X);
+    if (chain5_taylor_run_22(W, X, solve, ctx))
         return -1;
     if (K == 2)
         goto out;
     /* order 2 */
-    if (chain5_taylor_run_23(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_24(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_25(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_26(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_27(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_28(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_29(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_30(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_31(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_32(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_33(t0, p, u, W, X, solve, ctx))
+    chain5_taylor_run_23(W, X);
+    chain5_taylor_run_24(W, X);
+    chain5_taylor_run_25(W);
+    chain5_taylor_run_26(W);
+    chain5_taylor_run_27(W);
+    chain5_taylor_run_28(W);
+    chain5_taylor_run_29(W);
+    chain5_taylor_run_30(W);
+    chain5_taylor_run_31(W);
+    chain5_taylor_run_32(W, X);
+    if (chain5_taylor_run_33(W, X, solve, ctx))
         return -1;
     if (K == 3)
         goto out;
     /* order 3 */
-    if (chain5_taylor_run_34(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_35(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_36(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_37(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_38(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_39(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_40(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_41(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_42(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_43(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_44(t0, p, u, W, X, solve, ctx))
+    chain5_taylor_run_34(W, X);
+    chain5_taylor_run_35(W, X);
+    chain5_taylor_run_36(W);
+    chain5_taylor_run_37(W);
+    chain5_taylor_run_38(W);
+    chain5_taylor_run_39(W);
+    chain5_taylor_run_40(W);
+    chain5_taylor_run_41(W);
+    chain5_taylor_run_42(W);
+    chain5_taylor_run_43(W, X);
+    if (chain5_taylor_run_44(W, X, solve, ctx))
         return -1;
     if (K == 4)
         goto out;
     /* order 4 */
-    if (chain5_taylor_run_45(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_46(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_47(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_48(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_49(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_50(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_51(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_52(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_53(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_54(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_55(t0, p, u, W, X, solve, ctx))
+    chain5_taylor_run_45(W, X);
+    chain5_taylor_run_46(W, X);
+    chain5_taylor_run_47(W);
+    chain5_taylor_run_48(W);
+    chain5_taylor_run_49(W);
+    chain5_taylor_run_50(W);
+    chain5_taylor_run_51(W);
+    chain5_taylor_run_52(W);
+    chain5_taylor_run_53(W);
+    chain5_taylor_run_54(W, X);
+    if (chain5_taylor_run_55(W, X, solve, ctx))
         return -1;
     if (K == 5)
         goto out;
     /* order 5 */
-    if (chain5_taylor_run_56(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_57(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_58(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_59(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_60(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_61(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_62(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_63(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_64(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_65(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_66(t0, p, u, W, X, solve, ctx))
+    chain5_taylor_run_56(W, X);
+    chain5_taylor_run_57(W, X);
+    chain5_taylor_run_58(W);
+    chain5_taylor_run_59(W);
+    chain5_taylor_run_60(W);
+    chain5_taylor_run_61(W);
+    chain5_taylor_run_62(W);
+    chain5_taylor_run_63(W);
+    chain5_taylor_run_64(W);
+    chain5_taylor_run_65(W, X);
+    if (chain5_taylor_run_66(W, X, solve, ctx))
         return -1;
     if (K == 6)
         goto out;
     /* order 6 */
-    if (chain5_taylor_run_67(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_68(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_69(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_70(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_71(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_72(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_73(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_74(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_75(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_76(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_77(t0, p, u, W, X, solve, ctx))
+    chain5_taylor_run_67(W, X);
+    chain5_taylor_run_68(W, X);
+    chain5_taylor_run_69(W);
+    chain5_taylor_run_70(W);
+    chain5_taylor_run_71(W);
+    chain5_taylor_run_72(W);
+    chain5_taylor_run_73(W);
+    chain5_taylor_run_74(W);
+    chain5_taylor_run_75(W);
+    chain5_taylor_run_76(W, X);
+    if (chain5_taylor_run_77(W, X, solve, ctx))
         return -1;
     if (K == 7)
         goto out;
     /* order 7 */
-    if (chain5_taylor_run_78(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_79(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_80(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_81(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_82(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_83(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_84(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_85(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_86(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_87(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_88(t0, p, u, W, X, solve, ctx))
+    chain5_taylor_run_78(W, X);
+    chain5_taylor_run_79(W, X);
+    chain5_taylor_run_80(W);
+    chain5_taylor_run_81(W);
+    chain5_taylor_run_82(W);
+    chain5_taylor_run_83(W);
+    chain5_taylor_run_84(W);
+    chain5_taylor_run_85(W);
+    chain5_taylor_run_86(W);
+    chain5_taylor_run_87(W, X);
+    if (chain5_taylor_run_88(W, X, solve, ctx))
         return -1;
     if (K == 8)
         goto out;
     /* order 8 */
-    if (chain5_taylor_run_89(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_90(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_91(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_92(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_93(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_94(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_95(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_96(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_97(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_98(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_99(t0, p, u, W, X, solve, ctx))
+    chain5_taylor_run_89(W, X);
+    chain5_taylor_run_90(W, X);
+    chain5_taylor_run_91(W);
+    chain5_taylor_run_92(W);
+    chain5_taylor_run_93(W);
+    chain5_taylor_run_94(W);
+    chain5_taylor_run_95(W);
+    chain5_taylor_run_96(W);
+    chain5_taylor_run_97(W);
+    chain5_taylor_run_98(W, X);
+    if (chain5_taylor_run_99(W, X, solve, ctx))
         return -1;
     if (K == 9)
         goto out;
     /* order 9 */
-    if (chain5_taylor_run_100(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_101(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_102(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_103(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_104(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_105(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_106(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_107(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_108(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_109(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_110(t0, p, u, W, X, solve, ctx))
+    chain5_taylor_run_100(W, X);
+    chain5_taylor_run_101(W, X);
+    chain5_taylor_run_102(W);
+    chain5_taylor_run_103(W);
+    chain5_taylor_run_104(W);
+    chain5_taylor_run_105(W);
+    chain5_taylor_run_106(W);
+    chain5_taylor_run_107(W);
+    chain5_taylor_run_108(W);
+    chain5_taylor_run_109(W, X);
+    if (chain5_taylor_run_110(W, X, solve, ctx))
         return -1;
     if (K == 10)
         goto out;
     /* order 10 */
-    if (chain5_taylor_run_111(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_112(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_113(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_114(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_115(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_116(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_117(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_118(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_119(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_120(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_121(t0, p, u, W, X, solve, ctx))
+    chain5_taylor_run_111(W, X);
+    chain5_taylor_run_112(W, X);
+    chain5_taylor_run_113(W);
+    chain5_taylor_run_114(W);
+    chain5_taylor_run_115(W);
+    chain5_taylor_run_116(W);
+    chain5_taylor_run_117(W);
+    chain5_taylor_run_118(W);
+    chain5_taylor_run_119(W);
+    chain5_taylor_run_120(W, X);
+    if (chain5_taylor_run_121(W, X, solve, ctx))
         return -1;
     if (K == 11)
         goto out;
     /* order 11 */
-    if (chain5_taylor_run_122(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_123(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_124(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_125(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_126(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_127(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_128(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_129(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_130(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_131(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_132(t0, p, u, W, X, solve, ctx))
+    chain5_taylor_run_122(W, X);
+    chain5_taylor_run_123(W, X);
+    chain5_taylor_run_124(W);
+    chain5_taylor_run_125(W);
+    chain5_taylor_run_126(W);
+    chain5_taylor_run_127(W);
+    chain5_taylor_run_128(W);
+    chain5_taylor_run_129(W);
+    chain5_taylor_run_130(W);
+    chain5_taylor_run_131(W, X);
+    if (chain5_taylor_run_132(W, X, solve, ctx))
         return -1;
     if (K == 12)
         goto out;
     /* order 12 */
-    if (chain5_taylor_run_133(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_134(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_135(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_136(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_137(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_138(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_139(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_140(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_141(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_142(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_143(t0, p, u, W, X, solve, ctx))
+    chain5_taylor_run_133(W, X);
+    chain5_taylor_run_134(W, X);
+    chain5_taylor_run_135(W);
+    chain5_taylor_run_136(W);
+    chain5_taylor_run_137(W);
+    chain5_taylor_run_138(W);
+    chain5_taylor_run_139(W);
+    chain5_taylor_run_140(W);
+    chain5_taylor_run_141(W);
+    chain5_taylor_run_142(W, X);
+    if (chain5_taylor_run_143(W, X, solve, ctx))
         return -1;
     if (K == 13)
         goto out;
     /* order 13 */
-    if (chain5_taylor_run_144(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_145(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_146(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_147(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_148(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_149(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_150(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_151(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_152(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_153(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_154(t0, p, u, W, X, solve, ctx))
+    chain5_taylor_run_144(W, X);
+    chain5_taylor_run_145(W, X);
+    chain5_taylor_run_146(W);
+    chain5_taylor_run_147(W);
+    chain5_taylor_run_148(W);
+    chain5_taylor_run_149(W);
+    chain5_taylor_run_150(W);
+    chain5_taylor_run_151(W);
+    chain5_taylor_run_152(W);
+    chain5_taylor_run_153(W, X);
+    if (chain5_taylor_run_154(W, X, solve, ctx))
         return -1;
     if (K == 14)
         goto out;
     /* order 14 */
-    if (chain5_taylor_run_155(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_156(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_157(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_158(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_159(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_160(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_161(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_162(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_163(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_164(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_165(t0, p, u, W, X, solve, ctx))
+    chain5_taylor_run_155(W, X);
+    chain5_taylor_run_156(W, X);
+    chain5_taylor_run_157(W);
+    chain5_taylor_run_158(W);
+    chain5_taylor_run_159(W);
+    chain5_taylor_run_160(W);
+    chain5_taylor_run_161(W);
+    chain5_taylor_run_162(W);
+    chain5_taylor_run_163(W);
+    chain5_taylor_run_164(W, X);
+    if (chain5_taylor_run_165(W, X, solve, ctx))
         return -1;
     if (K == 15)
         goto out;
     /* order 15 */
-    if (chain5_taylor_run_166(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_167(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_168(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_169(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_170(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_171(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_172(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_173(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_174(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_175(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_176(t0, p, u, W, X, solve, ctx))
+    chain5_taylor_run_166(W, X);
+    chain5_taylor_run_167(W, X);
+    chain5_taylor_run_168(W);
+    chain5_taylor_run_169(W);
+    chain5_taylor_run_170(W);
+    chain5_taylor_run_171(W);
+    chain5_taylor_run_172(W);
+    chain5_taylor_run_173(W);
+    chain5_taylor_run_174(W);
+    chain5_taylor_run_175(W, X);
+    if (chain5_taylor_run_176(W, X, solve, ctx))
         return -1;
     if (K == 16)
         goto out;
     /* order 16 */
-    if (chain5_taylor_run_177(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_178(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_179(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_180(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_181(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_182(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_183(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_184(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_185(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_186(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_187(t0, p, u, W, X, solve, ctx))
+    chain5_taylor_run_177(W, X);
+    chain5_taylor_run_178(W, X);
+    chain5_taylor_run_179(W);
+    chain5_taylor_run_180(W);
+    chain5_taylor_run_181(W);
+    chain5_taylor_run_182(W);
+    chain5_taylor_run_183(W);
+    chain5_taylor_run_184(W);
+    chain5_taylor_run_185(W);
+    chain5_taylor_run_186(W, X);
+    if (chain5_taylor_run_187(W, X, solve, ctx))
         return -1;
     if (K == 17)
         goto out;
     /* order 17 */
-    if (chain5_taylor_run_188(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_189(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_190(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_191(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_192(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_193(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_194(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_195(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_196(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_197(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_198(t0, p, u, W, X, solve, ctx))
+    chain5_taylor_run_188(W, X);
+    chain5_taylor_run_189(W, X);
+    chain5_taylor_run_190(W);
+    chain5_taylor_run_191(W);
+    chain5_taylor_run_192(W);
+    chain5_taylor_run_193(W);
+    chain5_taylor_run_194(W);
+    chain5_taylor_run_195(W);
+    chain5_taylor_run_196(W);
+    chain5_taylor_run_197(W, X);
+    if (chain5_taylor_run_198(W, X, solve, ctx))
         return -1;
     if (K == 18)
         goto out;
     /* order 18 */
-    if (chain5_taylor_run_199(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_200(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_201(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_202(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_203(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_204(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_205(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_206(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_207(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_208(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_209(t0, p, u, W, X, solve, ctx))
+    chain5_taylor_run_199(W, X);
+    chain5_taylor_run_200(W, X);
+    chain5_taylor_run_201(W);
+    chain5_taylor_run_202(W);
+    chain5_taylor_run_203(W);
+    chain5_taylor_run_204(W);
+    chain5_taylor_run_205(W);
+    chain5_taylor_run_206(W);
+    chain5_taylor_run_207(W);
+    chain5_taylor_run_208(W, X);
+    if (chain5_taylor_run_209(W, X, solve, ctx))
         return -1;
     if (K == 19)
         goto out;
     /* order 19 */
-    if (chain5_taylor_run_210(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_211(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_212(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_213(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_214(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_215(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_216(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_217(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_218(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_219(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (chain5_taylor_run_220(t0, p, u, W, X, solve, ctx))
+    chain5_taylor_run_210(W, X);
+    chain5_taylor_run_211(W, X);
+    chain5_taylor_run_212(W);
+    chain5_taylor_run_213(W);
+    chain5_taylor_run_214(W);
+    chain5_taylor_run_215(W);
+    chain5_taylor_run_216(W);
+    chain5_taylor_run_217(W);
+    chain5_taylor_run_218(W);
+    chain5_taylor_run_219(W, X);
+    if (chain5_taylor_run_220(W, X, solve, ctx))
         return -1;
 out:
     return 0;
@@ -7783,6 +6974,7 @@ const eomc_model_ext chain5_model_ext = {
 #endif /* EOMC_UNIT 3 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 4
+#include "eomc_taylor.h"
 /* The twin's names, linked beside the model's. */
 #if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
 #define chain5_taylor_run_1 chain5_taylor_run_1_ext
@@ -7908,12 +7100,10 @@ const eomc_model_ext chain5_model_ext = {
 #endif
 #ifndef EOMC_EXTENDED
 /* Lines 0 .. 19 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_1(const eomc_real *p, eomc_real *restrict W,
+    eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1] = sin(X[0]);
     W[2] = cos(X[0]);
     W[4] = X[0] + X[1];
@@ -7934,16 +7124,12 @@ chain5_taylor_run_1(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[35] = W[2] * W[32];
     W[7] = W[1] + W[5];
     W[8] = W[2] + W[6];
-    return 0;
 }
 
 /* Lines 20 .. 39 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_2(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[11] = sin(W[10]);
     W[12] = cos(W[10]);
     W[16] = W[10] + X[3];
@@ -7964,16 +7150,12 @@ chain5_taylor_run_2(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[40] = W[36] * W[37];
     W[42] = W[12] * W[41];
     W[43] = W[11] * W[41];
-    return 0;
 }
 
 /* Lines 40 .. 59 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_3(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_3(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[19] = W[13] + W[17];
     W[20] = W[14] + W[18];
     W[23] = sin(W[22]);
@@ -7994,16 +7176,12 @@ chain5_taylor_run_3(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[58] = W[56] * W[23];
     W[94] = W[23] + W[93];
     W[98] = W[24] + W[97];
-    return 0;
 }
 
 /* Lines 60 .. 79 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_4(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_4(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[123] = W[23] + W[122];
     W[126] = W[24] + W[125];
     W[145] = W[18] + W[24];
@@ -8024,16 +7202,12 @@ chain5_taylor_run_4(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[146] = W[18] + W[145];
     W[149] = W[17] + W[148];
     W[165] = W[49] + W[163];
-    return 0;
 }
 
 /* Lines 80 .. 99 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_5(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_5(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[166] = W[50] + W[164];
     W[54] = W[51] * W[53];
     W[55] = W[51] * W[52];
@@ -8054,16 +7228,12 @@ chain5_taylor_run_5(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[110] = W[96] + W[104];
     W[128] = W[124] + W[127];
     W[135] = W[11] + W[129];
-    return 0;
 }
 
 /* Lines 100 .. 119 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_6(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[138] = W[12] + W[132];
     W[153] = W[151] + W[152];
     W[167] = W[54] + W[165];
@@ -8084,16 +7254,12 @@ chain5_taylor_run_6(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[113] = W[5] + W[107];
     W[116] = W[6] + W[110];
     W[131] = W[128] + W[130];
-    return 0;
 }
 
 /* Lines 120 .. 139 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_7(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_7(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[154] = W[150] + W[153];
     W[157] = W[33] * W[72];
     W[158] = W[33] * W[100];
@@ -8114,16 +7280,12 @@ chain5_taylor_run_7(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[106] = W[103] + W[105];
     W[134] = W[131] + W[133];
     W[155] = W[147] + W[154];
-    return 0;
 }
 
 /* Lines 140 .. 159 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_8(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_8(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[175] = W[164] + W[171];
     W[177] = W[163] + W[173];
     W[183] = W[169] - W[170];
@@ -8144,16 +7306,12 @@ chain5_taylor_run_8(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[156] = W[33] * W[155];
     W[179] = W[162] + W[175];
     W[181] = W[161] + W[177];
-    return 0;
 }
 
 /* Lines 160 .. 179 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_9(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_9(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[184] = W[172] + W[183];
     W[188] = W[33] * W[183];
     W[176] = W[11] * W[175];
@@ -8174,16 +7332,12 @@ chain5_taylor_run_9(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[120] = W[33] * W[84];
     W[121] = W[33] * W[112];
     W[141] = W[33] * W[140];
-    return 0;
 }
 
 /* Lines 180 .. 199 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_10(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_10(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[186] = W[33] * W[185];
     W[197] = W[176] + W[185];
     W[205] = W[1] * W[203];
@@ -8204,16 +7358,13 @@ chain5_taylor_run_10(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[202] = W[33] * W[201];
     W[206] = W[201] + W[205];
     W[208] = W[206] - W[207];
-    return 0;
 }
 
 /* Lines 200 .. 218 of taylor_run's order 0, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_11(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+chain5_taylor_run_11(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[211] = W[67] + W[202];
     W[209] = W[33] * W[208];
     W[210] = W[69] + W[209];
@@ -8243,12 +7394,9 @@ chain5_taylor_run_11(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_12(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_12(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[219] = X[10] * W[2];
     W[220] = -X[10] * W[1];
     W[222] = X[10] + X[11];
@@ -8269,16 +7417,12 @@ chain5_taylor_run_12(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[264] = X[18] + W[259];
     W[284] = W[62] * W[223];
     W[255] = W[6] * W[254] + W[224] * W[36];
-    return 0;
 }
 
 /* Lines 20 .. 39 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_13(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_13(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[256] = W[5] * W[254] + W[223] * W[36];
     W[231] = W[225] + W[229];
     W[232] = W[226] + W[230];
@@ -8299,16 +7443,12 @@ chain5_taylor_run_13(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[242] = -W[240] * W[23];
     W[278] = W[57] * W[235];
     W[311] = W[235] + W[310];
-    return 0;
 }
 
 /* Lines 40 .. 59 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_14(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_14(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[315] = W[236] + W[314];
     W[340] = W[229] + W[235];
     W[343] = W[230] + W[236];
@@ -8329,16 +7469,12 @@ chain5_taylor_run_14(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[366] = W[235] + W[241];
     W[381] = W[262] + W[379];
     W[382] = W[263] + W[380];
-    return 0;
 }
 
 /* Lines 60 .. 79 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_15(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_15(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[267] = W[46] * W[266] + W[264] * W[48];
     W[268] = W[46] * W[265] + W[264] * W[47];
     W[270] = W[24] * W[269] + W[242] * W[51];
@@ -8359,16 +7495,12 @@ chain5_taylor_run_15(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[288] = W[23] * W[243] + W[241] * W[25];
     W[289] = W[24] * W[244] + W[242] * W[26];
     W[313] = W[23] * W[312] + W[241] * W[94];
-    return 0;
 }
 
 /* Lines 80 .. 99 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_16(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_16(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[317] = W[24] * W[316] + W[242] * W[98];
     W[342] = W[23] * W[341] + W[241] * W[123];
     W[345] = W[24] * W[344] + W[242] * W[126];
@@ -8389,16 +7521,12 @@ chain5_taylor_run_16(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[386] = W[273] + W[384];
     W[292] = W[17] * W[291] + W[235] * W[73];
     W[295] = W[18] * W[294] + W[236] * W[76];
-    return 0;
 }
 
 /* Lines 100 .. 119 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_17(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_17(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[320] = W[17] * W[319] + W[235] * W[101];
     W[323] = W[18] * W[322] + W[236] * W[104];
     W[348] = W[17] * W[347] + W[235] * W[129];
@@ -8419,16 +7547,12 @@ chain5_taylor_run_17(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[377] = W[33] * W[346];
     W[378] = W[33] * W[371];
     W[389] = W[384] + W[386];
-    return 0;
 }
 
 /* Lines 140 .. 159 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_19(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_19(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[307] = W[6] * W[306] + W[224] * W[88];
     W[332] = W[5] * W[331] + W[223] * W[113];
     W[335] = W[6] * W[334] + W[224] * W[116];
@@ -8449,16 +7573,12 @@ chain5_taylor_run_19(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[396] = W[12] * W[395] + W[230] * W[177];
     W[409] = W[1] * W[408] + W[219] * W[190];
     W[412] = W[2] * W[411] + W[220] * W[193];
-    return 0;
 }
 
 /* Lines 180 .. 199 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_21(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_21(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[405] = W[279] + W[404];
     W[416] = W[415] - W[396];
     W[309] = W[33] * W[308];
@@ -8479,16 +7599,12 @@ chain5_taylor_run_21(eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[20] = X[15] / 2.0;
     X[21] = X[16] / 2.0;
     X[22] = X[17] / 2.0;
-    return 0;
 }
 
 /* Lines 0 .. 19 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_23(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_23(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[437] = (X[10] * W[220] + 2.0 * X[20] * W[2]) / 2.0;
     W[438] = -((X[10] * W[219] + 2.0 * X[20] * W[1])) / 2.0;
     W[440] = X[20] + X[21];
@@ -8509,16 +7625,12 @@ chain5_taylor_run_23(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[482] = X[28] + W[477];
     W[502] = W[62] * W[441];
     W[473] = W[6] * W[472] + W[224] * W[254] + W[442] * W[36];
-    return 0;
 }
 
 /* Lines 40 .. 59 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_25(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_25(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[533] = W[454] + W[532];
     W[558] = W[447] + W[453];
     W[561] = W[448] + W[454];
@@ -8539,16 +7651,12 @@ chain5_taylor_run_25(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[584] = W[453] + W[459];
     W[599] = W[480] + W[597];
     W[600] = W[481] + W[598];
-    return 0;
 }
 
 /* Lines 80 .. 99 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_27(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_27(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[535] = W[24] * W[534] + W[242] * W[316] + W[460] * W[98];
     W[560] = W[23] * W[559] + W[241] * W[341] + W[459] * W[123];
     W[563] = W[24] * W[562] + W[242] * W[344] + W[460] * W[126];
@@ -8569,16 +7677,12 @@ chain5_taylor_run_27(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[604] = W[491] + W[602];
     W[510] = W[17] * W[509] + W[235] * W[291] + W[453] * W[73];
     W[513] = W[18] * W[512] + W[236] * W[294] + W[454] * W[76];
-    return 0;
 }
 
 /* Lines 120 .. 139 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_29(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_29(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[609] = W[601] + W[603];
     W[516] = W[11] * W[515] + W[229] * W[297] + W[447] * W[79];
     W[519] = W[12] * W[518] + W[230] * W[300] + W[448] * W[82];
@@ -8599,16 +7703,12 @@ chain5_taylor_run_29(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[626] = W[437] + W[521];
     W[629] = W[438] + W[524];
     W[522] = W[5] * W[521] + W[223] * W[303] + W[441] * W[85];
-    return 0;
 }
 
 /* Lines 160 .. 179 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_31(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_31(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[520] = W[517] + W[519];
     W[548] = W[545] + W[547];
     W[576] = W[573] + W[575];
@@ -8629,16 +7729,13 @@ chain5_taylor_run_31(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[643] = W[2] * W[640] + W[220] * W[422] + W[438] * W[204];
     W[526] = W[523] + W[525];
     W[554] = W[551] + W[553];
-    return 0;
 }
 
 /* Lines 200 .. 212 of taylor_run's order 2, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_33(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+chain5_taylor_run_33(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[33] = X[28] / 3.0;
     X[34] = X[29] / 3.0;
     W[649] = W[414] * W[431] + W[632] * W[213] + W[309] * W[432] + W[527] * W[214] + W[338] * W[433]
@@ -8666,12 +7763,9 @@ chain5_taylor_run_33(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_35(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_35(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[692] = W[5] * W[690] + W[223] * W[472] + W[441] * W[254] + W[659] * W[36];
     W[667] = W[661] + W[665];
     W[668] = W[662] + W[666];
@@ -8692,16 +7786,12 @@ chain5_taylor_run_35(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[678] = -((W[240] * W[459] + 2.0 * W[458] * W[241] + 3.0 * W[676] * W[23])) / 3.0;
     W[714] = W[57] * W[671];
     W[747] = W[671] + W[746];
-    return 0;
 }
 
 /* Lines 60 .. 79 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_37(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_37(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[703] = W[46] * W[702] + W[264] * W[484] + W[482] * W[266] + W[700] * W[48];
     W[704] = W[46] * W[701] + W[264] * W[483] + W[482] * W[265] + W[700] * W[47];
     W[706] = W[24] * W[705] + W[242] * W[487] + W[460] * W[269] + W[678] * W[51];
@@ -8722,16 +7812,12 @@ chain5_taylor_run_37(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[724] = W[23] * W[679] + W[241] * W[461] + W[459] * W[243] + W[677] * W[25];
     W[725] = W[24] * W[680] + W[242] * W[462] + W[460] * W[244] + W[678] * W[26];
     W[749] = W[23] * W[748] + W[241] * W[530] + W[459] * W[312] + W[677] * W[94];
-    return 0;
 }
 
 /* Lines 100 .. 119 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_39(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_39(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[756] = W[17] * W[755] + W[235] * W[537] + W[453] * W[319] + W[671] * W[101];
     W[759] = W[18] * W[758] + W[236] * W[540] + W[454] * W[322] + W[672] * W[104];
     W[784] = W[17] * W[783] + W[235] * W[565] + W[453] * W[347] + W[671] * W[129];
@@ -8752,16 +7838,12 @@ chain5_taylor_run_39(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[813] = W[33] * W[782];
     W[814] = W[33] * W[807];
     W[825] = W[820] + W[822];
-    return 0;
 }
 
 /* Lines 140 .. 159 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_41(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_41(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[743] = W[6] * W[742] + W[224] * W[524] + W[442] * W[306] + W[660] * W[88];
     W[768] = W[5] * W[767] + W[223] * W[549] + W[441] * W[331] + W[659] * W[113];
     W[771] = W[6] * W[770] + W[224] * W[552] + W[442] * W[334] + W[660] * W[116];
@@ -8782,16 +7864,12 @@ chain5_taylor_run_41(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[832] = W[12] * W[831] + W[230] * W[613] + W[448] * W[395] + W[666] * W[177];
     W[845] = W[1] * W[844] + W[219] * W[626] + W[437] * W[408] + W[655] * W[190];
     W[848] = W[2] * W[847] + W[220] * W[629] + W[438] * W[411] + W[656] * W[193];
-    return 0;
 }
 
 /* Lines 180 .. 199 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_43(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_43(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[841] = W[715] + W[840];
     W[852] = W[851] - W[832];
     W[745] = W[33] * W[744];
@@ -8812,16 +7890,12 @@ chain5_taylor_run_43(eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[40] = X[35] / 4.0;
     X[41] = X[36] / 4.0;
     X[42] = X[37] / 4.0;
-    return 0;
 }
 
 /* Lines 0 .. 19 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_45(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_45(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[873] = (X[10] * W[656] + 2.0 * X[20] * W[438] + 3.0 * X[30] * W[220] + 4.0 * X[40] * W[2]) / 4.0;
     W[874] = -((X[10] * W[655] + 2.0 * X[20] * W[437] + 3.0 * X[30] * W[219] + 4.0 * X[40] * W[1])) / 4.0;
     W[876] = X[40] + X[41];
@@ -8842,16 +7916,12 @@ chain5_taylor_run_45(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[918] = X[48] + W[913];
     W[938] = W[62] * W[877];
     W[909] = W[6] * W[908] + W[224] * W[690] + W[442] * W[472] + W[660] * W[254] + W[878] * W[36];
-    return 0;
 }
 
 /* Lines 40 .. 59 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_47(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_47(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[969] = W[890] + W[968];
     W[994] = W[883] + W[889];
     W[997] = W[884] + W[890];
@@ -8872,16 +7942,12 @@ chain5_taylor_run_47(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1020] = W[889] + W[895];
     W[1035] = W[916] + W[1033];
     W[1036] = W[917] + W[1034];
-    return 0;
 }
 
 /* Lines 80 .. 99 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_49(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_49(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[971] = W[24] * W[970] + W[242] * W[752] + W[460] * W[534] + W[678] * W[316] + W[896] * W[98];
     W[996] = W[23] * W[995] + W[241] * W[777] + W[459] * W[559] + W[677] * W[341] + W[895] * W[123];
     W[999] = W[24] * W[998] + W[242] * W[780] + W[460] * W[562] + W[678] * W[344] + W[896] * W[126];
@@ -8902,16 +7968,12 @@ chain5_taylor_run_49(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1040] = W[927] + W[1038];
     W[946] = W[17] * W[945] + W[235] * W[727] + W[453] * W[509] + W[671] * W[291] + W[889] * W[73];
     W[949] = W[18] * W[948] + W[236] * W[730] + W[454] * W[512] + W[672] * W[294] + W[890] * W[76];
-    return 0;
 }
 
 /* Lines 120 .. 139 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_51(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_51(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1045] = W[1037] + W[1039];
     W[952] = W[11] * W[951] + W[229] * W[733] + W[447] * W[515] + W[665] * W[297] + W[883] * W[79];
     W[955] = W[12] * W[954] + W[230] * W[736] + W[448] * W[518] + W[666] * W[300] + W[884] * W[82];
@@ -8932,16 +7994,12 @@ chain5_taylor_run_51(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1062] = W[873] + W[957];
     W[1065] = W[874] + W[960];
     W[958] = W[5] * W[957] + W[223] * W[739] + W[441] * W[521] + W[659] * W[303] + W[877] * W[85];
-    return 0;
 }
 
 /* Lines 160 .. 179 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_53(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_53(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[956] = W[953] + W[955];
     W[984] = W[981] + W[983];
     W[1012] = W[1009] + W[1011];
@@ -8962,16 +8020,13 @@ chain5_taylor_run_53(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1079] = W[2] * W[1076] + W[220] * W[858] + W[438] * W[640] + W[656] * W[422] + W[874] * W[204];
     W[962] = W[959] + W[961];
     W[990] = W[987] + W[989];
-    return 0;
 }
 
 /* Lines 200 .. 212 of taylor_run's order 4, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_55(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+chain5_taylor_run_55(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[53] = X[48] / 5.0;
     X[54] = X[49] / 5.0;
     W[1085] = W[414] * W[867] + W[632] * W[649] + W[850] * W[431] + W[1068] * W[213] + W[309] * W[868]
@@ -9009,12 +8064,9 @@ chain5_taylor_run_55(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_57(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_57(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1128] = W[5] * W[1126] + W[223] * W[908] + W[441] * W[690] + W[659] * W[472] + W[877] * W[254]
             + W[1095] * W[36];
     W[1103] = W[1097] + W[1101];
@@ -9044,16 +8096,12 @@ chain5_taylor_run_57(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + 5.0 * W[1112] * W[23])) / 5.0;
     W[1150] = W[57] * W[1107];
     W[1183] = W[1107] + W[1182];
-    return 0;
 }
 
 /* Lines 60 .. 79 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_59(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_59(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1139] = W[46] * W[1138] + W[264] * W[920] + W[482] * W[702] + W[700] * W[484] + W[918] * W[266]
             + W[1136] * W[48];
     W[1140] = W[46] * W[1137] + W[264] * W[919] + W[482] * W[701] + W[700] * W[483] + W[918] * W[265]
@@ -9083,16 +8131,12 @@ chain5_taylor_run_59(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1114] * W[26];
     W[1185] = W[23] * W[1184] + W[241] * W[966] + W[459] * W[748] + W[677] * W[530] + W[895] * W[312]
             + W[1113] * W[94];
-    return 0;
 }
 
 /* Lines 120 .. 139 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_62(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_62(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1263] = W[1255] + W[1257];
     W[1170] = W[11] * W[1169] + W[229] * W[951] + W[447] * W[733] + W[665] * W[515] + W[883] * W[297]
             + W[1101] * W[79];
@@ -9122,16 +8166,12 @@ chain5_taylor_run_62(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1283] = W[1092] + W[1178];
     W[1176] = W[5] * W[1175] + W[223] * W[957] + W[441] * W[739] + W[659] * W[521] + W[877] * W[303]
             + W[1095] * W[85];
-    return 0;
 }
 
 /* Lines 160 .. 179 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_64(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_64(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1174] = W[1171] + W[1173];
     W[1202] = W[1199] + W[1201];
     W[1230] = W[1227] + W[1229];
@@ -9156,16 +8196,13 @@ chain5_taylor_run_64(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1092] * W[204];
     W[1180] = W[1177] + W[1179];
     W[1208] = W[1205] + W[1207];
-    return 0;
 }
 
 /* Lines 200 .. 212 of taylor_run's order 5, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_66(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+chain5_taylor_run_66(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[63] = X[58] / 6.0;
     X[64] = X[59] / 6.0;
     W[1303] = W[414] * W[1085] + W[632] * W[867] + W[850] * W[649] + W[1068] * W[431] + W[1286] * W[213]
@@ -9208,12 +8245,9 @@ chain5_taylor_run_66(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 20 .. 39 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_68(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_68(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1346] = W[5] * W[1344] + W[223] * W[1126] + W[441] * W[908] + W[659] * W[690] + W[877] * W[472]
             + W[1095] * W[254] + W[1313] * W[36];
     W[1321] = W[1315] + W[1319];
@@ -9243,16 +8277,12 @@ chain5_taylor_run_68(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + 5.0 * W[1112] * W[241] + 6.0 * W[1330] * W[23])) / 6.0;
     W[1368] = W[57] * W[1325];
     W[1401] = W[1325] + W[1400];
-    return 0;
 }
 
 /* Lines 80 .. 99 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_71(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_71(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1407] = W[24] * W[1406] + W[242] * W[1188] + W[460] * W[970] + W[678] * W[752] + W[896] * W[534]
             + W[1114] * W[316] + W[1332] * W[98];
     W[1432] = W[23] * W[1431] + W[241] * W[1213] + W[459] * W[995] + W[677] * W[777] + W[895] * W[559]
@@ -9280,16 +8310,12 @@ chain5_taylor_run_71(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1107] * W[291] + W[1325] * W[73];
     W[1385] = W[18] * W[1384] + W[236] * W[1166] + W[454] * W[948] + W[672] * W[730] + W[890] * W[512]
             + W[1108] * W[294] + W[1326] * W[76];
-    return 0;
 }
 
 /* Lines 120 .. 139 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_73(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_73(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1481] = W[1473] + W[1475];
     W[1388] = W[11] * W[1387] + W[229] * W[1169] + W[447] * W[951] + W[665] * W[733] + W[883] * W[515]
             + W[1101] * W[297] + W[1319] * W[79];
@@ -9319,16 +8345,12 @@ chain5_taylor_run_73(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1501] = W[1310] + W[1396];
     W[1394] = W[5] * W[1393] + W[223] * W[1175] + W[441] * W[957] + W[659] * W[739] + W[877] * W[521]
             + W[1095] * W[303] + W[1313] * W[85];
-    return 0;
 }
 
 /* Lines 160 .. 179 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_75(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_75(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1392] = W[1389] + W[1391];
     W[1420] = W[1417] + W[1419];
     W[1448] = W[1445] + W[1447];
@@ -9353,16 +8375,13 @@ chain5_taylor_run_75(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1092] * W[422] + W[1310] * W[204];
     W[1398] = W[1395] + W[1397];
     W[1426] = W[1423] + W[1425];
-    return 0;
 }
 
 /* Lines 200 .. 212 of taylor_run's order 6, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_77(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+chain5_taylor_run_77(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[73] = X[68] / 7.0;
     X[74] = X[69] / 7.0;
     W[1521] = W[414] * W[1303] + W[632] * W[1085] + W[850] * W[867] + W[1068] * W[649] + W[1286] * W[431]
@@ -9409,12 +8428,9 @@ chain5_taylor_run_77(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_80(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_80(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1623] = W[1544] + W[1622];
     W[1648] = W[1537] + W[1543];
     W[1651] = W[1538] + W[1544];
@@ -9439,16 +8455,12 @@ chain5_taylor_run_80(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1674] = W[1543] + W[1549];
     W[1689] = W[1570] + W[1687];
     W[1690] = W[1571] + W[1688];
-    return 0;
 }
 
 /* Lines 60 .. 79 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_81(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_81(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1575] = W[46] * W[1574] + W[264] * W[1356] + W[482] * W[1138] + W[700] * W[920] + W[918] * W[702]
             + W[1136] * W[484] + W[1354] * W[266] + W[1572] * W[48];
     W[1576] = W[46] * W[1573] + W[264] * W[1355] + W[482] * W[1137] + W[700] * W[919] + W[918] * W[701]
@@ -9478,16 +8490,12 @@ chain5_taylor_run_81(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1114] * W[462] + W[1332] * W[244] + W[1550] * W[26];
     W[1621] = W[23] * W[1620] + W[241] * W[1402] + W[459] * W[1184] + W[677] * W[966] + W[895] * W[748]
             + W[1113] * W[530] + W[1331] * W[312] + W[1549] * W[94];
-    return 0;
 }
 
 /* Lines 100 .. 119 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_83(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_83(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1628] = W[17] * W[1627] + W[235] * W[1409] + W[453] * W[1191] + W[671] * W[973] + W[889] * W[755]
             + W[1107] * W[537] + W[1325] * W[319] + W[1543] * W[101];
     W[1631] = W[18] * W[1630] + W[236] * W[1412] + W[454] * W[1194] + W[672] * W[976] + W[890] * W[758]
@@ -9514,16 +8522,12 @@ chain5_taylor_run_83(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1685] = W[33] * W[1654];
     W[1686] = W[33] * W[1679];
     W[1697] = W[1692] + W[1694];
-    return 0;
 }
 
 /* Lines 140 .. 159 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_85(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_85(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1615] = W[6] * W[1614] + W[224] * W[1396] + W[442] * W[1178] + W[660] * W[960] + W[878] * W[742]
             + W[1096] * W[524] + W[1314] * W[306] + W[1532] * W[88];
     W[1640] = W[5] * W[1639] + W[223] * W[1421] + W[441] * W[1203] + W[659] * W[985] + W[877] * W[767]
@@ -9553,16 +8557,12 @@ chain5_taylor_run_85(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1091] * W[626] + W[1309] * W[408] + W[1527] * W[190];
     W[1720] = W[2] * W[1719] + W[220] * W[1501] + W[438] * W[1283] + W[656] * W[1065] + W[874] * W[847]
             + W[1092] * W[629] + W[1310] * W[411] + W[1528] * W[193];
-    return 0;
 }
 
 /* Lines 180 .. 199 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_87(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_87(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1713] = W[1587] + W[1712];
     W[1724] = W[1723] - W[1704];
     W[1617] = W[33] * W[1616];
@@ -9583,16 +8583,12 @@ chain5_taylor_run_87(eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[80] = X[75] / 8.0;
     X[81] = X[76] / 8.0;
     X[82] = X[77] / 8.0;
-    return 0;
 }
 
 /* Lines 0 .. 19 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_89(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_89(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1745] = (X[10] * W[1528] + 2.0 * X[20] * W[1310] + 3.0 * X[30] * W[1092] + 4.0 * X[40] * W[874]
             + 5.0 * X[50] * W[656] + 6.0 * X[60] * W[438] + 7.0 * X[70] * W[220] + 8.0 * X[80] * W[2]) / 8.0;
     W[1746] = -((X[10] * W[1527] + 2.0 * X[20] * W[1309] + 3.0 * X[30] * W[1091] + 4.0 * X[40] * W[873]
@@ -9622,16 +8618,12 @@ chain5_taylor_run_89(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1810] = W[62] * W[1749];
     W[1781] = W[6] * W[1780] + W[224] * W[1562] + W[442] * W[1344] + W[660] * W[1126] + W[878] * W[908]
             + W[1096] * W[690] + W[1314] * W[472] + W[1532] * W[254] + W[1750] * W[36];
-    return 0;
 }
 
 /* Lines 20 .. 39 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_90(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_90(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1782] = W[5] * W[1780] + W[223] * W[1562] + W[441] * W[1344] + W[659] * W[1126] + W[877] * W[908]
             + W[1095] * W[690] + W[1313] * W[472] + W[1531] * W[254] + W[1749] * W[36];
     W[1757] = W[1751] + W[1755];
@@ -9661,16 +8653,12 @@ chain5_taylor_run_90(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + 5.0 * W[1112] * W[677] + 6.0 * W[1330] * W[459] + 7.0 * W[1548] * W[241] + 8.0 * W[1766] * W[23])) / 8.0;
     W[1804] = W[57] * W[1761];
     W[1837] = W[1761] + W[1836];
-    return 0;
 }
 
 /* Lines 80 .. 99 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_93(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_93(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1843] = W[24] * W[1842] + W[242] * W[1624] + W[460] * W[1406] + W[678] * W[1188] + W[896] * W[970]
             + W[1114] * W[752] + W[1332] * W[534] + W[1550] * W[316] + W[1768] * W[98];
     W[1868] = W[23] * W[1867] + W[241] * W[1649] + W[459] * W[1431] + W[677] * W[1213] + W[895] * W[995]
@@ -9698,16 +8686,12 @@ chain5_taylor_run_93(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1107] * W[727] + W[1325] * W[509] + W[1543] * W[291] + W[1761] * W[73];
     W[1821] = W[18] * W[1820] + W[236] * W[1602] + W[454] * W[1384] + W[672] * W[1166] + W[890] * W[948]
             + W[1108] * W[730] + W[1326] * W[512] + W[1544] * W[294] + W[1762] * W[76];
-    return 0;
 }
 
 /* Lines 100 .. 119 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_94(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_94(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1846] = W[17] * W[1845] + W[235] * W[1627] + W[453] * W[1409] + W[671] * W[1191] + W[889] * W[973]
             + W[1107] * W[755] + W[1325] * W[537] + W[1543] * W[319] + W[1761] * W[101];
     W[1849] = W[18] * W[1848] + W[236] * W[1630] + W[454] * W[1412] + W[672] * W[1194] + W[890] * W[976]
@@ -9734,16 +8718,12 @@ chain5_taylor_run_94(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[1903] = W[33] * W[1872];
     W[1904] = W[33] * W[1897];
     W[1915] = W[1910] + W[1912];
-    return 0;
 }
 
 /* Lines 140 .. 159 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_96(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_96(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[1833] = W[6] * W[1832] + W[224] * W[1614] + W[442] * W[1396] + W[660] * W[1178] + W[878] * W[960]
             + W[1096] * W[742] + W[1314] * W[524] + W[1532] * W[306] + W[1750] * W[88];
     W[1858] = W[5] * W[1857] + W[223] * W[1639] + W[441] * W[1421] + W[659] * W[1203] + W[877] * W[985]
@@ -9773,16 +8753,13 @@ chain5_taylor_run_96(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1091] * W[844] + W[1309] * W[626] + W[1527] * W[408] + W[1745] * W[190];
     W[1938] = W[2] * W[1937] + W[220] * W[1719] + W[438] * W[1501] + W[656] * W[1283] + W[874] * W[1065]
             + W[1092] * W[847] + W[1310] * W[629] + W[1528] * W[411] + W[1746] * W[193];
-    return 0;
 }
 
 /* Lines 200 .. 212 of taylor_run's order 8, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_99(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+chain5_taylor_run_99(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[93] = X[88] / 9.0;
     X[94] = X[89] / 9.0;
     W[1957] = W[414] * W[1739] + W[632] * W[1521] + W[850] * W[1303] + W[1068] * W[1085] + W[1286] * W[867]
@@ -9839,12 +8816,9 @@ chain5_taylor_run_99(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_102(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_102(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2059] = W[1980] + W[2058];
     W[2084] = W[1973] + W[1979];
     W[2087] = W[1974] + W[1980];
@@ -9869,16 +8843,12 @@ chain5_taylor_run_102(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2110] = W[1979] + W[1985];
     W[2125] = W[2006] + W[2123];
     W[2126] = W[2007] + W[2124];
-    return 0;
 }
 
 /* Lines 80 .. 99 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_104(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_104(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2061] = W[24] * W[2060] + W[242] * W[1842] + W[460] * W[1624] + W[678] * W[1406] + W[896] * W[1188]
             + W[1114] * W[970] + W[1332] * W[752] + W[1550] * W[534] + W[1768] * W[316] + W[1986] * W[98];
     W[2086] = W[23] * W[2085] + W[241] * W[1867] + W[459] * W[1649] + W[677] * W[1431] + W[895] * W[1213]
@@ -9906,16 +8876,12 @@ chain5_taylor_run_104(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1107] * W[945] + W[1325] * W[727] + W[1543] * W[509] + W[1761] * W[291] + W[1979] * W[73];
     W[2039] = W[18] * W[2038] + W[236] * W[1820] + W[454] * W[1602] + W[672] * W[1384] + W[890] * W[1166]
             + W[1108] * W[948] + W[1326] * W[730] + W[1544] * W[512] + W[1762] * W[294] + W[1980] * W[76];
-    return 0;
 }
 
 /* Lines 100 .. 119 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_105(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_105(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2064] = W[17] * W[2063] + W[235] * W[1845] + W[453] * W[1627] + W[671] * W[1409] + W[889] * W[1191]
             + W[1107] * W[973] + W[1325] * W[755] + W[1543] * W[537] + W[1761] * W[319] + W[1979] * W[101];
     W[2067] = W[18] * W[2066] + W[236] * W[1848] + W[454] * W[1630] + W[672] * W[1412] + W[890] * W[1194]
@@ -9942,16 +8908,12 @@ chain5_taylor_run_105(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2121] = W[33] * W[2090];
     W[2122] = W[33] * W[2115];
     W[2133] = W[2128] + W[2130];
-    return 0;
 }
 
 /* Lines 140 .. 159 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_107(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_107(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2051] = W[6] * W[2050] + W[224] * W[1832] + W[442] * W[1614] + W[660] * W[1396] + W[878] * W[1178]
             + W[1096] * W[960] + W[1314] * W[742] + W[1532] * W[524] + W[1750] * W[306] + W[1968] * W[88];
     W[2076] = W[5] * W[2075] + W[223] * W[1857] + W[441] * W[1639] + W[659] * W[1421] + W[877] * W[1203]
@@ -9981,16 +8943,12 @@ chain5_taylor_run_107(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1091] * W[1062] + W[1309] * W[844] + W[1527] * W[626] + W[1745] * W[408] + W[1963] * W[190];
     W[2156] = W[2] * W[2155] + W[220] * W[1937] + W[438] * W[1719] + W[656] * W[1501] + W[874] * W[1283]
             + W[1092] * W[1065] + W[1310] * W[847] + W[1528] * W[629] + W[1746] * W[411] + W[1964] * W[193];
-    return 0;
 }
 
 /* Lines 180 .. 199 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_109(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_109(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2149] = W[2023] + W[2148];
     W[2160] = W[2159] - W[2140];
     W[2053] = W[33] * W[2052];
@@ -10011,16 +8969,12 @@ chain5_taylor_run_109(eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[100] = X[95] / 10.0;
     X[101] = X[96] / 10.0;
     X[102] = X[97] / 10.0;
-    return 0;
 }
 
 /* Lines 0 .. 19 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_111(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_111(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2181] = (X[10] * W[1964] + 2.0 * X[20] * W[1746] + 3.0 * X[30] * W[1528] + 4.0 * X[40] * W[1310]
             + 5.0 * X[50] * W[1092] + 6.0 * X[60] * W[874] + 7.0 * X[70] * W[656] + 8.0 * X[80] * W[438]
             + 9.0 * X[90] * W[220] + 10.0 * X[100] * W[2]) / 10.0;
@@ -10060,16 +9014,12 @@ chain5_taylor_run_111(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2217] = W[6] * W[2216] + W[224] * W[1998] + W[442] * W[1780] + W[660] * W[1562] + W[878] * W[1344]
             + W[1096] * W[1126] + W[1314] * W[908] + W[1532] * W[690] + W[1750] * W[472] + W[1968] * W[254]
             + W[2186] * W[36];
-    return 0;
 }
 
 /* Lines 20 .. 39 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_112(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_112(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2218] = W[5] * W[2216] + W[223] * W[1998] + W[441] * W[1780] + W[659] * W[1562] + W[877] * W[1344]
             + W[1095] * W[1126] + W[1313] * W[908] + W[1531] * W[690] + W[1749] * W[472] + W[1967] * W[254]
             + W[2185] * W[36];
@@ -10108,16 +9058,12 @@ chain5_taylor_run_112(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + 9.0 * W[1984] * W[241] + 10.0 * W[2202] * W[23])) / 10.0;
     W[2240] = W[57] * W[2197];
     W[2273] = W[2197] + W[2272];
-    return 0;
 }
 
 /* Lines 60 .. 79 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_114(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_114(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2229] = W[46] * W[2228] + W[264] * W[2010] + W[482] * W[1792] + W[700] * W[1574] + W[918] * W[1356]
             + W[1136] * W[1138] + W[1354] * W[920] + W[1572] * W[702] + W[1790] * W[484] + W[2008] * W[266]
             + W[2226] * W[48];
@@ -10156,16 +9102,12 @@ chain5_taylor_run_114(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2275] = W[23] * W[2274] + W[241] * W[2056] + W[459] * W[1838] + W[677] * W[1620] + W[895] * W[1402]
             + W[1113] * W[1184] + W[1331] * W[966] + W[1549] * W[748] + W[1767] * W[530] + W[1985] * W[312]
             + W[2203] * W[94];
-    return 0;
 }
 
 /* Lines 120 .. 139 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_117(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_117(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2353] = W[2345] + W[2347];
     W[2260] = W[11] * W[2259] + W[229] * W[2041] + W[447] * W[1823] + W[665] * W[1605] + W[883] * W[1387]
             + W[1101] * W[1169] + W[1319] * W[951] + W[1537] * W[733] + W[1755] * W[515] + W[1973] * W[297]
@@ -10204,16 +9146,12 @@ chain5_taylor_run_117(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2266] = W[5] * W[2265] + W[223] * W[2047] + W[441] * W[1829] + W[659] * W[1611] + W[877] * W[1393]
             + W[1095] * W[1175] + W[1313] * W[957] + W[1531] * W[739] + W[1749] * W[521] + W[1967] * W[303]
             + W[2185] * W[85];
-    return 0;
 }
 
 /* Lines 160 .. 179 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_119(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_119(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2264] = W[2261] + W[2263];
     W[2292] = W[2289] + W[2291];
     W[2320] = W[2317] + W[2319];
@@ -10242,16 +9180,12 @@ chain5_taylor_run_119(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2182] * W[204];
     W[2270] = W[2267] + W[2269];
     W[2298] = W[2295] + W[2297];
-    return 0;
 }
 
 /* Lines 180 .. 199 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_120(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_120(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2367] = W[2241] + W[2366];
     W[2378] = W[2377] - W[2358];
     W[2271] = W[33] * W[2270];
@@ -10272,16 +9206,12 @@ chain5_taylor_run_120(eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[110] = X[105] / 11.0;
     X[111] = X[106] / 11.0;
     X[112] = X[107] / 11.0;
-    return 0;
 }
 
 /* Lines 0 .. 19 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_122(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_122(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2399] = (X[10] * W[2182] + 2.0 * X[20] * W[1964] + 3.0 * X[30] * W[1746] + 4.0 * X[40] * W[1528]
             + 5.0 * X[50] * W[1310] + 6.0 * X[60] * W[1092] + 7.0 * X[70] * W[874] + 8.0 * X[80] * W[656]
             + 9.0 * X[90] * W[438] + 10.0 * X[100] * W[220] + 11.0 * X[110] * W[2]) / 11.0;
@@ -10321,16 +9251,12 @@ chain5_taylor_run_122(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2435] = W[6] * W[2434] + W[224] * W[2216] + W[442] * W[1998] + W[660] * W[1780] + W[878] * W[1562]
             + W[1096] * W[1344] + W[1314] * W[1126] + W[1532] * W[908] + W[1750] * W[690] + W[1968] * W[472]
             + W[2186] * W[254] + W[2404] * W[36];
-    return 0;
 }
 
 /* Lines 20 .. 39 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_123(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_123(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2436] = W[5] * W[2434] + W[223] * W[2216] + W[441] * W[1998] + W[659] * W[1780] + W[877] * W[1562]
             + W[1095] * W[1344] + W[1313] * W[1126] + W[1531] * W[908] + W[1749] * W[690] + W[1967] * W[472]
             + W[2185] * W[254] + W[2403] * W[36];
@@ -10369,16 +9295,12 @@ chain5_taylor_run_123(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + 9.0 * W[1984] * W[459] + 10.0 * W[2202] * W[241] + 11.0 * W[2420] * W[23])) / 11.0;
     W[2458] = W[57] * W[2415];
     W[2491] = W[2415] + W[2490];
-    return 0;
 }
 
 /* Lines 60 .. 79 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_125(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_125(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2447] = W[46] * W[2446] + W[264] * W[2228] + W[482] * W[2010] + W[700] * W[1792] + W[918] * W[1574]
             + W[1136] * W[1356] + W[1354] * W[1138] + W[1572] * W[920] + W[1790] * W[702] + W[2008] * W[484]
             + W[2226] * W[266] + W[2444] * W[48];
@@ -10417,16 +9339,12 @@ chain5_taylor_run_125(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2493] = W[23] * W[2492] + W[241] * W[2274] + W[459] * W[2056] + W[677] * W[1838] + W[895] * W[1620]
             + W[1113] * W[1402] + W[1331] * W[1184] + W[1549] * W[966] + W[1767] * W[748] + W[1985] * W[530]
             + W[2203] * W[312] + W[2421] * W[94];
-    return 0;
 }
 
 /* Lines 100 .. 119 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_127(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_127(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2500] = W[17] * W[2499] + W[235] * W[2281] + W[453] * W[2063] + W[671] * W[1845] + W[889] * W[1627]
             + W[1107] * W[1409] + W[1325] * W[1191] + W[1543] * W[973] + W[1761] * W[755] + W[1979] * W[537]
             + W[2197] * W[319] + W[2415] * W[101];
@@ -10459,16 +9377,12 @@ chain5_taylor_run_127(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2557] = W[33] * W[2526];
     W[2558] = W[33] * W[2551];
     W[2569] = W[2564] + W[2566];
-    return 0;
 }
 
 /* Lines 140 .. 159 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_129(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_129(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2487] = W[6] * W[2486] + W[224] * W[2268] + W[442] * W[2050] + W[660] * W[1832] + W[878] * W[1614]
             + W[1096] * W[1396] + W[1314] * W[1178] + W[1532] * W[960] + W[1750] * W[742] + W[1968] * W[524]
             + W[2186] * W[306] + W[2404] * W[88];
@@ -10507,16 +9421,13 @@ chain5_taylor_run_129(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2592] = W[2] * W[2591] + W[220] * W[2373] + W[438] * W[2155] + W[656] * W[1937] + W[874] * W[1719]
             + W[1092] * W[1501] + W[1310] * W[1283] + W[1528] * W[1065] + W[1746] * W[847] + W[1964] * W[629]
             + W[2182] * W[411] + W[2400] * W[193];
-    return 0;
 }
 
 /* Lines 200 .. 212 of taylor_run's order 11, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_132(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+chain5_taylor_run_132(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[123] = X[118] / 12.0;
     X[124] = X[119] / 12.0;
     W[2611] = W[414] * W[2393] + W[632] * W[2175] + W[850] * W[1957] + W[1068] * W[1739] + W[1286] * W[1521]
@@ -10587,12 +9498,9 @@ chain5_taylor_run_132(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_135(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_135(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2713] = W[2634] + W[2712];
     W[2738] = W[2627] + W[2633];
     W[2741] = W[2628] + W[2634];
@@ -10621,16 +9529,12 @@ chain5_taylor_run_135(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2764] = W[2633] + W[2639];
     W[2779] = W[2660] + W[2777];
     W[2780] = W[2661] + W[2778];
-    return 0;
 }
 
 /* Lines 80 .. 99 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_137(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_137(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2715] = W[24] * W[2714] + W[242] * W[2496] + W[460] * W[2278] + W[678] * W[2060] + W[896] * W[1842]
             + W[1114] * W[1624] + W[1332] * W[1406] + W[1550] * W[1188] + W[1768] * W[970] + W[1986] * W[752]
             + W[2204] * W[534] + W[2422] * W[316] + W[2640] * W[98];
@@ -10665,16 +9569,12 @@ chain5_taylor_run_137(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2693] = W[18] * W[2692] + W[236] * W[2474] + W[454] * W[2256] + W[672] * W[2038] + W[890] * W[1820]
             + W[1108] * W[1602] + W[1326] * W[1384] + W[1544] * W[1166] + W[1762] * W[948] + W[1980] * W[730]
             + W[2198] * W[512] + W[2416] * W[294] + W[2634] * W[76];
-    return 0;
 }
 
 /* Lines 120 .. 139 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_139(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_139(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2789] = W[2781] + W[2783];
     W[2696] = W[11] * W[2695] + W[229] * W[2477] + W[447] * W[2259] + W[665] * W[2041] + W[883] * W[1823]
             + W[1101] * W[1605] + W[1319] * W[1387] + W[1537] * W[1169] + W[1755] * W[951] + W[1973] * W[733]
@@ -10713,16 +9613,12 @@ chain5_taylor_run_139(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2702] = W[5] * W[2701] + W[223] * W[2483] + W[441] * W[2265] + W[659] * W[2047] + W[877] * W[1829]
             + W[1095] * W[1611] + W[1313] * W[1393] + W[1531] * W[1175] + W[1749] * W[957] + W[1967] * W[739]
             + W[2185] * W[521] + W[2403] * W[303] + W[2621] * W[85];
-    return 0;
 }
 
 /* Lines 160 .. 179 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_141(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_141(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2700] = W[2697] + W[2699];
     W[2728] = W[2725] + W[2727];
     W[2756] = W[2753] + W[2755];
@@ -10751,16 +9647,13 @@ chain5_taylor_run_141(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2182] * W[640] + W[2400] * W[422] + W[2618] * W[204];
     W[2706] = W[2703] + W[2705];
     W[2734] = W[2731] + W[2733];
-    return 0;
 }
 
 /* Lines 200 .. 212 of taylor_run's order 12, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_143(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+chain5_taylor_run_143(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[133] = X[128] / 13.0;
     X[134] = X[129] / 13.0;
     W[2829] = W[414] * W[2611] + W[632] * W[2393] + W[850] * W[2175] + W[1068] * W[1957] + W[1286] * W[1739]
@@ -10836,12 +9729,9 @@ chain5_taylor_run_143(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 40 .. 59 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_146(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_146(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2931] = W[2852] + W[2930];
     W[2956] = W[2845] + W[2851];
     W[2959] = W[2846] + W[2852];
@@ -10870,16 +9760,12 @@ chain5_taylor_run_146(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2982] = W[2851] + W[2857];
     W[2997] = W[2878] + W[2995];
     W[2998] = W[2879] + W[2996];
-    return 0;
 }
 
 /* Lines 80 .. 99 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_148(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_148(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2933] = W[24] * W[2932] + W[242] * W[2714] + W[460] * W[2496] + W[678] * W[2278] + W[896] * W[2060]
             + W[1114] * W[1842] + W[1332] * W[1624] + W[1550] * W[1406] + W[1768] * W[1188] + W[1986] * W[970]
             + W[2204] * W[752] + W[2422] * W[534] + W[2640] * W[316] + W[2858] * W[98];
@@ -10914,16 +9800,12 @@ chain5_taylor_run_148(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2911] = W[18] * W[2910] + W[236] * W[2692] + W[454] * W[2474] + W[672] * W[2256] + W[890] * W[2038]
             + W[1108] * W[1820] + W[1326] * W[1602] + W[1544] * W[1384] + W[1762] * W[1166] + W[1980] * W[948]
             + W[2198] * W[730] + W[2416] * W[512] + W[2634] * W[294] + W[2852] * W[76];
-    return 0;
 }
 
 /* Lines 120 .. 139 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_150(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_150(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3007] = W[2999] + W[3001];
     W[2914] = W[11] * W[2913] + W[229] * W[2695] + W[447] * W[2477] + W[665] * W[2259] + W[883] * W[2041]
             + W[1101] * W[1823] + W[1319] * W[1605] + W[1537] * W[1387] + W[1755] * W[1169] + W[1973] * W[951]
@@ -10962,16 +9844,12 @@ chain5_taylor_run_150(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[2920] = W[5] * W[2919] + W[223] * W[2701] + W[441] * W[2483] + W[659] * W[2265] + W[877] * W[2047]
             + W[1095] * W[1829] + W[1313] * W[1611] + W[1531] * W[1393] + W[1749] * W[1175] + W[1967] * W[957]
             + W[2185] * W[739] + W[2403] * W[521] + W[2621] * W[303] + W[2839] * W[85];
-    return 0;
 }
 
 /* Lines 160 .. 179 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_152(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_152(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[2918] = W[2915] + W[2917];
     W[2946] = W[2943] + W[2945];
     W[2974] = W[2971] + W[2973];
@@ -11000,16 +9878,12 @@ chain5_taylor_run_152(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[2182] * W[858] + W[2400] * W[640] + W[2618] * W[422] + W[2836] * W[204];
     W[2924] = W[2921] + W[2923];
     W[2952] = W[2949] + W[2951];
-    return 0;
 }
 
 /* Lines 180 .. 199 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_153(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_153(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3021] = W[2895] + W[3020];
     W[3032] = W[3031] - W[3012];
     W[2925] = W[33] * W[2924];
@@ -11030,16 +9904,12 @@ chain5_taylor_run_153(eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[140] = X[135] / 14.0;
     X[141] = X[136] / 14.0;
     X[142] = X[137] / 14.0;
-    return 0;
 }
 
 /* Lines 0 .. 19 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_155(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_155(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3053] = (X[10] * W[2836] + 2.0 * X[20] * W[2618] + 3.0 * X[30] * W[2400] + 4.0 * X[40] * W[2182]
             + 5.0 * X[50] * W[1964] + 6.0 * X[60] * W[1746] + 7.0 * X[70] * W[1528] + 8.0 * X[80] * W[1310]
             + 9.0 * X[90] * W[1092] + 10.0 * X[100] * W[874] + 11.0 * X[110] * W[656] + 12.0 * X[120] * W[438]
@@ -11085,16 +9955,12 @@ chain5_taylor_run_155(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3089] = W[6] * W[3088] + W[224] * W[2870] + W[442] * W[2652] + W[660] * W[2434] + W[878] * W[2216]
             + W[1096] * W[1998] + W[1314] * W[1780] + W[1532] * W[1562] + W[1750] * W[1344] + W[1968] * W[1126]
             + W[2186] * W[908] + W[2404] * W[690] + W[2622] * W[472] + W[2840] * W[254] + W[3058] * W[36];
-    return 0;
 }
 
 /* Lines 20 .. 39 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_156(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_156(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3090] = W[5] * W[3088] + W[223] * W[2870] + W[441] * W[2652] + W[659] * W[2434] + W[877] * W[2216]
             + W[1095] * W[1998] + W[1313] * W[1780] + W[1531] * W[1562] + W[1749] * W[1344] + W[1967] * W[1126]
             + W[2185] * W[908] + W[2403] * W[690] + W[2621] * W[472] + W[2839] * W[254] + W[3057] * W[36];
@@ -11137,16 +10003,12 @@ chain5_taylor_run_156(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + 13.0 * W[2856] * W[241] + 14.0 * W[3074] * W[23])) / 14.0;
     W[3112] = W[57] * W[3069];
     W[3145] = W[3069] + W[3144];
-    return 0;
 }
 
 /* Lines 60 .. 79 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_158(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_158(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3101] = W[46] * W[3100] + W[264] * W[2882] + W[482] * W[2664] + W[700] * W[2446] + W[918] * W[2228]
             + W[1136] * W[2010] + W[1354] * W[1792] + W[1572] * W[1574] + W[1790] * W[1356] + W[2008] * W[1138]
             + W[2226] * W[920] + W[2444] * W[702] + W[2662] * W[484] + W[2880] * W[266] + W[3098] * W[48];
@@ -11185,16 +10047,12 @@ chain5_taylor_run_158(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3147] = W[23] * W[3146] + W[241] * W[2928] + W[459] * W[2710] + W[677] * W[2492] + W[895] * W[2274]
             + W[1113] * W[2056] + W[1331] * W[1838] + W[1549] * W[1620] + W[1767] * W[1402] + W[1985] * W[1184]
             + W[2203] * W[966] + W[2421] * W[748] + W[2639] * W[530] + W[2857] * W[312] + W[3075] * W[94];
-    return 0;
 }
 
 /* Lines 100 .. 119 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_160(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_160(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3154] = W[17] * W[3153] + W[235] * W[2935] + W[453] * W[2717] + W[671] * W[2499] + W[889] * W[2281]
             + W[1107] * W[2063] + W[1325] * W[1845] + W[1543] * W[1627] + W[1761] * W[1409] + W[1979] * W[1191]
             + W[2197] * W[973] + W[2415] * W[755] + W[2633] * W[537] + W[2851] * W[319] + W[3069] * W[101];
@@ -11227,16 +10085,12 @@ chain5_taylor_run_160(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3211] = W[33] * W[3180];
     W[3212] = W[33] * W[3205];
     W[3223] = W[3218] + W[3220];
-    return 0;
 }
 
 /* Lines 140 .. 159 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_162(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_162(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3141] = W[6] * W[3140] + W[224] * W[2922] + W[442] * W[2704] + W[660] * W[2486] + W[878] * W[2268]
             + W[1096] * W[2050] + W[1314] * W[1832] + W[1532] * W[1614] + W[1750] * W[1396] + W[1968] * W[1178]
             + W[2186] * W[960] + W[2404] * W[742] + W[2622] * W[524] + W[2840] * W[306] + W[3058] * W[88];
@@ -11275,16 +10129,12 @@ chain5_taylor_run_162(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3246] = W[2] * W[3245] + W[220] * W[3027] + W[438] * W[2809] + W[656] * W[2591] + W[874] * W[2373]
             + W[1092] * W[2155] + W[1310] * W[1937] + W[1528] * W[1719] + W[1746] * W[1501] + W[1964] * W[1283]
             + W[2182] * W[1065] + W[2400] * W[847] + W[2618] * W[629] + W[2836] * W[411] + W[3054] * W[193];
-    return 0;
 }
 
 /* Lines 180 .. 199 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_164(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_164(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3239] = W[3113] + W[3238];
     W[3250] = W[3249] - W[3230];
     W[3143] = W[33] * W[3142];
@@ -11305,16 +10155,12 @@ chain5_taylor_run_164(eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[150] = X[145] / 15.0;
     X[151] = X[146] / 15.0;
     X[152] = X[147] / 15.0;
-    return 0;
 }
 
 /* Lines 0 .. 19 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_166(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_166(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3271] = (X[10] * W[3054] + 2.0 * X[20] * W[2836] + 3.0 * X[30] * W[2618] + 4.0 * X[40] * W[2400]
             + 5.0 * X[50] * W[2182] + 6.0 * X[60] * W[1964] + 7.0 * X[70] * W[1746] + 8.0 * X[80] * W[1528]
             + 9.0 * X[90] * W[1310] + 10.0 * X[100] * W[1092] + 11.0 * X[110] * W[874] + 12.0 * X[120] * W[656]
@@ -11363,16 +10209,12 @@ chain5_taylor_run_166(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1096] * W[2216] + W[1314] * W[1998] + W[1532] * W[1780] + W[1750] * W[1562] + W[1968] * W[1344]
             + W[2186] * W[1126] + W[2404] * W[908] + W[2622] * W[690] + W[2840] * W[472] + W[3058] * W[254]
             + W[3276] * W[36];
-    return 0;
 }
 
 /* Lines 20 .. 39 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_167(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_167(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3308] = W[5] * W[3306] + W[223] * W[3088] + W[441] * W[2870] + W[659] * W[2652] + W[877] * W[2434]
             + W[1095] * W[2216] + W[1313] * W[1998] + W[1531] * W[1780] + W[1749] * W[1562] + W[1967] * W[1344]
             + W[2185] * W[1126] + W[2403] * W[908] + W[2621] * W[690] + W[2839] * W[472] + W[3057] * W[254]
@@ -11420,16 +10262,12 @@ chain5_taylor_run_167(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + 13.0 * W[2856] * W[459] + 14.0 * W[3074] * W[241] + 15.0 * W[3292] * W[23])) / 15.0;
     W[3330] = W[57] * W[3287];
     W[3363] = W[3287] + W[3362];
-    return 0;
 }
 
 /* Lines 60 .. 79 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_169(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_169(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3319] = W[46] * W[3318] + W[264] * W[3100] + W[482] * W[2882] + W[700] * W[2664] + W[918] * W[2446]
             + W[1136] * W[2228] + W[1354] * W[2010] + W[1572] * W[1792] + W[1790] * W[1574] + W[2008] * W[1356]
             + W[2226] * W[1138] + W[2444] * W[920] + W[2662] * W[702] + W[2880] * W[484] + W[3098] * W[266]
@@ -11477,16 +10315,12 @@ chain5_taylor_run_169(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1113] * W[2274] + W[1331] * W[2056] + W[1549] * W[1838] + W[1767] * W[1620] + W[1985] * W[1402]
             + W[2203] * W[1184] + W[2421] * W[966] + W[2639] * W[748] + W[2857] * W[530] + W[3075] * W[312]
             + W[3293] * W[94];
-    return 0;
 }
 
 /* Lines 100 .. 119 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_171(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_171(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3372] = W[17] * W[3371] + W[235] * W[3153] + W[453] * W[2935] + W[671] * W[2717] + W[889] * W[2499]
             + W[1107] * W[2281] + W[1325] * W[2063] + W[1543] * W[1845] + W[1761] * W[1627] + W[1979] * W[1409]
             + W[2197] * W[1191] + W[2415] * W[973] + W[2633] * W[755] + W[2851] * W[537] + W[3069] * W[319]
@@ -11525,16 +10359,12 @@ chain5_taylor_run_171(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3429] = W[33] * W[3398];
     W[3430] = W[33] * W[3423];
     W[3441] = W[3436] + W[3438];
-    return 0;
 }
 
 /* Lines 140 .. 159 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_173(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_173(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3359] = W[6] * W[3358] + W[224] * W[3140] + W[442] * W[2922] + W[660] * W[2704] + W[878] * W[2486]
             + W[1096] * W[2268] + W[1314] * W[2050] + W[1532] * W[1832] + W[1750] * W[1614] + W[1968] * W[1396]
             + W[2186] * W[1178] + W[2404] * W[960] + W[2622] * W[742] + W[2840] * W[524] + W[3058] * W[306]
@@ -11582,16 +10412,12 @@ chain5_taylor_run_173(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1092] * W[2373] + W[1310] * W[2155] + W[1528] * W[1937] + W[1746] * W[1719] + W[1964] * W[1501]
             + W[2182] * W[1283] + W[2400] * W[1065] + W[2618] * W[847] + W[2836] * W[629] + W[3054] * W[411]
             + W[3272] * W[193];
-    return 0;
 }
 
 /* Lines 180 .. 199 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_175(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_175(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3457] = W[3331] + W[3456];
     W[3468] = W[3467] - W[3448];
     W[3361] = W[33] * W[3360];
@@ -11612,16 +10438,12 @@ chain5_taylor_run_175(eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[160] = X[155] / 16.0;
     X[161] = X[156] / 16.0;
     X[162] = X[157] / 16.0;
-    return 0;
 }
 
 /* Lines 0 .. 19 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_177(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_177(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3489] = (X[10] * W[3272] + 2.0 * X[20] * W[3054] + 3.0 * X[30] * W[2836] + 4.0 * X[40] * W[2618]
             + 5.0 * X[50] * W[2400] + 6.0 * X[60] * W[2182] + 7.0 * X[70] * W[1964] + 8.0 * X[80] * W[1746]
             + 9.0 * X[90] * W[1528] + 10.0 * X[100] * W[1310] + 11.0 * X[110] * W[1092] + 12.0 * X[120] * W[874]
@@ -11670,16 +10492,12 @@ chain5_taylor_run_177(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1096] * W[2434] + W[1314] * W[2216] + W[1532] * W[1998] + W[1750] * W[1780] + W[1968] * W[1562]
             + W[2186] * W[1344] + W[2404] * W[1126] + W[2622] * W[908] + W[2840] * W[690] + W[3058] * W[472]
             + W[3276] * W[254] + W[3494] * W[36];
-    return 0;
 }
 
 /* Lines 20 .. 39 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_178(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_178(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3526] = W[5] * W[3524] + W[223] * W[3306] + W[441] * W[3088] + W[659] * W[2870] + W[877] * W[2652]
             + W[1095] * W[2434] + W[1313] * W[2216] + W[1531] * W[1998] + W[1749] * W[1780] + W[1967] * W[1562]
             + W[2185] * W[1344] + W[2403] * W[1126] + W[2621] * W[908] + W[2839] * W[690] + W[3057] * W[472]
@@ -11727,16 +10545,12 @@ chain5_taylor_run_178(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + 13.0 * W[2856] * W[677] + 14.0 * W[3074] * W[459] + 15.0 * W[3292] * W[241] + 16.0 * W[3510] * W[23])) / 16.0;
     W[3548] = W[57] * W[3505];
     W[3581] = W[3505] + W[3580];
-    return 0;
 }
 
 /* Lines 60 .. 79 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_180(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_180(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3537] = W[46] * W[3536] + W[264] * W[3318] + W[482] * W[3100] + W[700] * W[2882] + W[918] * W[2664]
             + W[1136] * W[2446] + W[1354] * W[2228] + W[1572] * W[2010] + W[1790] * W[1792] + W[2008] * W[1574]
             + W[2226] * W[1356] + W[2444] * W[1138] + W[2662] * W[920] + W[2880] * W[702] + W[3098] * W[484]
@@ -11784,16 +10598,12 @@ chain5_taylor_run_180(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1113] * W[2492] + W[1331] * W[2274] + W[1549] * W[2056] + W[1767] * W[1838] + W[1985] * W[1620]
             + W[2203] * W[1402] + W[2421] * W[1184] + W[2639] * W[966] + W[2857] * W[748] + W[3075] * W[530]
             + W[3293] * W[312] + W[3511] * W[94];
-    return 0;
 }
 
 /* Lines 100 .. 119 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_182(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_182(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3590] = W[17] * W[3589] + W[235] * W[3371] + W[453] * W[3153] + W[671] * W[2935] + W[889] * W[2717]
             + W[1107] * W[2499] + W[1325] * W[2281] + W[1543] * W[2063] + W[1761] * W[1845] + W[1979] * W[1627]
             + W[2197] * W[1409] + W[2415] * W[1191] + W[2633] * W[973] + W[2851] * W[755] + W[3069] * W[537]
@@ -11832,16 +10642,12 @@ chain5_taylor_run_182(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3647] = W[33] * W[3616];
     W[3648] = W[33] * W[3641];
     W[3659] = W[3654] + W[3656];
-    return 0;
 }
 
 /* Lines 140 .. 159 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_184(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_184(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3577] = W[6] * W[3576] + W[224] * W[3358] + W[442] * W[3140] + W[660] * W[2922] + W[878] * W[2704]
             + W[1096] * W[2486] + W[1314] * W[2268] + W[1532] * W[2050] + W[1750] * W[1832] + W[1968] * W[1614]
             + W[2186] * W[1396] + W[2404] * W[1178] + W[2622] * W[960] + W[2840] * W[742] + W[3058] * W[524]
@@ -11889,16 +10695,12 @@ chain5_taylor_run_184(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1092] * W[2591] + W[1310] * W[2373] + W[1528] * W[2155] + W[1746] * W[1937] + W[1964] * W[1719]
             + W[2182] * W[1501] + W[2400] * W[1283] + W[2618] * W[1065] + W[2836] * W[847] + W[3054] * W[629]
             + W[3272] * W[411] + W[3490] * W[193];
-    return 0;
 }
 
 /* Lines 180 .. 199 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_186(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_186(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3675] = W[3549] + W[3674];
     W[3686] = W[3685] - W[3666];
     W[3579] = W[33] * W[3578];
@@ -11919,16 +10721,12 @@ chain5_taylor_run_186(eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[170] = X[165] / 17.0;
     X[171] = X[166] / 17.0;
     X[172] = X[167] / 17.0;
-    return 0;
 }
 
 /* Lines 0 .. 19 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_188(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_188(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3707] = (X[10] * W[3490] + 2.0 * X[20] * W[3272] + 3.0 * X[30] * W[3054] + 4.0 * X[40] * W[2836]
             + 5.0 * X[50] * W[2618] + 6.0 * X[60] * W[2400] + 7.0 * X[70] * W[2182] + 8.0 * X[80] * W[1964]
             + 9.0 * X[90] * W[1746] + 10.0 * X[100] * W[1528] + 11.0 * X[110] * W[1310] + 12.0 * X[120] * W[1092]
@@ -11983,16 +10781,12 @@ chain5_taylor_run_188(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1096] * W[2652] + W[1314] * W[2434] + W[1532] * W[2216] + W[1750] * W[1998] + W[1968] * W[1780]
             + W[2186] * W[1562] + W[2404] * W[1344] + W[2622] * W[1126] + W[2840] * W[908] + W[3058] * W[690]
             + W[3276] * W[472] + W[3494] * W[254] + W[3712] * W[36];
-    return 0;
 }
 
 /* Lines 20 .. 39 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_189(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_189(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3744] = W[5] * W[3742] + W[223] * W[3524] + W[441] * W[3306] + W[659] * W[3088] + W[877] * W[2870]
             + W[1095] * W[2652] + W[1313] * W[2434] + W[1531] * W[2216] + W[1749] * W[1998] + W[1967] * W[1780]
             + W[2185] * W[1562] + W[2403] * W[1344] + W[2621] * W[1126] + W[2839] * W[908] + W[3057] * W[690]
@@ -12044,16 +10838,12 @@ chain5_taylor_run_189(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + 17.0 * W[3728] * W[23])) / 17.0;
     W[3766] = W[57] * W[3723];
     W[3799] = W[3723] + W[3798];
-    return 0;
 }
 
 /* Lines 60 .. 79 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_191(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_191(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3755] = W[46] * W[3754] + W[264] * W[3536] + W[482] * W[3318] + W[700] * W[3100] + W[918] * W[2882]
             + W[1136] * W[2664] + W[1354] * W[2446] + W[1572] * W[2228] + W[1790] * W[2010] + W[2008] * W[1792]
             + W[2226] * W[1574] + W[2444] * W[1356] + W[2662] * W[1138] + W[2880] * W[920] + W[3098] * W[702]
@@ -12101,16 +10891,12 @@ chain5_taylor_run_191(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1113] * W[2710] + W[1331] * W[2492] + W[1549] * W[2274] + W[1767] * W[2056] + W[1985] * W[1838]
             + W[2203] * W[1620] + W[2421] * W[1402] + W[2639] * W[1184] + W[2857] * W[966] + W[3075] * W[748]
             + W[3293] * W[530] + W[3511] * W[312] + W[3729] * W[94];
-    return 0;
 }
 
 /* Lines 100 .. 119 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_193(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_193(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3808] = W[17] * W[3807] + W[235] * W[3589] + W[453] * W[3371] + W[671] * W[3153] + W[889] * W[2935]
             + W[1107] * W[2717] + W[1325] * W[2499] + W[1543] * W[2281] + W[1761] * W[2063] + W[1979] * W[1845]
             + W[2197] * W[1627] + W[2415] * W[1409] + W[2633] * W[1191] + W[2851] * W[973] + W[3069] * W[755]
@@ -12149,16 +10935,12 @@ chain5_taylor_run_193(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[3865] = W[33] * W[3834];
     W[3866] = W[33] * W[3859];
     W[3877] = W[3872] + W[3874];
-    return 0;
 }
 
 /* Lines 140 .. 159 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_195(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_195(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3795] = W[6] * W[3794] + W[224] * W[3576] + W[442] * W[3358] + W[660] * W[3140] + W[878] * W[2922]
             + W[1096] * W[2704] + W[1314] * W[2486] + W[1532] * W[2268] + W[1750] * W[2050] + W[1968] * W[1832]
             + W[2186] * W[1614] + W[2404] * W[1396] + W[2622] * W[1178] + W[2840] * W[960] + W[3058] * W[742]
@@ -12206,16 +10988,12 @@ chain5_taylor_run_195(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1092] * W[2809] + W[1310] * W[2591] + W[1528] * W[2373] + W[1746] * W[2155] + W[1964] * W[1937]
             + W[2182] * W[1719] + W[2400] * W[1501] + W[2618] * W[1283] + W[2836] * W[1065] + W[3054] * W[847]
             + W[3272] * W[629] + W[3490] * W[411] + W[3708] * W[193];
-    return 0;
 }
 
 /* Lines 180 .. 199 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_197(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_197(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3893] = W[3767] + W[3892];
     W[3904] = W[3903] - W[3884];
     W[3797] = W[33] * W[3796];
@@ -12236,16 +11014,12 @@ chain5_taylor_run_197(eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[180] = X[175] / 18.0;
     X[181] = X[176] / 18.0;
     X[182] = X[177] / 18.0;
-    return 0;
 }
 
 /* Lines 0 .. 19 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_199(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_199(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3925] = (X[10] * W[3708] + 2.0 * X[20] * W[3490] + 3.0 * X[30] * W[3272] + 4.0 * X[40] * W[3054]
             + 5.0 * X[50] * W[2836] + 6.0 * X[60] * W[2618] + 7.0 * X[70] * W[2400] + 8.0 * X[80] * W[2182]
             + 9.0 * X[90] * W[1964] + 10.0 * X[100] * W[1746] + 11.0 * X[110] * W[1528] + 12.0 * X[120] * W[1310]
@@ -12300,16 +11074,12 @@ chain5_taylor_run_199(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1096] * W[2870] + W[1314] * W[2652] + W[1532] * W[2434] + W[1750] * W[2216] + W[1968] * W[1998]
             + W[2186] * W[1780] + W[2404] * W[1562] + W[2622] * W[1344] + W[2840] * W[1126] + W[3058] * W[908]
             + W[3276] * W[690] + W[3494] * W[472] + W[3712] * W[254] + W[3930] * W[36];
-    return 0;
 }
 
 /* Lines 20 .. 39 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_200(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_200(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3962] = W[5] * W[3960] + W[223] * W[3742] + W[441] * W[3524] + W[659] * W[3306] + W[877] * W[3088]
             + W[1095] * W[2870] + W[1313] * W[2652] + W[1531] * W[2434] + W[1749] * W[2216] + W[1967] * W[1998]
             + W[2185] * W[1780] + W[2403] * W[1562] + W[2621] * W[1344] + W[2839] * W[1126] + W[3057] * W[908]
@@ -12361,16 +11131,12 @@ chain5_taylor_run_200(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + 17.0 * W[3728] * W[241] + 18.0 * W[3946] * W[23])) / 18.0;
     W[3984] = W[57] * W[3941];
     W[4017] = W[3941] + W[4016];
-    return 0;
 }
 
 /* Lines 60 .. 79 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_202(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_202(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[3973] = W[46] * W[3972] + W[264] * W[3754] + W[482] * W[3536] + W[700] * W[3318] + W[918] * W[3100]
             + W[1136] * W[2882] + W[1354] * W[2664] + W[1572] * W[2446] + W[1790] * W[2228] + W[2008] * W[2010]
             + W[2226] * W[1792] + W[2444] * W[1574] + W[2662] * W[1356] + W[2880] * W[1138] + W[3098] * W[920]
@@ -12418,16 +11184,12 @@ chain5_taylor_run_202(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1113] * W[2928] + W[1331] * W[2710] + W[1549] * W[2492] + W[1767] * W[2274] + W[1985] * W[2056]
             + W[2203] * W[1838] + W[2421] * W[1620] + W[2639] * W[1402] + W[2857] * W[1184] + W[3075] * W[966]
             + W[3293] * W[748] + W[3511] * W[530] + W[3729] * W[312] + W[3947] * W[94];
-    return 0;
 }
 
 /* Lines 100 .. 119 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_204(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_204(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4026] = W[17] * W[4025] + W[235] * W[3807] + W[453] * W[3589] + W[671] * W[3371] + W[889] * W[3153]
             + W[1107] * W[2935] + W[1325] * W[2717] + W[1543] * W[2499] + W[1761] * W[2281] + W[1979] * W[2063]
             + W[2197] * W[1845] + W[2415] * W[1627] + W[2633] * W[1409] + W[2851] * W[1191] + W[3069] * W[973]
@@ -12466,16 +11228,12 @@ chain5_taylor_run_204(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[4083] = W[33] * W[4052];
     W[4084] = W[33] * W[4077];
     W[4095] = W[4090] + W[4092];
-    return 0;
 }
 
 /* Lines 140 .. 159 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_206(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_206(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4013] = W[6] * W[4012] + W[224] * W[3794] + W[442] * W[3576] + W[660] * W[3358] + W[878] * W[3140]
             + W[1096] * W[2922] + W[1314] * W[2704] + W[1532] * W[2486] + W[1750] * W[2268] + W[1968] * W[2050]
             + W[2186] * W[1832] + W[2404] * W[1614] + W[2622] * W[1396] + W[2840] * W[1178] + W[3058] * W[960]
@@ -12523,16 +11281,12 @@ chain5_taylor_run_206(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1092] * W[3027] + W[1310] * W[2809] + W[1528] * W[2591] + W[1746] * W[2373] + W[1964] * W[2155]
             + W[2182] * W[1937] + W[2400] * W[1719] + W[2618] * W[1501] + W[2836] * W[1283] + W[3054] * W[1065]
             + W[3272] * W[847] + W[3490] * W[629] + W[3708] * W[411] + W[3926] * W[193];
-    return 0;
 }
 
 /* Lines 180 .. 199 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_208(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_208(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4111] = W[3985] + W[4110];
     W[4122] = W[4121] - W[4102];
     W[4015] = W[33] * W[4014];
@@ -12553,16 +11307,13 @@ chain5_taylor_run_208(eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[190] = X[185] / 19.0;
     X[191] = X[186] / 19.0;
     X[192] = X[187] / 19.0;
-    return 0;
 }
 
 /* Lines 200 .. 212 of taylor_run's order 18, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_209(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+chain5_taylor_run_209(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[193] = X[188] / 19.0;
     X[194] = X[189] / 19.0;
     W[4137] = W[414] * W[3919] + W[632] * W[3701] + W[850] * W[3483] + W[1068] * W[3265] + W[1286] * W[3047]
@@ -12667,12 +11418,9 @@ chain5_taylor_run_209(eomc_real t0, const eomc_real *p, const eomc_real *u,
 }
 
 /* Lines 60 .. 79 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_213(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_213(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4191] = W[46] * W[4190] + W[264] * W[3972] + W[482] * W[3754] + W[700] * W[3536] + W[918] * W[3318]
             + W[1136] * W[3100] + W[1354] * W[2882] + W[1572] * W[2664] + W[1790] * W[2446] + W[2008] * W[2228]
             + W[2226] * W[2010] + W[2444] * W[1792] + W[2662] * W[1574] + W[2880] * W[1356] + W[3098] * W[1138]
@@ -12720,16 +11468,12 @@ chain5_taylor_run_213(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1113] * W[3146] + W[1331] * W[2928] + W[1549] * W[2710] + W[1767] * W[2492] + W[1985] * W[2274]
             + W[2203] * W[2056] + W[2421] * W[1838] + W[2639] * W[1620] + W[2857] * W[1402] + W[3075] * W[1184]
             + W[3293] * W[966] + W[3511] * W[748] + W[3729] * W[530] + W[3947] * W[312] + W[4165] * W[94];
-    return 0;
 }
 
 /* Lines 100 .. 119 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_215(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_215(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4244] = W[17] * W[4243] + W[235] * W[4025] + W[453] * W[3807] + W[671] * W[3589] + W[889] * W[3371]
             + W[1107] * W[3153] + W[1325] * W[2935] + W[1543] * W[2717] + W[1761] * W[2499] + W[1979] * W[2281]
             + W[2197] * W[2063] + W[2415] * W[1845] + W[2633] * W[1627] + W[2851] * W[1409] + W[3069] * W[1191]
@@ -12768,16 +11512,12 @@ chain5_taylor_run_215(eomc_real t0, const eomc_real *p, const eomc_real *u,
     W[4301] = W[33] * W[4270];
     W[4302] = W[33] * W[4295];
     W[4313] = W[4308] + W[4310];
-    return 0;
 }
 
 /* Lines 140 .. 159 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_217(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_217(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4231] = W[6] * W[4230] + W[224] * W[4012] + W[442] * W[3794] + W[660] * W[3576] + W[878] * W[3358]
             + W[1096] * W[3140] + W[1314] * W[2922] + W[1532] * W[2704] + W[1750] * W[2486] + W[1968] * W[2268]
             + W[2186] * W[2050] + W[2404] * W[1832] + W[2622] * W[1614] + W[2840] * W[1396] + W[3058] * W[1178]
@@ -12825,16 +11565,12 @@ chain5_taylor_run_217(eomc_real t0, const eomc_real *p, const eomc_real *u,
             + W[1092] * W[3245] + W[1310] * W[3027] + W[1528] * W[2809] + W[1746] * W[2591] + W[1964] * W[2373]
             + W[2182] * W[2155] + W[2400] * W[1937] + W[2618] * W[1719] + W[2836] * W[1501] + W[3054] * W[1283]
             + W[3272] * W[1065] + W[3490] * W[847] + W[3708] * W[629] + W[3926] * W[411] + W[4144] * W[193];
-    return 0;
 }
 
 /* Lines 180 .. 199 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_219(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+chain5_taylor_run_219(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[4329] = W[4203] + W[4328];
     W[4340] = W[4339] - W[4320];
     W[4233] = W[33] * W[4232];
@@ -12855,16 +11591,13 @@ chain5_taylor_run_219(eomc_real t0, const eomc_real *p, const eomc_real *u,
     X[200] = X[195] / 20.0;
     X[201] = X[196] / 20.0;
     X[202] = X[197] / 20.0;
-    return 0;
 }
 
 /* Lines 200 .. 212 of taylor_run's order 19, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-chain5_taylor_run_220(eomc_real t0, const eomc_real *p, const eomc_real *u,
-    eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve,
-    void *ctx)
+chain5_taylor_run_220(eomc_real *restrict W, eomc_real *restrict X,
+    eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     X[203] = X[198] / 20.0;
     X[204] = X[199] / 20.0;
     W[4355] = W[414] * W[4137] + W[632] * W[3919] + W[850] * W[3701] + W[1068] * W[3483] + W[1286] * W[3265]

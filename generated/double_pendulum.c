@@ -784,11 +784,9 @@ double_pendulum_taylor(int k, int K, eomc_real t0, const eomc_real *p,
  * arithmetic in the same order); above that 1, for the caller's loop. */
 /* Lines 20 .. 38 of taylor_run's order 1. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-double_pendulum_taylor_run_5(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_5(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[79] = W[76] + W[78];
     W[81] = W[77] + W[80];
     W[82] = W[2] * W[81] + W[49] * W[34];
@@ -814,11 +812,9 @@ double_pendulum_taylor_run_5(eomc_real t0, const eomc_real *p,
 
 /* Lines 20 .. 38 of taylor_run's order 2. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-double_pendulum_taylor_run_7(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_7(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[126] = W[123] + W[125];
     W[128] = W[124] + W[127];
     W[129] = W[2] * W[128] + W[49] * W[81] + W[96] * W[34];
@@ -844,11 +840,9 @@ double_pendulum_taylor_run_7(eomc_real t0, const eomc_real *p,
 
 /* Lines 20 .. 38 of taylor_run's order 3. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-double_pendulum_taylor_run_9(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_9(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[173] = W[170] + W[172];
     W[175] = W[171] + W[174];
     W[176] = W[2] * W[175] + W[49] * W[128] + W[96] * W[81] + W[143] * W[34];
@@ -874,11 +868,9 @@ double_pendulum_taylor_run_9(eomc_real t0, const eomc_real *p,
 
 /* Lines 20 .. 38 of taylor_run's order 4. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-double_pendulum_taylor_run_11(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_11(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[220] = W[217] + W[219];
     W[222] = W[218] + W[221];
     W[223] = W[2] * W[222] + W[49] * W[175] + W[96] * W[128] + W[143] * W[81] + W[190] * W[34];
@@ -904,11 +896,9 @@ double_pendulum_taylor_run_11(eomc_real t0, const eomc_real *p,
 
 /* Lines 20 .. 38 of taylor_run's order 5. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-double_pendulum_taylor_run_13(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_13(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[267] = W[264] + W[266];
     W[269] = W[265] + W[268];
     W[270] = W[2] * W[269] + W[49] * W[222] + W[96] * W[175] + W[143] * W[128] + W[190] * W[81]
@@ -939,12 +929,9 @@ double_pendulum_taylor_run_13(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 6. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-double_pendulum_taylor_run_14(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+double_pendulum_taylor_run_14(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[284] = (X[4] * W[238] + 2.0 * X[8] * W[191] + 3.0 * X[12] * W[144] + 4.0 * X[16] * W[97]
             + 5.0 * X[20] * W[50] + 6.0 * X[24] * W[3]) / 6.0;
     W[285] = -((X[4] * W[237] + 2.0 * X[8] * W[190] + 3.0 * X[12] * W[143] + 4.0 * X[16] * W[96]
@@ -975,16 +962,13 @@ double_pendulum_taylor_run_14(eomc_real t0, const eomc_real *p,
     W[313] = W[4] * W[296];
     W[315] = W[4] * W[297];
     W[309] = W[26] * W[307];
-    return 0;
 }
 
 /* Lines 20 .. 38 of taylor_run's order 7. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-double_pendulum_taylor_run_17(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_17(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[361] = W[358] + W[360];
     W[363] = W[359] + W[362];
     W[364] = W[2] * W[363] + W[49] * W[316] + W[96] * W[269] + W[143] * W[222] + W[190] * W[175]
@@ -1015,12 +999,9 @@ double_pendulum_taylor_run_17(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 8. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-double_pendulum_taylor_run_18(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+double_pendulum_taylor_run_18(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[378] = (X[4] * W[332] + 2.0 * X[8] * W[285] + 3.0 * X[12] * W[238] + 4.0 * X[16] * W[191]
             + 5.0 * X[20] * W[144] + 6.0 * X[24] * W[97] + 7.0 * X[28] * W[50] + 8.0 * X[32] * W[3]) / 8.0;
     W[379] = -((X[4] * W[331] + 2.0 * X[8] * W[284] + 3.0 * X[12] * W[237] + 4.0 * X[16] * W[190]
@@ -1051,16 +1032,13 @@ double_pendulum_taylor_run_18(eomc_real t0, const eomc_real *p,
     W[407] = W[4] * W[390];
     W[409] = W[4] * W[391];
     W[403] = W[26] * W[401];
-    return 0;
 }
 
 /* Lines 20 .. 38 of taylor_run's order 9. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-double_pendulum_taylor_run_21(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_21(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[455] = W[452] + W[454];
     W[457] = W[453] + W[456];
     W[458] = W[2] * W[457] + W[49] * W[410] + W[96] * W[363] + W[143] * W[316] + W[190] * W[269]
@@ -1091,12 +1069,9 @@ double_pendulum_taylor_run_21(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 10. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-double_pendulum_taylor_run_22(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+double_pendulum_taylor_run_22(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[472] = (X[4] * W[426] + 2.0 * X[8] * W[379] + 3.0 * X[12] * W[332] + 4.0 * X[16] * W[285]
             + 5.0 * X[20] * W[238] + 6.0 * X[24] * W[191] + 7.0 * X[28] * W[144] + 8.0 * X[32] * W[97]
             + 9.0 * X[36] * W[50] + 10.0 * X[40] * W[3]) / 10.0;
@@ -1139,16 +1114,13 @@ double_pendulum_taylor_run_22(eomc_real t0, const eomc_real *p,
     W[501] = W[4] * W[484];
     W[503] = W[4] * W[485];
     W[497] = W[26] * W[495];
-    return 0;
 }
 
 /* Lines 20 .. 38 of taylor_run's order 11. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-double_pendulum_taylor_run_25(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_25(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[549] = W[546] + W[548];
     W[551] = W[547] + W[550];
     W[552] = W[2] * W[551] + W[49] * W[504] + W[96] * W[457] + W[143] * W[410] + W[190] * W[363]
@@ -1185,12 +1157,9 @@ double_pendulum_taylor_run_25(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 12. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-double_pendulum_taylor_run_26(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+double_pendulum_taylor_run_26(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[566] = (X[4] * W[520] + 2.0 * X[8] * W[473] + 3.0 * X[12] * W[426] + 4.0 * X[16] * W[379]
             + 5.0 * X[20] * W[332] + 6.0 * X[24] * W[285] + 7.0 * X[28] * W[238] + 8.0 * X[32] * W[191]
             + 9.0 * X[36] * W[144] + 10.0 * X[40] * W[97] + 11.0 * X[44] * W[50] + 12.0 * X[48] * W[3]) / 12.0;
@@ -1233,16 +1202,13 @@ double_pendulum_taylor_run_26(eomc_real t0, const eomc_real *p,
     W[595] = W[4] * W[578];
     W[597] = W[4] * W[579];
     W[591] = W[26] * W[589];
-    return 0;
 }
 
 /* Lines 20 .. 38 of taylor_run's order 13. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-double_pendulum_taylor_run_29(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_29(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[643] = W[640] + W[642];
     W[645] = W[641] + W[644];
     W[646] = W[2] * W[645] + W[49] * W[598] + W[96] * W[551] + W[143] * W[504] + W[190] * W[457]
@@ -1279,12 +1245,9 @@ double_pendulum_taylor_run_29(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 14. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-double_pendulum_taylor_run_30(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+double_pendulum_taylor_run_30(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[660] = (X[4] * W[614] + 2.0 * X[8] * W[567] + 3.0 * X[12] * W[520] + 4.0 * X[16] * W[473]
             + 5.0 * X[20] * W[426] + 6.0 * X[24] * W[379] + 7.0 * X[28] * W[332] + 8.0 * X[32] * W[285]
             + 9.0 * X[36] * W[238] + 10.0 * X[40] * W[191] + 11.0 * X[44] * W[144] + 12.0 * X[48] * W[97]
@@ -1331,16 +1294,13 @@ double_pendulum_taylor_run_30(eomc_real t0, const eomc_real *p,
     W[689] = W[4] * W[672];
     W[691] = W[4] * W[673];
     W[685] = W[26] * W[683];
-    return 0;
 }
 
 /* Lines 20 .. 38 of taylor_run's order 15. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-double_pendulum_taylor_run_33(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_33(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[737] = W[734] + W[736];
     W[739] = W[735] + W[738];
     W[740] = W[2] * W[739] + W[49] * W[692] + W[96] * W[645] + W[143] * W[598] + W[190] * W[551]
@@ -1383,12 +1343,9 @@ double_pendulum_taylor_run_33(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 16. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-double_pendulum_taylor_run_34(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+double_pendulum_taylor_run_34(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[754] = (X[4] * W[708] + 2.0 * X[8] * W[661] + 3.0 * X[12] * W[614] + 4.0 * X[16] * W[567]
             + 5.0 * X[20] * W[520] + 6.0 * X[24] * W[473] + 7.0 * X[28] * W[426] + 8.0 * X[32] * W[379]
             + 9.0 * X[36] * W[332] + 10.0 * X[40] * W[285] + 11.0 * X[44] * W[238] + 12.0 * X[48] * W[191]
@@ -1441,16 +1398,13 @@ double_pendulum_taylor_run_34(eomc_real t0, const eomc_real *p,
     W[783] = W[4] * W[766];
     W[785] = W[4] * W[767];
     W[779] = W[26] * W[777];
-    return 0;
 }
 
 /* Lines 20 .. 38 of taylor_run's order 17. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-double_pendulum_taylor_run_37(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_37(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[831] = W[828] + W[830];
     W[833] = W[829] + W[832];
     W[834] = W[2] * W[833] + W[49] * W[786] + W[96] * W[739] + W[143] * W[692] + W[190] * W[645]
@@ -1493,12 +1447,9 @@ double_pendulum_taylor_run_37(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 18. */
-static EOMC_NOINLINE EOMC_UNCHECKED int
-double_pendulum_taylor_run_38(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx)
+static EOMC_NOINLINE EOMC_UNCHECKED void
+double_pendulum_taylor_run_38(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[848] = (X[4] * W[802] + 2.0 * X[8] * W[755] + 3.0 * X[12] * W[708] + 4.0 * X[16] * W[661]
             + 5.0 * X[20] * W[614] + 6.0 * X[24] * W[567] + 7.0 * X[28] * W[520] + 8.0 * X[32] * W[473]
             + 9.0 * X[36] * W[426] + 10.0 * X[40] * W[379] + 11.0 * X[44] * W[332] + 12.0 * X[48] * W[285]
@@ -1555,16 +1506,13 @@ double_pendulum_taylor_run_38(eomc_real t0, const eomc_real *p,
     W[877] = W[4] * W[860];
     W[879] = W[4] * W[861];
     W[873] = W[26] * W[871];
-    return 0;
 }
 
 /* Lines 20 .. 38 of taylor_run's order 19. */
 static EOMC_NOINLINE EOMC_UNCHECKED int
-double_pendulum_taylor_run_41(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_41(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[925] = W[922] + W[924];
     W[927] = W[923] + W[926];
     W[928] = W[2] * W[927] + W[49] * W[880] + W[96] * W[833] + W[143] * W[786] + W[190] * W[739]
@@ -1606,94 +1554,59 @@ double_pendulum_taylor_run_41(eomc_real t0, const eomc_real *p,
     return 0;
 }
 
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_1(const eomc_real *p, eomc_real *restrict W,
+    eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_2(eomc_real *restrict W);
 EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_1(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_3(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_4(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_6(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_8(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_10(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_12(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_2(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_15(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_16(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_3(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_19(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_20(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_4(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_23(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_24(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_6(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_27(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_28(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_8(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_31(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_32(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_10(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_35(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_36(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_12(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_39(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_15(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_16(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_19(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_20(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_23(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_24(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_27(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_28(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_31(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_32(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_35(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_36(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_39(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx);
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_40(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx);
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_40(eomc_real *restrict W, eomc_real *restrict X);
 static int
 double_pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *T, eomc_real *X, eomc_tay_solve solve,
@@ -1703,147 +1616,126 @@ double_pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p,
     if (K > 20)
         return 1;
     (void)S, (void)T, (void)t0, (void)p, (void)u;
-    eomc_real W[987]; /* slot s's coefficient j at W[j * 47 + s], but the
+    eomc_real W[987]; /* a slot's coefficient j at W[j * 47 + its column], but the
                    * state's: X[j * 4 + i], q's then v's */
     /* order 0 */
-    if (double_pendulum_taylor_run_1(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (double_pendulum_taylor_run_2(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (double_pendulum_taylor_run_3(t0, p, u, W, X, solve, ctx))
+    double_pendulum_taylor_run_1(p, W, X);
+    double_pendulum_taylor_run_2(W);
+    if (double_pendulum_taylor_run_3(W, X, solve, ctx))
         return -1;
     if (K == 1)
         goto out;
     /* order 1 */
-    if (double_pendulum_taylor_run_4(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (double_pendulum_taylor_run_5(t0, p, u, W, X, solve, ctx))
+    double_pendulum_taylor_run_4(W, X);
+    if (double_pendulum_taylor_run_5(W, X, solve, ctx))
         return -1;
     if (K == 2)
         goto out;
     /* order 2 */
-    if (double_pendulum_taylor_run_6(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (double_pendulum_taylor_run_7(t0, p, u, W, X, solve, ctx))
+    double_pendulum_taylor_run_6(W, X);
+    if (double_pendulum_taylor_run_7(W, X, solve, ctx))
         return -1;
     if (K == 3)
         goto out;
     /* order 3 */
-    if (double_pendulum_taylor_run_8(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (double_pendulum_taylor_run_9(t0, p, u, W, X, solve, ctx))
+    double_pendulum_taylor_run_8(W, X);
+    if (double_pendulum_taylor_run_9(W, X, solve, ctx))
         return -1;
     if (K == 4)
         goto out;
     /* order 4 */
-    if (double_pendulum_taylor_run_10(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (double_pendulum_taylor_run_11(t0, p, u, W, X, solve, ctx))
+    double_pendulum_taylor_run_10(W, X);
+    if (double_pendulum_taylor_run_11(W, X, solve, ctx))
         return -1;
     if (K == 5)
         goto out;
     /* order 5 */
-    if (double_pendulum_taylor_run_12(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (double_pendulum_taylor_run_13(t0, p, u, W, X, solve, ctx))
+    double_pendulum_taylor_run_12(W, X);
+    if (double_pendulum_taylor_run_13(W, X, solve, ctx))
         return -1;
     if (K == 6)
         goto out;
     /* order 6 */
-    if (double_pendulum_taylor_run_14(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (double_pendulum_taylor_run_15(t0, p, u, W, X, solve, ctx))
+    double_pendulum_taylor_run_14(W, X);
+    if (double_pendulum_taylor_run_15(W, X, solve, ctx))
         return -1;
     if (K == 7)
         goto out;
     /* order 7 */
-    if (double_pendulum_taylor_run_16(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (double_pendulum_taylor_run_17(t0, p, u, W, X, solve, ctx))
+    double_pendulum_taylor_run_16(W, X);
+    if (double_pendulum_taylor_run_17(W, X, solve, ctx))
         return -1;
     if (K == 8)
         goto out;
     /* order 8 */
-    if (double_pendulum_taylor_run_18(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (double_pendulum_taylor_run_19(t0, p, u, W, X, solve, ctx))
+    double_pendulum_taylor_run_18(W, X);
+    if (double_pendulum_taylor_run_19(W, X, solve, ctx))
         return -1;
     if (K == 9)
         goto out;
     /* order 9 */
-    if (double_pendulum_taylor_run_20(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (double_pendulum_taylor_run_21(t0, p, u, W, X, solve, ctx))
+    double_pendulum_taylor_run_20(W, X);
+    if (double_pendulum_taylor_run_21(W, X, solve, ctx))
         return -1;
     if (K == 10)
         goto out;
     /* order 10 */
-    if (double_pendulum_taylor_run_22(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (double_pendulum_taylor_run_23(t0, p, u, W, X, solve, ctx))
+    double_pendulum_taylor_run_22(W, X);
+    if (double_pendulum_taylor_run_23(W, X, solve, ctx))
         return -1;
     if (K == 11)
         goto out;
     /* order 11 */
-    if (double_pendulum_taylor_run_24(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (double_pendulum_taylor_run_25(t0, p, u, W, X, solve, ctx))
+    double_pendulum_taylor_run_24(W, X);
+    if (double_pendulum_taylor_run_25(W, X, solve, ctx))
         return -1;
     if (K == 12)
         goto out;
     /* order 12 */
-    if (double_pendulum_taylor_run_26(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (double_pendulum_taylor_run_27(t0, p, u, W, X, solve, ctx))
+    double_pendulum_taylor_run_26(W, X);
+    if (double_pendulum_taylor_run_27(W, X, solve, ctx))
         return -1;
     if (K == 13)
         goto out;
     /* order 13 */
-    if (double_pendulum_taylor_run_28(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (double_pendulum_taylor_run_29(t0, p, u, W, X, solve, ctx))
+    double_pendulum_taylor_run_28(W, X);
+    if (double_pendulum_taylor_run_29(W, X, solve, ctx))
         return -1;
     if (K == 14)
         goto out;
     /* order 14 */
-    if (double_pendulum_taylor_run_30(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (double_pendulum_taylor_run_31(t0, p, u, W, X, solve, ctx))
+    double_pendulum_taylor_run_30(W, X);
+    if (double_pendulum_taylor_run_31(W, X, solve, ctx))
         return -1;
     if (K == 15)
         goto out;
     /* order 15 */
-    if (double_pendulum_taylor_run_32(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (double_pendulum_taylor_run_33(t0, p, u, W, X, solve, ctx))
+    double_pendulum_taylor_run_32(W, X);
+    if (double_pendulum_taylor_run_33(W, X, solve, ctx))
         return -1;
     if (K == 16)
         goto out;
     /* order 16 */
-    if (double_pendulum_taylor_run_34(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (double_pendulum_taylor_run_35(t0, p, u, W, X, solve, ctx))
+    double_pendulum_taylor_run_34(W, X);
+    if (double_pendulum_taylor_run_35(W, X, solve, ctx))
         return -1;
     if (K == 17)
         goto out;
     /* order 17 */
-    if (double_pendulum_taylor_run_36(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (double_pendulum_taylor_run_37(t0, p, u, W, X, solve, ctx))
+    double_pendulum_taylor_run_36(W, X);
+    if (double_pendulum_taylor_run_37(W, X, solve, ctx))
         return -1;
     if (K == 18)
         goto out;
     /* order 18 */
-    if (double_pendulum_taylor_run_38(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (double_pendulum_taylor_run_39(t0, p, u, W, X, solve, ctx))
+    double_pendulum_taylor_run_38(W, X);
+    if (double_pendulum_taylor_run_39(W, X, solve, ctx))
         return -1;
     if (K == 19)
         goto out;
     /* order 19 */
-    if (double_pendulum_taylor_run_40(t0, p, u, W, X, solve, ctx))
-        return -1;
-    if (double_pendulum_taylor_run_41(t0, p, u, W, X, solve, ctx))
+    double_pendulum_taylor_run_40(W, X);
+    if (double_pendulum_taylor_run_41(W, X, solve, ctx))
         return -1;
 out:
     return 0;
@@ -1956,6 +1848,7 @@ const eomc_model_ext double_pendulum_model_ext = {
 #endif /* EOMC_UNIT 3 */
 
 #if !defined(EOMC_UNIT) || EOMC_UNIT == 4
+#include "eomc_taylor.h"
 /* The twin's names, linked beside the model's. */
 #if defined(EOMC_EXTENDED) && defined(EOMC_UNIT)
 #define double_pendulum_taylor_run_1 double_pendulum_taylor_run_1_ext
@@ -1983,12 +1876,10 @@ const eomc_model_ext double_pendulum_model_ext = {
 #endif
 #ifndef EOMC_EXTENDED
 /* Lines 0 .. 19 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_1(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_1(const eomc_real *p, eomc_real *restrict W,
+    eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[0] = p[2];
     W[2] = sin(X[0]);
     W[3] = cos(X[0]);
@@ -2009,16 +1900,12 @@ double_pendulum_taylor_run_1(eomc_real t0, const eomc_real *p,
     W[11] = W[2] * W[10];
     W[12] = W[3] * W[10];
     W[14] = W[6] * W[13];
-    return 0;
 }
 
 /* Lines 20 .. 39 of taylor_run's order 0, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_2(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_2(eomc_real *restrict W)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[15] = W[7] * W[13];
     W[23] = W[2] * W[6];
     W[24] = W[3] * W[7];
@@ -2039,16 +1926,13 @@ double_pendulum_taylor_run_2(eomc_real t0, const eomc_real *p,
     W[38] = W[17] * W[37];
     W[43] = W[16] * W[42];
     W[39] = W[21] + W[38];
-    return 0;
 }
 
 /* Lines 40 .. 47 of taylor_run's order 0, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_3(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_3(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[44] = W[19] + W[43];
     X[4] = X[2];
     X[5] = X[3];
@@ -2065,12 +1949,9 @@ double_pendulum_taylor_run_3(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_4(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_4(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[49] = X[4] * W[3];
     W[50] = -X[4] * W[2];
     W[53] = X[5] * W[7];
@@ -2091,16 +1972,12 @@ double_pendulum_taylor_run_4(eomc_real t0, const eomc_real *p,
     W[78] = W[4] * W[61];
     W[80] = W[4] * W[62];
     W[74] = W[26] * W[72];
-    return 0;
 }
 
 /* Lines 0 .. 19 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_6(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_6(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[96] = (X[4] * W[50] + 2.0 * X[8] * W[3]) / 2.0;
     W[97] = -((X[4] * W[49] + 2.0 * X[8] * W[2])) / 2.0;
     W[100] = (X[5] * W[54] + 2.0 * X[9] * W[7]) / 2.0;
@@ -2121,16 +1998,12 @@ double_pendulum_taylor_run_6(eomc_real t0, const eomc_real *p,
     W[125] = W[4] * W[108];
     W[127] = W[4] * W[109];
     W[121] = W[26] * W[119];
-    return 0;
 }
 
 /* Lines 0 .. 19 of taylor_run's order 3, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_8(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_8(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[143] = (X[4] * W[97] + 2.0 * X[8] * W[50] + 3.0 * X[12] * W[3]) / 3.0;
     W[144] = -((X[4] * W[96] + 2.0 * X[8] * W[49] + 3.0 * X[12] * W[2])) / 3.0;
     W[147] = (X[5] * W[101] + 2.0 * X[9] * W[54] + 3.0 * X[13] * W[7]) / 3.0;
@@ -2151,16 +2024,12 @@ double_pendulum_taylor_run_8(eomc_real t0, const eomc_real *p,
     W[172] = W[4] * W[155];
     W[174] = W[4] * W[156];
     W[168] = W[26] * W[166];
-    return 0;
 }
 
 /* Lines 0 .. 19 of taylor_run's order 4, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_10(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_10(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[190] = (X[4] * W[144] + 2.0 * X[8] * W[97] + 3.0 * X[12] * W[50] + 4.0 * X[16] * W[3]) / 4.0;
     W[191] = -((X[4] * W[143] + 2.0 * X[8] * W[96] + 3.0 * X[12] * W[49] + 4.0 * X[16] * W[2])) / 4.0;
     W[194] = (X[5] * W[148] + 2.0 * X[9] * W[101] + 3.0 * X[13] * W[54] + 4.0 * X[17] * W[7]) / 4.0;
@@ -2181,16 +2050,12 @@ double_pendulum_taylor_run_10(eomc_real t0, const eomc_real *p,
     W[219] = W[4] * W[202];
     W[221] = W[4] * W[203];
     W[215] = W[26] * W[213];
-    return 0;
 }
 
 /* Lines 0 .. 19 of taylor_run's order 5, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_12(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_12(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[237] = (X[4] * W[191] + 2.0 * X[8] * W[144] + 3.0 * X[12] * W[97] + 4.0 * X[16] * W[50]
             + 5.0 * X[20] * W[3]) / 5.0;
     W[238] = -((X[4] * W[190] + 2.0 * X[8] * W[143] + 3.0 * X[12] * W[96] + 4.0 * X[16] * W[49]
@@ -2221,16 +2086,13 @@ double_pendulum_taylor_run_12(eomc_real t0, const eomc_real *p,
     W[266] = W[4] * W[249];
     W[268] = W[4] * W[250];
     W[262] = W[26] * W[260];
-    return 0;
 }
 
 /* Lines 20 .. 38 of taylor_run's order 6, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_15(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_15(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[314] = W[311] + W[313];
     W[316] = W[312] + W[315];
     W[317] = W[2] * W[316] + W[49] * W[269] + W[96] * W[222] + W[143] * W[175] + W[190] * W[128]
@@ -2261,12 +2123,9 @@ double_pendulum_taylor_run_15(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 7, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_16(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_16(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[331] = (X[4] * W[285] + 2.0 * X[8] * W[238] + 3.0 * X[12] * W[191] + 4.0 * X[16] * W[144]
             + 5.0 * X[20] * W[97] + 6.0 * X[24] * W[50] + 7.0 * X[28] * W[3]) / 7.0;
     W[332] = -((X[4] * W[284] + 2.0 * X[8] * W[237] + 3.0 * X[12] * W[190] + 4.0 * X[16] * W[143]
@@ -2297,16 +2156,13 @@ double_pendulum_taylor_run_16(eomc_real t0, const eomc_real *p,
     W[360] = W[4] * W[343];
     W[362] = W[4] * W[344];
     W[356] = W[26] * W[354];
-    return 0;
 }
 
 /* Lines 20 .. 38 of taylor_run's order 8, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_19(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_19(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[408] = W[405] + W[407];
     W[410] = W[406] + W[409];
     W[411] = W[2] * W[410] + W[49] * W[363] + W[96] * W[316] + W[143] * W[269] + W[190] * W[222]
@@ -2337,12 +2193,9 @@ double_pendulum_taylor_run_19(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 9, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_20(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_20(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[425] = (X[4] * W[379] + 2.0 * X[8] * W[332] + 3.0 * X[12] * W[285] + 4.0 * X[16] * W[238]
             + 5.0 * X[20] * W[191] + 6.0 * X[24] * W[144] + 7.0 * X[28] * W[97] + 8.0 * X[32] * W[50]
             + 9.0 * X[36] * W[3]) / 9.0;
@@ -2377,16 +2230,13 @@ double_pendulum_taylor_run_20(eomc_real t0, const eomc_real *p,
     W[454] = W[4] * W[437];
     W[456] = W[4] * W[438];
     W[450] = W[26] * W[448];
-    return 0;
 }
 
 /* Lines 20 .. 38 of taylor_run's order 10, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_23(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_23(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[502] = W[499] + W[501];
     W[504] = W[500] + W[503];
     W[505] = W[2] * W[504] + W[49] * W[457] + W[96] * W[410] + W[143] * W[363] + W[190] * W[316]
@@ -2423,12 +2273,9 @@ double_pendulum_taylor_run_23(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 11, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_24(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_24(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[519] = (X[4] * W[473] + 2.0 * X[8] * W[426] + 3.0 * X[12] * W[379] + 4.0 * X[16] * W[332]
             + 5.0 * X[20] * W[285] + 6.0 * X[24] * W[238] + 7.0 * X[28] * W[191] + 8.0 * X[32] * W[144]
             + 9.0 * X[36] * W[97] + 10.0 * X[40] * W[50] + 11.0 * X[44] * W[3]) / 11.0;
@@ -2469,16 +2316,13 @@ double_pendulum_taylor_run_24(eomc_real t0, const eomc_real *p,
     W[548] = W[4] * W[531];
     W[550] = W[4] * W[532];
     W[544] = W[26] * W[542];
-    return 0;
 }
 
 /* Lines 20 .. 38 of taylor_run's order 12, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_27(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_27(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[596] = W[593] + W[595];
     W[598] = W[594] + W[597];
     W[599] = W[2] * W[598] + W[49] * W[551] + W[96] * W[504] + W[143] * W[457] + W[190] * W[410]
@@ -2515,12 +2359,9 @@ double_pendulum_taylor_run_27(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 13, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_28(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_28(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[613] = (X[4] * W[567] + 2.0 * X[8] * W[520] + 3.0 * X[12] * W[473] + 4.0 * X[16] * W[426]
             + 5.0 * X[20] * W[379] + 6.0 * X[24] * W[332] + 7.0 * X[28] * W[285] + 8.0 * X[32] * W[238]
             + 9.0 * X[36] * W[191] + 10.0 * X[40] * W[144] + 11.0 * X[44] * W[97] + 12.0 * X[48] * W[50]
@@ -2567,16 +2408,13 @@ double_pendulum_taylor_run_28(eomc_real t0, const eomc_real *p,
     W[642] = W[4] * W[625];
     W[644] = W[4] * W[626];
     W[638] = W[26] * W[636];
-    return 0;
 }
 
 /* Lines 20 .. 38 of taylor_run's order 14, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_31(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_31(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[690] = W[687] + W[689];
     W[692] = W[688] + W[691];
     W[693] = W[2] * W[692] + W[49] * W[645] + W[96] * W[598] + W[143] * W[551] + W[190] * W[504]
@@ -2613,12 +2451,9 @@ double_pendulum_taylor_run_31(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 15, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_32(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_32(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[707] = (X[4] * W[661] + 2.0 * X[8] * W[614] + 3.0 * X[12] * W[567] + 4.0 * X[16] * W[520]
             + 5.0 * X[20] * W[473] + 6.0 * X[24] * W[426] + 7.0 * X[28] * W[379] + 8.0 * X[32] * W[332]
             + 9.0 * X[36] * W[285] + 10.0 * X[40] * W[238] + 11.0 * X[44] * W[191] + 12.0 * X[48] * W[144]
@@ -2671,16 +2506,13 @@ double_pendulum_taylor_run_32(eomc_real t0, const eomc_real *p,
     W[736] = W[4] * W[719];
     W[738] = W[4] * W[720];
     W[732] = W[26] * W[730];
-    return 0;
 }
 
 /* Lines 20 .. 38 of taylor_run's order 16, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_35(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_35(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[784] = W[781] + W[783];
     W[786] = W[782] + W[785];
     W[787] = W[2] * W[786] + W[49] * W[739] + W[96] * W[692] + W[143] * W[645] + W[190] * W[598]
@@ -2723,12 +2555,9 @@ double_pendulum_taylor_run_35(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 17, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_36(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_36(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[801] = (X[4] * W[755] + 2.0 * X[8] * W[708] + 3.0 * X[12] * W[661] + 4.0 * X[16] * W[614]
             + 5.0 * X[20] * W[567] + 6.0 * X[24] * W[520] + 7.0 * X[28] * W[473] + 8.0 * X[32] * W[426]
             + 9.0 * X[36] * W[379] + 10.0 * X[40] * W[332] + 11.0 * X[44] * W[285] + 12.0 * X[48] * W[238]
@@ -2785,16 +2614,13 @@ double_pendulum_taylor_run_36(eomc_real t0, const eomc_real *p,
     W[830] = W[4] * W[813];
     W[832] = W[4] * W[814];
     W[826] = W[26] * W[824];
-    return 0;
 }
 
 /* Lines 20 .. 38 of taylor_run's order 18, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_39(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
+double_pendulum_taylor_run_39(eomc_real *restrict W, eomc_real *restrict X,
     eomc_tay_solve solve, void *ctx)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[878] = W[875] + W[877];
     W[880] = W[876] + W[879];
     W[881] = W[2] * W[880] + W[49] * W[833] + W[96] * W[786] + W[143] * W[739] + W[190] * W[692]
@@ -2837,12 +2663,9 @@ double_pendulum_taylor_run_39(eomc_real t0, const eomc_real *p,
 }
 
 /* Lines 0 .. 19 of taylor_run's order 19, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED int
-double_pendulum_taylor_run_40(eomc_real t0, const eomc_real *p,
-    const eomc_real *u, eomc_real *restrict W, eomc_real *restrict X,
-    eomc_tay_solve solve, void *ctx)
+EOMC_PART EOMC_UNCHECKED void
+double_pendulum_taylor_run_40(eomc_real *restrict W, eomc_real *restrict X)
 {
-    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, (void)ctx;
     W[895] = (X[4] * W[849] + 2.0 * X[8] * W[802] + 3.0 * X[12] * W[755] + 4.0 * X[16] * W[708]
             + 5.0 * X[20] * W[661] + 6.0 * X[24] * W[614] + 7.0 * X[28] * W[567] + 8.0 * X[32] * W[520]
             + 9.0 * X[36] * W[473] + 10.0 * X[40] * W[426] + 11.0 * X[44] * W[379] + 12.0 * X[48] * W[332]
@@ -2899,7 +2722,6 @@ double_pendulum_taylor_run_40(eomc_real t0, const eomc_real *p,
     W[924] = W[4] * W[907];
     W[926] = W[4] * W[908];
     W[920] = W[26] * W[918];
-    return 0;
 }
 
 #endif /* EOMC_EXTENDED */

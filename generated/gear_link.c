@@ -286,7 +286,7 @@ gear_link_taylor_run(int K, eomc_real t0, const eomc_real *p,
                 X[j * 2 + i] = T[state[i] * S + j];
         return 0;
     }
-    eomc_real W[231]; /* slot s's coefficient j at W[j * 11 + s], but the
+    eomc_real W[231]; /* a slot's coefficient j at W[j * 11 + its column], but the
                    * state's: X[j * 2 + i], q's then v's */
     /* order 0 */
     W[0] = p[2];
@@ -295,8 +295,8 @@ gear_link_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[5] = p[9];
     W[6] = sin(X[0]);
     W[7] = cos(X[0]);
-    W[8] = W[2] * W[6];
     W[4] = W[0] * W[3];
+    W[8] = W[2] * W[6];
     W[9] = W[8] - W[4];
     X[2] = X[1];
     X[3] = -W[9] / W[5];
@@ -560,7 +560,7 @@ gear_link_taylor_run4(int K, const double *t0s, const double *ps,
     const eomc_v4 *p = (const eomc_v4 *)ps, *u = (const eomc_v4 *)us;
     eomc_v4 *T = (eomc_v4 *)Ts, *X = (eomc_v4 *)Xs;
     (void)S, (void)T, (void)t0, (void)p, (void)u;
-    eomc_v4 W[231]; /* slot s's coefficient j at W[j * 11 + s], but the
+    eomc_v4 W[231]; /* a slot's coefficient j at W[j * 11 + its column], but the
                    * state's: X[j * 2 + i], q's then v's */
     /* order 0 */
     W[0] = p[2];
@@ -569,8 +569,8 @@ gear_link_taylor_run4(int K, const double *t0s, const double *ps,
     W[5] = p[9];
     eomc_v4_sin(&W[6], &X[0]);
     eomc_v4_cos(&W[7], &X[0]);
-    W[8] = W[2] * W[6];
     W[4] = W[0] * W[3];
+    W[8] = W[2] * W[6];
     W[9] = W[8] - W[4];
     X[2] = X[1];
     X[3] = -W[9] / W[5];

@@ -398,7 +398,7 @@ pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
                 X[j * 2 + i] = T[state[i] * S + j];
         return 0;
     }
-    eomc_real W[147]; /* slot s's coefficient j at W[j * 7 + s], but the
+    eomc_real W[147]; /* a slot's coefficient j at W[j * 7 + its column], but the
                    * state's: X[j * 2 + i], q's then v's */
     /* order 0 */
     W[1] = sin(X[0]);
@@ -646,7 +646,7 @@ pendulum_taylor_run4(int K, const double *t0s, const double *ps,
     const eomc_v4 *p = (const eomc_v4 *)ps, *u = (const eomc_v4 *)us;
     eomc_v4 *T = (eomc_v4 *)Ts, *X = (eomc_v4 *)Xs;
     (void)S, (void)T, (void)t0, (void)p, (void)u;
-    eomc_v4 W[147]; /* slot s's coefficient j at W[j * 7 + s], but the
+    eomc_v4 W[147]; /* a slot's coefficient j at W[j * 7 + its column], but the
                    * state's: X[j * 2 + i], q's then v's */
     /* order 0 */
     eomc_v4_sin(&W[1], &X[0]);

@@ -1206,6 +1206,8 @@ emit_model(FILE *f, const Lowered *L, ExprPool *P, const EmitInfo *info,
         if (!u.text[k])
             continue;
         fprintf(f, "\n#if !defined(EOMC_UNIT) || EOMC_UNIT == %d\n", k + 1);
+        if (k == 3 && !L->taylor->why) /* (unit 3's text has it: the series' parts) */
+            fputs("#include \"eomc_taylor.h\"\n", f);
         print_twin_names(f, u.text[k], u.len[k], "EOMC_PART ");
         fwrite(u.text[k], 1, u.len[k], f);
         fprintf(f, "#endif /* EOMC_UNIT %d */\n", k + 1);

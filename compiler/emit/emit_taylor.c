@@ -152,20 +152,24 @@ print_wrappers(Printer *pr, const LowTaylor *ty, int declare)
 /* A line's text, wrapped before a term past this column. */
 enum { SERIES_WRAP = 92 };
 
-/* Where a cell lives: the state's (q's and v's slots, place[s] >= 0) in
- * the caller's X, X[j N + place[s]], so that its series is written where
- * the runtime reads it; every other in the local W. */
+/* Where a cell lives: the state's (q's and v's slots, in column c with
+ * place[c] >= 0) in the caller's X, X[j N + place[c]], so that its series
+ * is written where the runtime reads it; every other in the local W. */
 typedef struct Cells {
-    const int *place; /* [nslot] the state's index of a slot, or -1 */
+    int *place;       /* [nslot] by column: the state's index, or -1 */
     int nslot, N;
     int lanes;        /* taylor_run4's: every value a vector of the lanes'
                        * (EOMC_V4), a number spread over them */
 } Cells;
 
+/* A line being printed: at column col; in a pack (LowSerLine.pack) of w
+ * lanes, an operand that differs in lane 1 (cell1) is its w consecutive
+ * cells, EOMC_AT4 or EOMC_AT2, and one the same in every lane a number. */
 typedef struct Col {
     FILE *f;
     int col;
     const Cells *cells;
+    int w;
 } Col;
 
 static void
@@ -181,23 +185,25 @@ put(Col *c, const char *fmt, ...)
 }
 
 /* A cell as an operand: W[c] or the state's X[...], or 0 (-1: 0 at
- * every step). */
+ * every step); in a pack, lane 1's being cell1. */
 static void
-put_cell(Col *c, int cell)
+put_cell(Col *c, int cell, int cell1)
 {
     const Cells *m = c->cells;
     int at = cell < 0 ? -1 : m->place[cell % m->nslot];
+    int index = at >= 0 ? cell / m->nslot * m->N + at : cell;
     if (cell < 0)
         put(c, m->lanes ? "EOMC_V4C(0.0)" : "0.0");
-    else if (at >= 0)
-        put(c, "X[%d]", cell / m->nslot * m->N + at);
+    else if (c->w && cell1 != cell)
+        put(c, "EOMC_AT%d(%s + %d)", c->w, at >= 0 ? "X" : "W", index);
     else
-        put(c, "W[%d]", cell);
+        put(c, "%s[%d]", at >= 0 ? "X" : "W", index);
 }
 
-/* Term t, after others (its sign as the operator) or first. */
+/* Term t, after others (its sign as the operator) or first; t1 lane 1's
+ * in a pack. */
 static void
-put_term(Col *c, const LowSerTerm *t, int first)
+put_term(Col *c, const LowSerTerm *t, const LowSerTerm *t1, int first)
 {
     double mag = fabs(t->coef);
     if (!first && c->col > SERIES_WRAP) {
@@ -216,10 +222,10 @@ put_term(Col *c, const LowSerTerm *t, int first)
     }
     if (mag != 1)
         put(c, "%s * ", num);
-    put_cell(c, t->x);
+    put_cell(c, t->x, t1->x);
     if (t->y >= 0) {
         put(c, " * ");
-        put_cell(c, t->y);
+        put_cell(c, t->y, t1->y);
     }
 }
 
@@ -250,11 +256,14 @@ put_value(Col *c, int src, int index, double value)
     }
 }
 
-/* One line of the written-out series (lowered.h's LowSerLine). */
+/* One line of the written-out series (lowered.h's LowSerLine); w > 0:
+ * the pack of w lines from l, on vectors. */
 static void
-print_series_line(Printer *pr, const LowSeries *se, const LowSerLine *l, const Cells *cells)
+print_series_line(Printer *pr, const LowSeries *se, const LowSerLine *l, int w,
+                  const Cells *cells)
 {
-    Col c = {pr->f, 0, cells};
+    Col c = {pr->f, 0, cells, w};
+    const LowSerLine *l1 = w ? l + 1 : l; /* lane 1's, which tells an operand's kind */
     char num[40];
     if (l->kind == LOW_SER_SOLVE) { /* in place over W's cells from dst */
         if (l->index > 0) {
@@ -276,7 +285,7 @@ print_series_line(Printer *pr, const LowSeries *se, const LowSerLine *l, const C
             if (m->x < 0)
                 put(&c, "0.0");
             else
-                put_cell(&c, m->x);
+                put_cell(&c, m->x, m->x);
         }
         put(&c, "};\n");
         emit_line(pr, "        if (solve(ctx, 0, M0, W + %d))\n            return -1;\n    }",
@@ -287,7 +296,7 @@ print_series_line(Printer *pr, const LowSeries *se, const LowSerLine *l, const C
     if (cells->lanes && (l->kind == LOW_SER_CALL || l->kind == LOW_SER_SELECT)) {
         /* a lane at a time, by eomc_taylor.h's helper */
         put(&c, "eomc_v4_%s(&", l->kind == LOW_SER_CALL ? l->fn : "select");
-        put_cell(&c, l->dst);
+        put_cell(&c, l->dst, l1->dst);
         put(&c, ", ");
         if (l->kind == LOW_SER_SELECT) {
             put(&c, "&");
@@ -295,15 +304,15 @@ print_series_line(Printer *pr, const LowSeries *se, const LowSerLine *l, const C
             put(&c, ", ");
         }
         put(&c, "&");
-        put_cell(&c, l->x);
+        put_cell(&c, l->x, l->x);
         if (l->kind == LOW_SER_SELECT || !strcmp(l->fn, "pow")) {
             put(&c, ", &");
-            put_cell(&c, l->y);
+            put_cell(&c, l->y, l->y);
         }
         fputs(");\n", pr->f);
         return;
     }
-    put_cell(&c, l->dst);
+    put_cell(&c, l->dst, l1->dst);
     put(&c, " = ");
     switch (l->kind) {
     case LOW_SER_VALUE:
@@ -311,19 +320,19 @@ print_series_line(Printer *pr, const LowSeries *se, const LowSerLine *l, const C
         break;
     case LOW_SER_CALL:
         put(&c, "%s(", l->fn);
-        put_cell(&c, l->x);
+        put_cell(&c, l->x, l->x);
         if (!strcmp(l->fn, "pow")) {
             put(&c, ", ");
-            put_cell(&c, l->y);
+            put_cell(&c, l->y, l->y);
         }
         put(&c, ")");
         break;
     case LOW_SER_SELECT:
         put_value(&c, l->src, l->index, 0);
         put(&c, " != 0 ? ");
-        put_cell(&c, l->x);
+        put_cell(&c, l->x, l->x);
         put(&c, " : ");
-        put_cell(&c, l->y);
+        put_cell(&c, l->y, l->y);
         break;
     default: {
         /* Products and quotients associate to the left, so a single term
@@ -344,19 +353,19 @@ print_series_line(Printer *pr, const LowSeries *se, const LowSerLine *l, const C
         put(&c, "%s%s%s", l->negate ? (nsum > 1 ? "-(" : "-") : "", wrap2 ? "(" : "",
             wrap ? "(" : "");
         for (int t = 0; t < l->nterm; t++)
-            put_term(&c, &se->term[l->first + t], t == 0);
+            put_term(&c, &se->term[l->first + t], &se->term[l1->first + t], t == 0);
         put(&c, wrap ? ")" : "");
         if (times) {
             emit_const(num, sizeof num, l->times);
             put(&c, " * %s", num);
         }
         if (l->last >= 0)
-            put_term(&c, &se->term[l->last], l->nterm == 0);
+            put_term(&c, &se->term[l->last], &se->term[l1->last], l->nterm == 0);
         put(&c, wrap2 ? ")" : "");
         if (l->over != 0) {
             emit_const(num, sizeof num, l->over);
             put(&c, l->over != 1 ? " / (%s * " : " / ", num);
-            put_cell(&c, l->over_cell);
+            put_cell(&c, l->over_cell, l1->over_cell);
             put(&c, l->over != 1 ? ")" : "");
         }
         if (l->negate && nsum > 1)
@@ -371,18 +380,44 @@ print_series_line(Printer *pr, const LowSeries *se, const LowSerLine *l, const C
     fputs(";\n", pr->f);
 }
 
-/* The cells of ty's written-out series (place malloc'd: the caller frees
- * it). */
-static Cells
-series_cells(const LowTaylor *ty, int lanes)
+/* The cells of ty's written-out series, into *cells (its place malloc'd:
+ * the caller frees it). */
+static void
+series_cells(const LowTaylor *ty, int lanes, Cells *cells)
 {
     int ns = ty->nstate, nslot = ty->nslot;
     int *place = xmalloc(((size_t)nslot + 1) * sizeof *place);
     for (int s = 0; s < nslot; s++)
         place[s] = -1;
     for (int i = 0; i < ns; i++)
-        place[ty->state_slot[i]] = i;
-    return (Cells){place, nslot, ns, lanes};
+        place[ty->series->col[ty->state_slot[i]]] = i;
+    *cells = (Cells){place, nslot, ns, lanes};
+}
+
+/* Lines from .. to - 1 of the series: a run of packs (LowSerLine.pack)
+ * each as one line on vectors where the C compiler has GCC's vectors
+ * (EOMC_PACKS, eomc_taylor.h), else line by line; none in taylor_run4's
+ * lanes, already vectors. */
+static void
+print_lines(Printer *pr, const LowSeries *se, int from, int to, const Cells *cells)
+{
+    for (int i = from, j; i < to; i = j) {
+        const LowSerLine *l = se->line;
+        if (cells->lanes || !l[i].pack) {
+            print_series_line(pr, se, &l[i], 0, cells);
+            j = i + 1;
+            continue;
+        }
+        for (j = i; j < to && l[j].pack;)
+            j += l[j].pack;
+        emit_line(pr, "#ifdef EOMC_PACKS");
+        for (int x = i; x < j; x += l[x].pack)
+            print_series_line(pr, se, &l[x], l[x].pack, cells);
+        emit_line(pr, "#else");
+        for (int x = i; x < j; x++)
+            print_series_line(pr, se, &l[x], 0, cells);
+        emit_line(pr, "#endif");
+    }
 }
 
 /* A parted series (LowSeries.parted: past LOW_SERIES_OPTIMIZED_TERMS
@@ -399,67 +434,144 @@ series_cells(const LowTaylor *ty, int lanes)
  * Pleiades builds in 2.3 s, against 2.6 s before. */
 enum { SERIES_PART_LINES = 20 };
 
-/* The parts of ty's parted series, NAME_taylor_run_1, ..., in print_series'
- * order: each in the third unit or the fourth, whichever is behind (as
- * emit_taylor cuts the program; a term counted as a temporary), those of
- * the fourth declared after. */
+/* Where ty's parted series' parts begin, [*nparts + 1] (malloc'd): a part
+ * holds at most SERIES_PART_LINES lines, a pack (LowSerLine.pack) one
+ * line as the C compiler sees it, within one order. */
+static int *
+series_parts(const LowSeries *se, int *nparts)
+{
+    int *first = xmalloc(((size_t)se->nline + 2) * sizeof *first), n = 0;
+    for (int k = 0; k < LOW_SERIES_ORDERS; k++)
+        for (int i = se->start[k]; i < se->start[k + 1];) {
+            first[n++] = i;
+            for (int lines = 0; i < se->start[k + 1] && lines < SERIES_PART_LINES; lines++)
+                i += se->line[i].pack ? se->line[i].pack : 1;
+        }
+    first[n] = se->start[LOW_SERIES_ORDERS];
+    *nparts = n;
+    return first;
+}
+
+/* taylor_run's values a part may read, in the order it takes them: a
+ * part takes those its lines read (series_reads), and no others. */
+static const struct {
+    const char *param, *arg;
+} run_values[] = {{"eomc_real t0", "t0"},
+                  {"const eomc_real *p", "p"},
+                  {"const eomc_real *u", "u"},
+                  {"eomc_real *restrict W", "W"},
+                  {"eomc_real *restrict X", "X"},
+                  {"eomc_tay_solve solve, void *ctx", "solve, ctx"}};
+enum { READS_T0 = 1, READS_P = 2, READS_U = 4, READS_W = 8, READS_X = 16, READS_SOLVE = 32 };
+
+static int
+cell_reads(const Cells *cells, int c)
+{
+    return c < 0 ? 0 : cells->place[c % cells->nslot] >= 0 ? READS_X : READS_W;
+}
+
+/* What lines from .. to - 1 read of run_values, a bit each. */
+static int
+series_reads(const LowSeries *se, int from, int to, const Cells *cells)
+{
+    int r = 0;
+    for (int i = from; i < to; i++) {
+        const LowSerLine *l = &se->line[i];
+        r |= cell_reads(cells, l->dst) | cell_reads(cells, l->over_cell);
+        r |= cell_reads(cells, l->x) | cell_reads(cells, l->y);
+        for (int t = l->first; t < l->first + l->nterm; t++)
+            r |= cell_reads(cells, se->term[t].x) | cell_reads(cells, se->term[t].y);
+        if (l->last >= 0)
+            r |= cell_reads(cells, se->term[l->last].x) | cell_reads(cells, se->term[l->last].y);
+        if (l->kind == LOW_SER_VALUE || l->kind == LOW_SER_SELECT)
+            r |= l->src == LOW_TAY_SRC_T   ? READS_T0
+                 : l->src == LOW_TAY_SRC_P ? READS_P
+                 : l->src == LOW_TAY_SRC_U ? READS_U
+                                           : 0;
+        if (l->kind == LOW_SER_SOLVE)
+            r |= READS_SOLVE | READS_W;
+    }
+    return r;
+}
+
+/* Part's parameters (params) or its call's arguments, those of run_values
+ * that reads has, into buf. */
 static void
-print_series_parts(Printer *pr, const LowTaylor *ty)
+part_values(char *buf, size_t size, int reads, int params)
+{
+    size_t n = 0;
+    buf[0] = 0;
+    for (size_t j = 0; j < sizeof run_values / sizeof run_values[0]; j++)
+        if (reads & 1 << j)
+            n += (size_t)snprintf(buf + n, n < size ? size - n : 0, "%s%s", n ? ", " : "",
+                                  params ? run_values[j].param : run_values[j].arg);
+    if (!n)
+        snprintf(buf, size, "%s", params ? "void" : "");
+}
+
+/* The parts of ty's parted series (first, [nparts + 1]: series_parts),
+ * NAME_taylor_run_1, ..., in print_series' order: each in the third unit
+ * or the fourth, whichever is behind (as emit_taylor cuts the program; a
+ * term counted as a temporary), those of the fourth declared after; each
+ * takes what its lines read. */
+static void
+print_series_parts(Printer *pr, const LowTaylor *ty, const int *first, int nparts)
 {
     const LowSeries *se = ty->series;
-    const char *params = "eomc_real t0, const eomc_real *p, const eomc_real *u, "
-                         "eomc_real *restrict W, eomc_real *restrict X, eomc_tay_solve solve, "
-                         "void *ctx";
-    Cells cells = series_cells(ty, 0);
-    int nparts = 0;
-    for (int k = 0; k < LOW_SERIES_ORDERS; k++)
-        nparts += (se->start[k + 1] - se->start[k] + SERIES_PART_LINES - 1) / SERIES_PART_LINES;
-    char *in4 = xmalloc((size_t)nparts + 1), fname[160];
-    for (int k = 0, part = 0; k < LOW_SERIES_ORDERS; k++)
-        for (int i = se->start[k]; i < se->start[k + 1]; i += SERIES_PART_LINES, part++) {
-            int end = i + SERIES_PART_LINES < se->start[k + 1] ? i + SERIES_PART_LINES
-                                                              : se->start[k + 1];
-            long terms = 0;
-            for (int j = i; j < end; j++)
-                terms += se->line[j].nterm + 1;
-            int second = in4[part] = emit_part_half(pr, terms, 1);
-            if (second)
-                emit_unit2_begin(pr, 1);
-            snprintf(fname, sizeof fname, "%s_taylor_run_%d", pr->md->name, part + 1);
-            emit_line(pr, "/* Lines %d .. %d of taylor_run's order %d%s. */", i - se->start[k],
-                      end - 1 - se->start[k], k, second ? ", in the fourth unit" : "");
-            emit_head(pr, second ? "EOMC_PART EOMC_UNCHECKED int"
-                                 : "static EOMC_NOINLINE EOMC_UNCHECKED int",
-                      fname, params);
-            emit_line(pr, "    (void)t0, (void)p, (void)u, (void)W, (void)X, (void)solve, "
-                          "(void)ctx;");
-            for (int j = i; j < end; j++)
-                print_series_line(pr, se, &se->line[j], &cells);
-            emit_line(pr, "    return 0;\n}\n");
-            if (second)
-                emit_unit2_end(pr);
-        }
+    Cells cells;
+    series_cells(ty, 0, &cells);
+    char *in4 = xmalloc((size_t)nparts + 1), fname[160], params[200];
+    for (int part = 0, k = 0; part < nparts; part++) {
+        int i = first[part], end = first[part + 1];
+        while (se->start[k + 1] <= i)
+            k++;
+        long terms = 0;
+        for (int j = i; j < end; j++)
+            terms += se->line[j].nterm + 1;
+        int second = in4[part] = emit_part_half(pr, terms, 1);
+        if (second)
+            emit_unit2_begin(pr, 1);
+        snprintf(fname, sizeof fname, "%s_taylor_run_%d", pr->md->name, part + 1);
+        int reads = series_reads(se, i, end, &cells), solves = reads & READS_SOLVE;
+        part_values(params, sizeof params, reads, 1);
+        emit_line(pr, "/* Lines %d .. %d of taylor_run's order %d%s. */", i - se->start[k],
+                  end - 1 - se->start[k], k, second ? ", in the fourth unit" : "");
+        emit_head(pr, second ? (solves ? "EOMC_PART EOMC_UNCHECKED int" : "EOMC_PART EOMC_UNCHECKED void")
+                             : (solves ? "static EOMC_NOINLINE EOMC_UNCHECKED int"
+                                       : "static EOMC_NOINLINE EOMC_UNCHECKED void"),
+                  fname, params);
+        print_lines(pr, se, i, end, &cells);
+        emit_line(pr, solves ? "    return 0;\n}\n" : "}\n");
+        if (second)
+            emit_unit2_end(pr);
+    }
     for (int part = 0; part < nparts; part++) { /* called before they are defined */
         snprintf(fname, sizeof fname, "%s_taylor_run_%d", pr->md->name, part + 1);
+        int reads = series_reads(se, first[part], first[part + 1], &cells);
+        part_values(params, sizeof params, reads, 1);
         if (in4[part])
-            emit_decl(pr, "EOMC_PART EOMC_UNCHECKED int", fname, params, ";");
+            emit_decl(pr,
+                      reads & READS_SOLVE ? "EOMC_PART EOMC_UNCHECKED int"
+                                          : "EOMC_PART EOMC_UNCHECKED void",
+                      fname, params, ";");
     }
     free(in4);
-    free((int *)cells.place);
+    free(cells.place);
 }
 
 /* taylor_run written out (lower_series.c): orders 0 .. LOW_SERIES_ORDERS
  * - 1, the state's cells in the caller's X (Cells) and the others in the
  * local W; then what the caller reads of the others copied into T. */
 static void
-print_series(Printer *pr, const LowTaylor *ty, int lanes)
+print_series(Printer *pr, const LowTaylor *ty, int lanes, const int *first)
 {
     const LowSeries *se = ty->series;
-    int ns = ty->nstate, nslot = ty->nslot, parted = se->parted && !lanes;
-    Cells cells = series_cells(ty, lanes);
-    int *place = (int *)cells.place;
+    int ns = ty->nstate, nslot = ty->nslot, parted = first != NULL;
+    Cells cells;
+    series_cells(ty, lanes, &cells);
+    int *place = cells.place;
     const char *zero = lanes ? "EOMC_V4C(0.0)" : "0.0";
-    emit_line(pr, "    %s W[%d]; /* slot s's coefficient j at W[j * %d + s], but the",
+    emit_line(pr, "    %s W[%d]; /* a slot's coefficient j at W[j * %d + its column], but the",
               lanes ? "eomc_v4" : "eomc_real", se->ncell, nslot);
     emit_line(pr, "                   * state's: X[j * %d + i], q's then v's */", ns);
     for (int i = 0, j; i < se->nzero_out; i = j) { /* 0 at every step: W's by runs */
@@ -482,11 +594,17 @@ print_series(Printer *pr, const LowTaylor *ty, int lanes)
             emit_line(pr, "        goto out;");
         }
         emit_line(pr, "    /* order %d */", k);
-        for (int i = se->start[k]; i < se->start[k + 1] && !parted; i++)
-            print_series_line(pr, se, &se->line[i], &cells);
-        for (int i = se->start[k]; i < se->start[k + 1] && parted; i += SERIES_PART_LINES)
-            emit_line(pr, "    if (%s_taylor_run_%d(t0, p, u, W, X, solve, ctx))\n"
-                          "        return -1;", pr->md->name, ++part);
+        if (!parted)
+            print_lines(pr, se, se->start[k], se->start[k + 1], &cells);
+        for (char args[80]; parted && first[part] < se->start[k + 1]; part++) {
+            int reads = series_reads(se, first[part], first[part + 1], &cells);
+            part_values(args, sizeof args, reads, 0);
+            if (reads & READS_SOLVE) /* (a solve can fail) */
+                emit_line(pr, "    if (%s_taylor_run_%d(%s))\n        return -1;",
+                          pr->md->name, part + 1, args);
+            else
+                emit_line(pr, "    %s_taylor_run_%d(%s);", pr->md->name, part + 1, args);
+        }
     }
     emit_line(pr, "out:");
     for (int e = 0; e < ty->nevent + ty->nmode; e++) {
@@ -496,10 +614,11 @@ print_series(Printer *pr, const LowTaylor *ty, int lanes)
         if (g < 0 || seen)
             continue;
         emit_line(pr, "    for (int j = 0; j < K; j++) /* event function %d */", e);
-        if (place[g] >= 0)
-            emit_line(pr, "        T[%d * S + j] = X[j * %d + %d];", g, ns, place[g]);
+        int c = se->col[g];
+        if (place[c] >= 0)
+            emit_line(pr, "        T[%d * S + j] = X[j * %d + %d];", g, ns, place[c]);
         else
-            emit_line(pr, "        T[%d * S + j] = W[j * %d + %d];", g, nslot, g);
+            emit_line(pr, "        T[%d * S + j] = W[j * %d + %d];", g, nslot, c);
     }
     int nv = ty->acc_slot ? 0 : pr->md->nv; /* (the hook tests M_0 itself) */
     for (int j = 0; j < nv; j++) {
@@ -507,7 +626,7 @@ print_series(Printer *pr, const LowTaylor *ty, int lanes)
         for (int i = 0; i < j; i++) /* equal masses share a slot */
             seen |= ty->M_slot[i * nv + i] == m;
         if (!seen)
-            emit_line(pr, "    T[%d * S] = W[%d]; /* M's diagonal, entry %d */", m, m, j);
+            emit_line(pr, "    T[%d * S] = W[%d]; /* M's diagonal, entry %d */", m, se->col[m], j);
     }
     emit_line(pr, "    return 0;");
     free(place);
@@ -540,8 +659,11 @@ print_run(Printer *pr, const LowTaylor *ty)
             emit_line(pr, " */");
         }
     }
-    if (ty->series && ty->series->parted)
-        print_series_parts(pr, ty);
+    int nparts = 0, *first = NULL;
+    if (ty->series && ty->series->parted) {
+        first = series_parts(ty->series, &nparts);
+        print_series_parts(pr, ty, first, nparts);
+    }
     char fname[160];
     snprintf(fname, sizeof fname, "%s_taylor_run", nm);
     emit_head(pr, "static int", fname,
@@ -552,9 +674,10 @@ print_run(Printer *pr, const LowTaylor *ty)
         emit_line(pr, "    if (K > %d)", LOW_SERIES_ORDERS);
         emit_line(pr, "        return 1;");
         emit_line(pr, "    (void)S, (void)T, (void)t0, (void)p, (void)u;");
-        print_series(pr, ty, 0);
+        print_series(pr, ty, 0, first);
         emit_line(pr, "}");
         emit_line(pr, "#endif\n");
+        free(first);
         return;
     }
     emit_line(pr, "    (void)solve, (void)ctx;");
@@ -580,10 +703,11 @@ print_run(Printer *pr, const LowTaylor *ty)
     emit_line(pr, "%sreturn 0;", in);
     if (ty->series) {
         emit_line(pr, "    }");
-        print_series(pr, ty, 0);
+        print_series(pr, ty, 0, first);
     }
     emit_line(pr, "}");
     emit_line(pr, "#endif\n");
+    free(first);
 }
 
 /* taylor_run4 (eomc_model.h): the written-out series once more, each
@@ -609,7 +733,7 @@ print_run4(Printer *pr, const LowTaylor *ty)
     emit_line(pr, "    const eomc_v4 *p = (const eomc_v4 *)ps, *u = (const eomc_v4 *)us;");
     emit_line(pr, "    eomc_v4 *T = (eomc_v4 *)Ts, *X = (eomc_v4 *)Xs;");
     emit_line(pr, "    (void)S, (void)T, (void)t0, (void)p, (void)u;");
-    print_series(pr, ty, 1);
+    print_series(pr, ty, 1, NULL);
     emit_line(pr, "}");
     emit_line(pr, "#endif\n");
 }

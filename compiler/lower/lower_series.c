@@ -22,6 +22,7 @@
  * cell is known to be 0 where no term reaches it; its readers see -1.
  */
 #include "lower_series.h"
+#include "lower_pack.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -30,6 +31,7 @@
 typedef struct Out {
     const LowTaylor *ty;
     int orders, nslot;     /* LOW_SERIES_ORDERS + 1, the program's slots */
+    const int *col;        /* [nslot] each slot's column (lower_pack.c) */
     unsigned char *nz;     /* [ncell] written by a line (else 0 at every step) */
     double *literal;       /* [nslot] a constant's value where it is a number, else NAN */
     LowSerLine *line;
@@ -40,14 +42,14 @@ typedef struct Out {
 } Out;
 
 /* Slot s's coefficient j's cell: order by order, each order's slots side
- * by side (lowered.h), so that a step of a lower order than the most
+ * by side in their columns (lowered.h), so that a step of a lower order than the most
  * touches only the first orders' cells (the Pleiades' 405 slots: 52 KB at
  * order 15, where a slot's 21 cells side by side would spread over 68 KB
  * and miss the first-level cache). */
 static int
 at(const Out *o, int s, int j)
 {
-    return j * o->nslot + s;
+    return j * o->nslot + o->col[s];
 }
 
 /* Slot s's coefficient j as an operand: its cell, or -1 where it is 0. */
@@ -299,13 +301,40 @@ literals(Out *o)
             o->literal[ty->step[i].slot[0]] = ty->step[i].value;
 }
 
+/* Each order's lines in packs (lower_pack.c), every cell being written
+ * once. */
+static void
+pack_orders(LowSeries *se, const LowTaylor *ty)
+{
+    int nslot = ty->nslot;
+    int *place = xmalloc(((size_t)nslot + 1) * sizeof *place);
+    int *writer = xmalloc(((size_t)se->ncell + 1) * sizeof *writer);
+    for (int s = 0; s < nslot; s++)
+        place[s] = -1;
+    for (int i = 0; i < ty->nstate; i++)
+        place[se->col[ty->state_slot[i]]] = i;
+    for (int c = 0; c < se->ncell; c++)
+        writer[c] = -1;
+    PackCells pc = {place, nslot, ty->nstate, se->ncell};
+    for (int k = 0; k < LOW_SERIES_ORDERS; k++)
+        pack_lines(se->line + se->start[k], se->start[k + 1] - se->start[k], se->term, &pc,
+                   writer);
+    free(writer);
+    free(place);
+}
+
 LowSeries *
 lower_series(const LowTaylor *ty, Arena *A)
 {
     int S = LOW_SERIES_ORDERS + 1, ncell = ty->nslot * S, nall = ty->nstep + ty->nrun;
     /* a real power's exponent must be a number (a parameter's would be a
      * product more per term) */
-    Out o = {.ty = ty, .orders = S, .nslot = ty->nslot};
+    int *col = arena_new_array(A, int, ty->nslot + 1);
+    for (int s = 0; s < ty->nslot; s++)
+        col[s] = s;
+    if (!ty->acc_slot) /* (a solve's cells must stay as they are) */
+        pack_columns(ty, col);
+    Out o = {.ty = ty, .orders = S, .nslot = ty->nslot, .col = col};
     o.literal = xmalloc(((size_t)ty->nslot + 1) * sizeof *o.literal);
     literals(&o);
     for (int i = 0; i < ty->nstep && !o.why; i++)
@@ -326,7 +355,7 @@ lower_series(const LowTaylor *ty, Arena *A)
     LowSeries *se = NULL;
     if (!o.why && o.nterm <= LOW_SERIES_MAX_TERMS) {
         se = arena_alloc(A, sizeof *se);
-        *se = (LowSeries){.ncell = ncell, .nline = o.nline, .start = start, .nterm = o.nterm,
+        *se = (LowSeries){.ncell = ncell, .col = col, .nline = o.nline, .start = start, .nterm = o.nterm,
                           .parted = o.nterm > LOW_SERIES_OPTIMIZED_TERMS};
         /* four runs at once where M is constant and diagonal (no solve, whose
          * hook is one run's) and the series is one function */
@@ -337,6 +366,8 @@ lower_series(const LowTaylor *ty, Arena *A)
             memcpy(se->line, o.line, (size_t)o.nline * sizeof *o.line);
         if (o.nterm)
             memcpy(se->term, o.term, (size_t)o.nterm * sizeof *o.term);
+        if (!ty->acc_slot)
+            pack_orders(se, ty);
         /* the cells taylor_run copies out (the state's, the switches' and
          * events', M's diagonal's first) that stay 0 */
         int nout = 0, cap = 2 * ns * S + (ty->nevent + ty->nmode) * S + 1;

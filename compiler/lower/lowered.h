@@ -220,7 +220,7 @@ enum { LOW_TAYLOR_M_CONSTANT = 1, LOW_TAYLOR_M_DIAGONAL = 2 };
 
 /* taylor_run's program as straight-line code (lower_series.c): each call
  * of the program at each order k < LOW_SERIES_ORDERS written out over
- * cells, slot s's coefficient j being cell j nslot + s (LowTaylor's).
+ * cells, slot s's coefficient j being cell j nslot + col[s] (LowSeries').
  * A line computes, in this order (each part absent where it says so):
  *     v = term_first + ... (SUM: each term coef * x * y, added left to
  *         right; coef +-1 a sign, cell y -1 none, x -1 the number coef),
@@ -255,6 +255,8 @@ typedef struct LowSerLine {
     int x, y;       /* CALL's, SELECT's operands (-1: 0; CALL's y -1: one operand) */
     int src, index;
     double value;
+    int pack;       /* 2 or 4: this line and the next pack - 1 are one pack,
+                     * printed as one line on vectors (lower_pack.c); else 0 */
 } LowSerLine;
 /* The orders written out: rtol down to 1e-16 asks for at most 20
  * (taylor.c's order rule); taylor_run loops over the program above. */
@@ -272,6 +274,8 @@ enum { LOW_SERIES_OPTIMIZED_TERMS = 2500 };
 enum { LOW_SERIES_MAX_TERMS = 60000 };
 typedef struct LowSeries {
     int ncell;
+    int *col;       /* [nslot]: slot s's coefficient j is cell j nslot + col[s]
+                     * (lower_pack.c lays the slots out for its packs) */
     LowSerLine *line;
     int nline;
     int *start;     /* [LOW_SERIES_ORDERS + 1]: order k's lines from start[k] */

@@ -66,6 +66,21 @@ eomc_v4_pow(eomc_v4 *r, const eomc_v4 *a, const eomc_v4 *b)
         (*r)[l] = pow((*a)[l], (*b)[l]);
 }
 
+/* The written-out series' packs (compiler/lower/lower_pack.c), as vectors
+ * unless EOMC_NO_PACKS asks for their lines one at a time (the same bits:
+ * tests/sim's taylor-series runs both): the four (two) consecutive doubles
+ * from p as one vector, p aligned to a double only; a number beside it is
+ * spread over its lanes by the operator. */
+#ifndef EOMC_NO_PACKS
+#define EOMC_PACKS 1
+#endif
+typedef double eomc_v4u
+    __attribute__((vector_size(4 * sizeof(double)), aligned(sizeof(double)), may_alias));
+typedef double eomc_v2u
+    __attribute__((vector_size(2 * sizeof(double)), aligned(sizeof(double)), may_alias));
+#define EOMC_AT4(p) (*(eomc_v4u *)(p))
+#define EOMC_AT2(p) (*(eomc_v2u *)(p))
+
 /* r = a where the mode is on (not 0), b where it is off, lane by lane */
 static inline void
 eomc_v4_select(eomc_v4 *r, const eomc_v4 *mode, const eomc_v4 *a, const eomc_v4 *b)

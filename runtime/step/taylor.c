@@ -69,6 +69,9 @@
 
 #include <gsl/gsl_pow_int.h>
 #include <math.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 #include <stdlib.h>
 #include <string.h>
 
@@ -324,7 +327,26 @@ radius(const Taylor *tp, const double *S)
     for (int j = p - 1; j <= p; j++) {
         const double *c = tp->X + (size_t)j * (size_t)N;
         double l = INFINITY;
-        for (int i = 0; i < N; i++) {
+        int i = 0;
+#if defined(__SSE2__)
+        /* two components a lane, the least of each lane's ratios kept
+         * where S and |c| are > 0 (the ratios are then numbers, > 0, so
+         * the least is the same whichever way it is found): Kepler's
+         * step 4 018 instructions to 4 001 */
+        const __m128d sign = _mm_set1_pd(-0.0), zero = _mm_setzero_pd();
+        __m128d lv = _mm_set1_pd(INFINITY);
+        for (; i + 2 <= N; i += 2) {
+            __m128d s = _mm_loadu_pd(S + i), a = _mm_andnot_pd(sign, _mm_loadu_pd(c + i));
+            __m128d r = _mm_div_pd(s, a);
+            __m128d keep = _mm_and_pd(_mm_and_pd(_mm_cmpgt_pd(s, zero), _mm_cmpgt_pd(a, zero)),
+                                      _mm_cmplt_pd(r, lv));
+            lv = _mm_or_pd(_mm_and_pd(keep, r), _mm_andnot_pd(keep, lv));
+        }
+        double two[2];
+        _mm_storeu_pd(two, lv);
+        l = two[1] < two[0] ? two[1] : two[0];
+#endif
+        for (; i < N; i++) {
             double a = fabs(c[i]), r = S[i] / a;
             l = S[i] > 0 && a > 0 && r < l ? r : l;
         }
@@ -375,10 +397,34 @@ radius_first(const Taylor *tp)
 enum { TAYLOR_BLOCK = 4 };
 
 /* scales for the w <= TAYLOR_BLOCK components from X's column 0 (X's
- * stride N): inlined, w a constant for the whole blocks. */
+ * stride N): inlined, w a constant for the whole blocks.  A whole block
+ * on SSE2's two-lane vectors where the machine has them: the same
+ * operations lane by lane (fabs as the sign bit cleared; maxpd(a, b) is
+ * a > b ? a : b, NaNs too), so the same bits, which gcc -O3 does not
+ * find itself (with value_block's: Kepler's step at order 15, 4 113
+ * instructions to 4 031). */
 static inline void
 scales_block(const double *X, int N, int p, double h, double absolute, double *S, int w)
 {
+#if defined(__SSE2__)
+    if (w == TAYLOR_BLOCK) {
+        const __m128d sign = _mm_set1_pd(-0.0);
+        __m128d s0 = _mm_andnot_pd(sign, _mm_loadu_pd(X));
+        __m128d s1 = _mm_andnot_pd(sign, _mm_loadu_pd(X + 2));
+        double hj = 1;
+        for (int j = 1; j <= p; j++) {
+            const double *c = X + (size_t)j * (size_t)N;
+            hj *= h;
+            __m128d hv = _mm_set1_pd(hj);
+            s0 = _mm_max_pd(_mm_mul_pd(_mm_andnot_pd(sign, _mm_loadu_pd(c)), hv), s0);
+            s1 = _mm_max_pd(_mm_mul_pd(_mm_andnot_pd(sign, _mm_loadu_pd(c + 2)), hv), s1);
+        }
+        __m128d a = _mm_set1_pd(absolute);
+        _mm_storeu_pd(S, _mm_add_pd(s0, a));
+        _mm_storeu_pd(S + 2, _mm_add_pd(s1, a));
+        return;
+    }
+#endif
     double s[TAYLOR_BLOCK], hj = 1;
     for (int l = 0; l < w; l++)
         s[l] = fabs(X[l]);
@@ -682,11 +728,29 @@ taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
 }
 
 /* value for the w <= TAYLOR_BLOCK components from column 0 of X, comp0,
- * x and d (X's stride N), as scales_block. */
+ * x and d (X's stride N), as scales_block (SSE2 too). */
 static inline void
 value_block(const double *X, const double *comp0, int N, int p, double tau, double *x,
             double *d, int w)
 {
+#if defined(__SSE2__)
+    if (w == TAYLOR_BLOCK) {
+        const double *top = X + (size_t)p * (size_t)N;
+        __m128d a0 = _mm_loadu_pd(top), a1 = _mm_loadu_pd(top + 2), t = _mm_set1_pd(tau);
+        for (int j = p - 1; j >= 1; j--) {
+            const double *c = X + (size_t)j * (size_t)N;
+            a0 = _mm_add_pd(_mm_mul_pd(a0, t), _mm_loadu_pd(c));
+            a1 = _mm_add_pd(_mm_mul_pd(a1, t), _mm_loadu_pd(c + 2));
+        }
+        __m128d d0 = _mm_sub_pd(_mm_mul_pd(a0, t), _mm_loadu_pd(comp0));
+        __m128d d1 = _mm_sub_pd(_mm_mul_pd(a1, t), _mm_loadu_pd(comp0 + 2));
+        _mm_storeu_pd(d, d0);
+        _mm_storeu_pd(d + 2, d1);
+        _mm_storeu_pd(x, _mm_add_pd(_mm_loadu_pd(X), d0));
+        _mm_storeu_pd(x + 2, _mm_add_pd(_mm_loadu_pd(X + 2), d1));
+        return;
+    }
+#endif
     double a[TAYLOR_BLOCK];
     for (int l = 0; l < w; l++)
         a[l] = X[(size_t)p * (size_t)N + (size_t)l];
@@ -723,7 +787,15 @@ void
 taylor_advance(Taylor *tp, double tau, double *x)
 {
     value(tp, tau, x, tp->d);
-    for (int i = 0; i < tp->N; i++) /* Kahan: what x's addition lost */
+    int i = 0;
+#if defined(__SSE2__) /* two a lane, the same operations (with taylor_error's: Kepler's step 4 001
+                       * instructions to 3 992) */
+    for (; i + 2 <= tp->N; i += 2)
+        _mm_storeu_pd(tp->comp + i,
+                      _mm_sub_pd(_mm_sub_pd(_mm_loadu_pd(x + i), _mm_loadu_pd(tp->X + i)),
+                                 _mm_loadu_pd(tp->d + i)));
+#endif
+    for (; i < tp->N; i++) /* Kahan: what x's addition lost */
         tp->comp[i] = (x[i] - tp->X[i]) - tp->d[i];
     memcpy(tp->xlast, x, (size_t)tp->N * sizeof *x);
 }
@@ -733,7 +805,13 @@ taylor_error(const Taylor *tp, double h, double *err)
 {
     const double *c = tp->X + (size_t)tp->p * (size_t)tp->N;
     double hp = gsl_pow_int(fabs(h), tp->p); /* by squaring: 30 instructions, pow's 155 */
-    for (int i = 0; i < tp->N; i++)
+    int i = 0;
+#if defined(__SSE2__) /* (two a lane: fabs as the sign bit cleared) */
+    const __m128d sign = _mm_set1_pd(-0.0), hv = _mm_set1_pd(hp);
+    for (; i + 2 <= tp->N; i += 2)
+        _mm_storeu_pd(err + i, _mm_mul_pd(_mm_andnot_pd(sign, _mm_loadu_pd(c + i)), hv));
+#endif
+    for (; i < tp->N; i++)
         err[i] = fabs(c[i]) * hp;
 }
 

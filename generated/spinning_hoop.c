@@ -485,25 +485,24 @@ spinning_hoop_place_velocity(eomc_real t, const eomc_real *q,
 #define spinning_hoop_taylor_run_1 spinning_hoop_taylor_run_1_ext
 #define spinning_hoop_taylor_run_2 spinning_hoop_taylor_run_2_ext
 #define spinning_hoop_taylor_run_3 spinning_hoop_taylor_run_3_ext
-#define spinning_hoop_taylor_run_4 spinning_hoop_taylor_run_4_ext
-#define spinning_hoop_taylor_run_6 spinning_hoop_taylor_run_6_ext
+#define spinning_hoop_taylor_run_5 spinning_hoop_taylor_run_5_ext
 #define spinning_hoop_taylor_run_8 spinning_hoop_taylor_run_8_ext
-#define spinning_hoop_taylor_run_10 spinning_hoop_taylor_run_10_ext
+#define spinning_hoop_taylor_run_9 spinning_hoop_taylor_run_9_ext
+#define spinning_hoop_taylor_run_12 spinning_hoop_taylor_run_12_ext
 #define spinning_hoop_taylor_run_13 spinning_hoop_taylor_run_13_ext
-#define spinning_hoop_taylor_run_14 spinning_hoop_taylor_run_14_ext
+#define spinning_hoop_taylor_run_16 spinning_hoop_taylor_run_16_ext
 #define spinning_hoop_taylor_run_17 spinning_hoop_taylor_run_17_ext
-#define spinning_hoop_taylor_run_18 spinning_hoop_taylor_run_18_ext
+#define spinning_hoop_taylor_run_20 spinning_hoop_taylor_run_20_ext
 #define spinning_hoop_taylor_run_21 spinning_hoop_taylor_run_21_ext
-#define spinning_hoop_taylor_run_22 spinning_hoop_taylor_run_22_ext
+#define spinning_hoop_taylor_run_24 spinning_hoop_taylor_run_24_ext
 #define spinning_hoop_taylor_run_25 spinning_hoop_taylor_run_25_ext
-#define spinning_hoop_taylor_run_26 spinning_hoop_taylor_run_26_ext
+#define spinning_hoop_taylor_run_28 spinning_hoop_taylor_run_28_ext
 #define spinning_hoop_taylor_run_29 spinning_hoop_taylor_run_29_ext
-#define spinning_hoop_taylor_run_30 spinning_hoop_taylor_run_30_ext
+#define spinning_hoop_taylor_run_32 spinning_hoop_taylor_run_32_ext
 #define spinning_hoop_taylor_run_33 spinning_hoop_taylor_run_33_ext
-#define spinning_hoop_taylor_run_34 spinning_hoop_taylor_run_34_ext
+#define spinning_hoop_taylor_run_36 spinning_hoop_taylor_run_36_ext
 #define spinning_hoop_taylor_run_37 spinning_hoop_taylor_run_37_ext
-#define spinning_hoop_taylor_run_38 spinning_hoop_taylor_run_38_ext
-#define spinning_hoop_taylor_run_41 spinning_hoop_taylor_run_41_ext
+#define spinning_hoop_taylor_run_40 spinning_hoop_taylor_run_40_ext
 #endif
 #include "eomc_taylor.h"
 
@@ -703,783 +702,1044 @@ spinning_hoop_taylor(int k, int K, eomc_real t0, const eomc_real *p,
  * q''s, M being constant and diagonal, from -(h_j / M_jj) / (k + 1).
  * Written out to order 20, each recurrence's sum with its indices fixed
  * (the same arithmetic in the same order); above that, the loop. */
-/* Lines 21 .. 39 of taylor_run's order 1. */
+/* Lines 28 .. 39 of taylor_run's order 1. */
 static EOMC_NOINLINE EOMC_UNCHECKED void
-spinning_hoop_taylor_run_5(eomc_real *restrict W, eomc_real *restrict X)
+spinning_hoop_taylor_run_4(eomc_real *restrict W, eomc_real *restrict X)
 {
-    W[66] = W[29] * X[3] + W[72] * X[1];
-    W[73] = W[63] - W[53];
-    W[74] = W[56] - W[66];
-    W[77] = W[64] + W[54];
-    W[81] = W[55] + W[65];
-    W[57] = W[0] * W[77];
-    W[58] = W[0] * W[73];
-    W[67] = X[1] * W[81] + X[3] * W[38];
-    W[69] = X[1] * W[74] + X[3] * W[31];
-    W[78] = W[67] + W[57];
-    W[79] = W[69] + W[58];
-    W[70] = W[19] * W[79] + W[62] * W[36];
-    W[71] = W[18] * W[78] + W[61] * W[35];
-    W[76] = W[60] + W[70];
-    W[75] = W[76] - W[71];
-    W[52] = W[2] * W[75];
-    W[80] = W[51] + W[52];
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 66) = X[1] * EOMC_AT2(W + 78) + X[3] * EOMC_AT2(W + 35);
+    EOMC_AT2(W + 68) = EOMC_AT2(W + 66) + EOMC_AT2(W + 63);
+    EOMC_AT2(W + 70) = EOMC_AT2(W + 6) * EOMC_AT2(W + 68) + EOMC_AT2(W + 49) * EOMC_AT2(W + 25);
+#else
+    W[66] = X[1] * W[78] + X[3] * W[35];
+    W[67] = X[1] * W[79] + X[3] * W[36];
+    W[68] = W[66] + W[63];
+    W[69] = W[67] + W[64];
+    W[70] = W[6] * W[68] + W[49] * W[25];
+    W[71] = W[7] * W[69] + W[50] * W[26];
+#endif
+    W[84] = W[83] + W[71];
+    W[62] = W[84] - W[70];
+    W[65] = W[1] * W[62];
+    W[85] = W[82] + W[65];
     X[4] = X[3] / 2.0;
-    X[5] = -W[80] / W[2] / 2.0;
+    X[5] = -W[85] / W[1] / 2.0;
 }
 
-/* Lines 21 .. 37 of taylor_run's order 2. */
+/* Lines 30 .. 37 of taylor_run's order 2. */
+static EOMC_NOINLINE EOMC_UNCHECKED void
+spinning_hoop_taylor_run_6(eomc_real *restrict W, eomc_real *restrict X)
+{
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 113) = EOMC_AT2(W + 6) * EOMC_AT2(W + 111) + EOMC_AT2(W + 49) * EOMC_AT2(W + 68)
+            + EOMC_AT2(W + 92) * EOMC_AT2(W + 25);
+#else
+    W[113] = W[6] * W[111] + W[49] * W[68] + W[92] * W[25];
+    W[114] = W[7] * W[112] + W[50] * W[69] + W[93] * W[26];
+#endif
+    W[127] = W[126] + W[114];
+    W[105] = W[127] - W[113];
+    W[108] = W[1] * W[105];
+    W[128] = W[125] + W[108];
+    X[6] = X[5] / 3.0;
+    X[7] = -W[128] / W[1] / 3.0;
+}
+
+/* Lines 0 .. 29 of taylor_run's order 3. */
 static EOMC_NOINLINE EOMC_UNCHECKED void
 spinning_hoop_taylor_run_7(eomc_real *restrict W, eomc_real *restrict X)
 {
-    W[117] = W[99] - W[109];
-    W[120] = W[107] + W[97];
-    W[124] = W[98] + W[108];
-    W[100] = W[0] * W[120];
-    W[101] = W[0] * W[116];
-    W[110] = X[1] * W[124] + X[3] * W[81] + X[5] * W[38];
-    W[112] = X[1] * W[117] + X[3] * W[74] + X[5] * W[31];
-    W[121] = W[110] + W[100];
-    W[122] = W[112] + W[101];
-    W[113] = W[19] * W[122] + W[62] * W[79] + W[105] * W[36];
-    W[114] = W[18] * W[121] + W[61] * W[78] + W[104] * W[35];
-    W[119] = W[103] + W[113];
-    W[118] = W[119] - W[114];
-    W[95] = W[2] * W[118];
-    W[123] = W[94] + W[95];
-    X[6] = X[5] / 3.0;
-    X[7] = -W[123] / W[2] / 3.0;
+    W[131] = (X[2] * W[118] + 2.0 * X[4] * W[75] + 3.0 * X[6] * W[32]) / 3.0;
+    W[161] = -((X[2] * W[88] + 2.0 * X[4] * W[45] + 3.0 * X[6] * W[2])) / 3.0;
+    W[166] = (X[1] * X[7] + X[3] * X[5]) * 2.0;
+    W[168] = W[38] * W[131];
+    W[134] = W[2] * W[161] + W[45] * W[118] + W[88] * W[75] + W[131] * W[32];
+    W[133] = W[73] * W[89] / 3.0;
+    W[132] = -W[73] * W[90] / 3.0;
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 135) = EOMC_AT2(W + 3) * W[161] + EOMC_AT2(W + 46) * W[118] + EOMC_AT2(W + 89) * W[75]
+            + EOMC_AT2(W + 132) * W[32];
+    EOMC_AT2(W + 137) = W[2] * EOMC_AT2(W + 132) + W[45] * EOMC_AT2(W + 89) + W[88] * EOMC_AT2(W + 46)
+            + W[131] * EOMC_AT2(W + 3);
+#else
+    W[135] = W[3] * W[161] + W[46] * W[118] + W[89] * W[75] + W[132] * W[32];
+    W[136] = W[4] * W[161] + W[47] * W[118] + W[90] * W[75] + W[133] * W[32];
+    W[137] = W[2] * W[132] + W[45] * W[89] + W[88] * W[46] + W[131] * W[3];
+    W[138] = W[2] * W[133] + W[45] * W[90] + W[88] * W[47] + W[131] * W[4];
+#endif
+    W[169] = W[5] * W[166] + W[48] * W[123] + W[91] * W[80] + W[134] * W[37];
+#ifdef EOMC_PACKS
+    EOMC_AT4(W + 139) = W[0] * EOMC_AT4(W + 135);
+    EOMC_AT4(W + 143) = EOMC_AT4(W + 6) * X[7] + EOMC_AT4(W + 49) * X[5] + EOMC_AT4(W + 92) * X[3]
+            + EOMC_AT4(W + 135) * X[1];
+#else
+    W[139] = W[0] * W[135];
+    W[140] = W[0] * W[136];
+    W[141] = W[0] * W[137];
+    W[142] = W[0] * W[138];
+    W[143] = W[6] * X[7] + W[49] * X[5] + W[92] * X[3] + W[135] * X[1];
+    W[144] = W[7] * X[7] + W[50] * X[5] + W[93] * X[3] + W[136] * X[1];
+    W[145] = W[8] * X[7] + W[51] * X[5] + W[94] * X[3] + W[137] * X[1];
+    W[146] = W[9] * X[7] + W[52] * X[5] + W[95] * X[3] + W[138] * X[1];
+#endif
+    W[147] = W[143] - W[142];
+    W[165] = W[139] - W[146];
+    W[163] = W[144] + W[141];
+    W[164] = W[140] + W[145];
+    W[149] = W[0] * W[163];
+    W[150] = W[0] * W[147];
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 152) = X[1] * EOMC_AT2(W + 164) + X[3] * EOMC_AT2(W + 121) + X[5] * EOMC_AT2(W + 78)
+            + X[7] * EOMC_AT2(W + 35);
+    EOMC_AT2(W + 154) = EOMC_AT2(W + 152) + EOMC_AT2(W + 149);
+#else
+    W[152] = X[1] * W[164] + X[3] * W[121] + X[5] * W[78] + X[7] * W[35];
+    W[153] = X[1] * W[165] + X[3] * W[122] + X[5] * W[79] + X[7] * W[36];
+    W[154] = W[152] + W[149];
+    W[155] = W[153] + W[150];
+#endif
 }
 
-/* Lines 21 .. 37 of taylor_run's order 3. */
+/* Lines 30 .. 37 of taylor_run's order 4. */
 static EOMC_NOINLINE EOMC_UNCHECKED void
-spinning_hoop_taylor_run_9(eomc_real *restrict W, eomc_real *restrict X)
+spinning_hoop_taylor_run_10(eomc_real *restrict W, eomc_real *restrict X)
 {
-    W[160] = W[142] - W[152];
-    W[163] = W[150] + W[140];
-    W[167] = W[141] + W[151];
-    W[143] = W[0] * W[163];
-    W[144] = W[0] * W[159];
-    W[153] = X[1] * W[167] + X[3] * W[124] + X[5] * W[81] + X[7] * W[38];
-    W[155] = X[1] * W[160] + X[3] * W[117] + X[5] * W[74] + X[7] * W[31];
-    W[164] = W[153] + W[143];
-    W[165] = W[155] + W[144];
-    W[156] = W[19] * W[165] + W[62] * W[122] + W[105] * W[79] + W[148] * W[36];
-    W[157] = W[18] * W[164] + W[61] * W[121] + W[104] * W[78] + W[147] * W[35];
-    W[162] = W[146] + W[156];
-    W[161] = W[162] - W[157];
-    W[138] = W[2] * W[161];
-    W[166] = W[137] + W[138];
-    X[8] = X[7] / 4.0;
-    X[9] = -W[166] / W[2] / 4.0;
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 199) = EOMC_AT2(W + 6) * EOMC_AT2(W + 197) + EOMC_AT2(W + 49) * EOMC_AT2(W + 154)
+            + EOMC_AT2(W + 92) * EOMC_AT2(W + 111) + EOMC_AT2(W + 135) * EOMC_AT2(W + 68) + EOMC_AT2(W + 178) * EOMC_AT2(W + 25);
+#else
+    W[199] = W[6] * W[197] + W[49] * W[154] + W[92] * W[111] + W[135] * W[68] + W[178] * W[25];
+    W[200] = W[7] * W[198] + W[50] * W[155] + W[93] * W[112] + W[136] * W[69] + W[179] * W[26];
+#endif
+    W[213] = W[212] + W[200];
+    W[191] = W[213] - W[199];
+    W[194] = W[1] * W[191];
+    W[214] = W[211] + W[194];
+    X[10] = X[9] / 5.0;
+    X[11] = -W[214] / W[1] / 5.0;
 }
 
-/* Lines 21 .. 37 of taylor_run's order 4. */
+/* Lines 0 .. 29 of taylor_run's order 5. */
 static EOMC_NOINLINE EOMC_UNCHECKED void
 spinning_hoop_taylor_run_11(eomc_real *restrict W, eomc_real *restrict X)
 {
-    W[203] = W[185] - W[195];
-    W[206] = W[193] + W[183];
-    W[210] = W[184] + W[194];
-    W[186] = W[0] * W[206];
-    W[187] = W[0] * W[202];
-    W[196] = X[1] * W[210] + X[3] * W[167] + X[5] * W[124] + X[7] * W[81] + X[9] * W[38];
-    W[198] = X[1] * W[203] + X[3] * W[160] + X[5] * W[117] + X[7] * W[74] + X[9] * W[31];
-    W[207] = W[196] + W[186];
-    W[208] = W[198] + W[187];
-    W[199] = W[19] * W[208] + W[62] * W[165] + W[105] * W[122] + W[148] * W[79] + W[191] * W[36];
-    W[200] = W[18] * W[207] + W[61] * W[164] + W[104] * W[121] + W[147] * W[78] + W[190] * W[35];
-    W[205] = W[189] + W[199];
-    W[204] = W[205] - W[200];
-    W[181] = W[2] * W[204];
-    W[209] = W[180] + W[181];
-    X[10] = X[9] / 5.0;
-    X[11] = -W[209] / W[2] / 5.0;
-}
-
-/* Lines 0 .. 20 of taylor_run's order 5. */
-static EOMC_NOINLINE EOMC_UNCHECKED void
-spinning_hoop_taylor_run_12(eomc_real *restrict W, eomc_real *restrict X)
-{
-    W[218] = (X[2] * W[177] + 2.0 * X[4] * W[134] + 3.0 * X[6] * W[91] + 4.0 * X[8] * W[48] + 5.0 * X[10] * W[5]) / 5.0;
-    W[220] = -((X[2] * W[175] + 2.0 * X[4] * W[132] + 3.0 * X[6] * W[89] + 4.0 * X[8] * W[46]
-            + 5.0 * X[10] * W[3])) / 5.0;
-    W[221] = (X[1] * X[11] + X[3] * X[9] + X[5] * X[7]) * 2.0;
-    W[223] = W[1] * W[218];
-    W[231] = W[3] * W[220] + W[46] * W[177] + W[89] * W[134] + W[132] * W[91] + W[175] * W[48]
-            + W[218] * W[5];
-    W[219] = W[50] * W[213] / 5.0;
-    W[256] = -W[50] * W[176] / 5.0;
-    W[232] = W[16] * W[221] + W[59] * W[178] + W[102] * W[135] + W[145] * W[92] + W[188] * W[49]
-            + W[231] * W[6];
-    W[233] = W[41] * W[220] + W[84] * W[177] + W[127] * W[134] + W[170] * W[91] + W[213] * W[48]
-            + W[256] * W[5];
-    W[234] = W[4] * W[220] + W[47] * W[177] + W[90] * W[134] + W[133] * W[91] + W[176] * W[48]
-            + W[219] * W[5];
-    W[240] = W[3] * W[256] + W[46] * W[213] + W[89] * W[170] + W[132] * W[127] + W[175] * W[84]
-            + W[218] * W[41];
-    W[244] = W[3] * W[219] + W[46] * W[176] + W[89] * W[133] + W[132] * W[90] + W[175] * W[47]
-            + W[218] * W[4];
-    W[225] = W[0] * W[244];
-    W[226] = W[0] * W[240];
-    W[227] = W[0] * W[234];
-    W[228] = W[0] * W[233];
+    W[217] = (X[2] * W[204] + 2.0 * X[4] * W[161] + 3.0 * X[6] * W[118] + 4.0 * X[8] * W[75] + 5.0 * X[10] * W[32]) / 5.0;
+    W[247] = -((X[2] * W[174] + 2.0 * X[4] * W[131] + 3.0 * X[6] * W[88] + 4.0 * X[8] * W[45]
+            + 5.0 * X[10] * W[2])) / 5.0;
+    W[252] = (X[1] * X[11] + X[3] * X[9] + X[5] * X[7]) * 2.0;
+    W[254] = W[38] * W[217];
+    W[220] = W[2] * W[247] + W[45] * W[204] + W[88] * W[161] + W[131] * W[118] + W[174] * W[75]
+            + W[217] * W[32];
+    W[219] = W[73] * W[175] / 5.0;
+    W[218] = -W[73] * W[176] / 5.0;
 #ifdef EOMC_PACKS
-    EOMC_AT2(W + 235) = EOMC_AT2(W + 18) * X[11] + EOMC_AT2(W + 61) * X[9] + EOMC_AT2(W + 104) * X[7]
-            + EOMC_AT2(W + 147) * X[5] + EOMC_AT2(W + 190) * X[3] + EOMC_AT2(W + 233) * X[1];
+    EOMC_AT2(W + 221) = EOMC_AT2(W + 3) * W[247] + EOMC_AT2(W + 46) * W[204] + EOMC_AT2(W + 89) * W[161]
+            + EOMC_AT2(W + 132) * W[118] + EOMC_AT2(W + 175) * W[75] + EOMC_AT2(W + 218) * W[32];
+    EOMC_AT2(W + 223) = W[2] * EOMC_AT2(W + 218) + W[45] * EOMC_AT2(W + 175) + W[88] * EOMC_AT2(W + 132)
+            + W[131] * EOMC_AT2(W + 89) + W[174] * EOMC_AT2(W + 46) + W[217] * EOMC_AT2(W + 3);
 #else
-    W[235] = W[18] * X[11] + W[61] * X[9] + W[104] * X[7] + W[147] * X[5] + W[190] * X[3] + W[233] * X[1];
-    W[236] = W[19] * X[11] + W[62] * X[9] + W[105] * X[7] + W[148] * X[5] + W[191] * X[3] + W[234] * X[1];
+    W[221] = W[3] * W[247] + W[46] * W[204] + W[89] * W[161] + W[132] * W[118] + W[175] * W[75]
+            + W[218] * W[32];
+    W[222] = W[4] * W[247] + W[47] * W[204] + W[90] * W[161] + W[133] * W[118] + W[176] * W[75]
+            + W[219] * W[32];
+    W[223] = W[2] * W[218] + W[45] * W[175] + W[88] * W[132] + W[131] * W[89] + W[174] * W[46]
+            + W[217] * W[3];
+    W[224] = W[2] * W[219] + W[45] * W[176] + W[88] * W[133] + W[131] * W[90] + W[174] * W[47]
+            + W[217] * W[4];
 #endif
-    W[237] = W[25] * X[11] + W[68] * X[9] + W[111] * X[7] + W[154] * X[5] + W[197] * X[3] + W[240] * X[1];
-    W[238] = W[29] * X[11] + W[72] * X[9] + W[115] * X[7] + W[158] * X[5] + W[201] * X[3] + W[244] * X[1];
-    W[245] = W[235] - W[225];
+    W[255] = W[5] * W[252] + W[48] * W[209] + W[91] * W[166] + W[134] * W[123] + W[177] * W[80]
+            + W[220] * W[37];
+#ifdef EOMC_PACKS
+    EOMC_AT4(W + 225) = W[0] * EOMC_AT4(W + 221);
+    EOMC_AT4(W + 229) = EOMC_AT4(W + 6) * X[11] + EOMC_AT4(W + 49) * X[9] + EOMC_AT4(W + 92) * X[7]
+            + EOMC_AT4(W + 135) * X[5] + EOMC_AT4(W + 178) * X[3] + EOMC_AT4(W + 221) * X[1];
+#else
+    W[225] = W[0] * W[221];
+    W[226] = W[0] * W[222];
+    W[227] = W[0] * W[223];
+    W[228] = W[0] * W[224];
+    W[229] = W[6] * X[11] + W[49] * X[9] + W[92] * X[7] + W[135] * X[5] + W[178] * X[3] + W[221] * X[1];
+    W[230] = W[7] * X[11] + W[50] * X[9] + W[93] * X[7] + W[136] * X[5] + W[179] * X[3] + W[222] * X[1];
+    W[231] = W[8] * X[11] + W[51] * X[9] + W[94] * X[7] + W[137] * X[5] + W[180] * X[3] + W[223] * X[1];
+    W[232] = W[9] * X[11] + W[52] * X[9] + W[95] * X[7] + W[138] * X[5] + W[181] * X[3] + W[224] * X[1];
+#endif
+    W[233] = W[229] - W[228];
+    W[251] = W[225] - W[232];
+    W[249] = W[230] + W[227];
+    W[250] = W[226] + W[231];
+    W[235] = W[0] * W[249];
+    W[236] = W[0] * W[233];
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 238) = X[1] * EOMC_AT2(W + 250) + X[3] * EOMC_AT2(W + 207) + X[5] * EOMC_AT2(W + 164)
+            + X[7] * EOMC_AT2(W + 121) + X[9] * EOMC_AT2(W + 78) + X[11] * EOMC_AT2(W + 35);
+    EOMC_AT2(W + 240) = EOMC_AT2(W + 238) + EOMC_AT2(W + 235);
+#else
+    W[238] = X[1] * W[250] + X[3] * W[207] + X[5] * W[164] + X[7] * W[121] + X[9] * W[78] + X[11] * W[35];
+    W[239] = X[1] * W[251] + X[3] * W[208] + X[5] * W[165] + X[7] * W[122] + X[9] * W[79] + X[11] * W[36];
+    W[240] = W[238] + W[235];
+    W[241] = W[239] + W[236];
+#endif
 }
 
-/* Lines 21 .. 37 of taylor_run's order 6. */
+/* Lines 30 .. 37 of taylor_run's order 6. */
+static EOMC_NOINLINE EOMC_UNCHECKED void
+spinning_hoop_taylor_run_14(eomc_real *restrict W, eomc_real *restrict X)
+{
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 285) = EOMC_AT2(W + 6) * EOMC_AT2(W + 283) + EOMC_AT2(W + 49) * EOMC_AT2(W + 240)
+            + EOMC_AT2(W + 92) * EOMC_AT2(W + 197) + EOMC_AT2(W + 135) * EOMC_AT2(W + 154) + EOMC_AT2(W + 178) * EOMC_AT2(W + 111)
+            + EOMC_AT2(W + 221) * EOMC_AT2(W + 68) + EOMC_AT2(W + 264) * EOMC_AT2(W + 25);
+#else
+    W[285] = W[6] * W[283] + W[49] * W[240] + W[92] * W[197] + W[135] * W[154] + W[178] * W[111]
+            + W[221] * W[68] + W[264] * W[25];
+    W[286] = W[7] * W[284] + W[50] * W[241] + W[93] * W[198] + W[136] * W[155] + W[179] * W[112]
+            + W[222] * W[69] + W[265] * W[26];
+#endif
+    W[299] = W[298] + W[286];
+    W[277] = W[299] - W[285];
+    W[280] = W[1] * W[277];
+    W[300] = W[297] + W[280];
+    X[14] = X[13] / 7.0;
+    X[15] = -W[300] / W[1] / 7.0;
+}
+
+/* Lines 0 .. 29 of taylor_run's order 7. */
 static EOMC_NOINLINE EOMC_UNCHECKED void
 spinning_hoop_taylor_run_15(eomc_real *restrict W, eomc_real *restrict X)
 {
-    W[289] = W[271] - W[281];
-    W[292] = W[279] + W[269];
-    W[296] = W[270] + W[280];
-    W[272] = W[0] * W[292];
-    W[273] = W[0] * W[288];
-    W[282] = X[1] * W[296] + X[3] * W[253] + X[5] * W[210] + X[7] * W[167] + X[9] * W[124] + X[11] * W[81]
-            + X[13] * W[38];
-    W[284] = X[1] * W[289] + X[3] * W[246] + X[5] * W[203] + X[7] * W[160] + X[9] * W[117] + X[11] * W[74]
-            + X[13] * W[31];
-    W[293] = W[282] + W[272];
-    W[294] = W[284] + W[273];
-    W[285] = W[19] * W[294] + W[62] * W[251] + W[105] * W[208] + W[148] * W[165] + W[191] * W[122]
-            + W[234] * W[79] + W[277] * W[36];
-    W[286] = W[18] * W[293] + W[61] * W[250] + W[104] * W[207] + W[147] * W[164] + W[190] * W[121]
-            + W[233] * W[78] + W[276] * W[35];
-    W[291] = W[275] + W[285];
-    W[290] = W[291] - W[286];
-    W[267] = W[2] * W[290];
-    W[295] = W[266] + W[267];
-    X[14] = X[13] / 7.0;
-    X[15] = -W[295] / W[2] / 7.0;
-}
-
-/* Lines 0 .. 20 of taylor_run's order 7. */
-static EOMC_NOINLINE EOMC_UNCHECKED void
-spinning_hoop_taylor_run_16(eomc_real *restrict W, eomc_real *restrict X)
-{
-    W[304] = (X[2] * W[263] + 2.0 * X[4] * W[220] + 3.0 * X[6] * W[177] + 4.0 * X[8] * W[134]
-            + 5.0 * X[10] * W[91] + 6.0 * X[12] * W[48] + 7.0 * X[14] * W[5]) / 7.0;
-    W[306] = -((X[2] * W[261] + 2.0 * X[4] * W[218] + 3.0 * X[6] * W[175] + 4.0 * X[8] * W[132]
-            + 5.0 * X[10] * W[89] + 6.0 * X[12] * W[46] + 7.0 * X[14] * W[3])) / 7.0;
-    W[307] = (X[1] * X[15] + X[3] * X[13] + X[5] * X[11] + X[7] * X[9]) * 2.0;
-    W[309] = W[1] * W[304];
-    W[317] = W[3] * W[306] + W[46] * W[263] + W[89] * W[220] + W[132] * W[177] + W[175] * W[134]
-            + W[218] * W[91] + W[261] * W[48] + W[304] * W[5];
-    W[305] = W[50] * W[299] / 7.0;
-    W[342] = -W[50] * W[262] / 7.0;
-    W[318] = W[16] * W[307] + W[59] * W[264] + W[102] * W[221] + W[145] * W[178] + W[188] * W[135]
-            + W[231] * W[92] + W[274] * W[49] + W[317] * W[6];
-    W[319] = W[41] * W[306] + W[84] * W[263] + W[127] * W[220] + W[170] * W[177] + W[213] * W[134]
-            + W[256] * W[91] + W[299] * W[48] + W[342] * W[5];
-    W[320] = W[4] * W[306] + W[47] * W[263] + W[90] * W[220] + W[133] * W[177] + W[176] * W[134]
-            + W[219] * W[91] + W[262] * W[48] + W[305] * W[5];
-    W[326] = W[3] * W[342] + W[46] * W[299] + W[89] * W[256] + W[132] * W[213] + W[175] * W[170]
-            + W[218] * W[127] + W[261] * W[84] + W[304] * W[41];
-    W[330] = W[3] * W[305] + W[46] * W[262] + W[89] * W[219] + W[132] * W[176] + W[175] * W[133]
-            + W[218] * W[90] + W[261] * W[47] + W[304] * W[4];
-    W[311] = W[0] * W[330];
-    W[312] = W[0] * W[326];
-    W[313] = W[0] * W[320];
-    W[314] = W[0] * W[319];
+    W[303] = (X[2] * W[290] + 2.0 * X[4] * W[247] + 3.0 * X[6] * W[204] + 4.0 * X[8] * W[161]
+            + 5.0 * X[10] * W[118] + 6.0 * X[12] * W[75] + 7.0 * X[14] * W[32]) / 7.0;
+    W[333] = -((X[2] * W[260] + 2.0 * X[4] * W[217] + 3.0 * X[6] * W[174] + 4.0 * X[8] * W[131]
+            + 5.0 * X[10] * W[88] + 6.0 * X[12] * W[45] + 7.0 * X[14] * W[2])) / 7.0;
+    W[338] = (X[1] * X[15] + X[3] * X[13] + X[5] * X[11] + X[7] * X[9]) * 2.0;
+    W[340] = W[38] * W[303];
+    W[306] = W[2] * W[333] + W[45] * W[290] + W[88] * W[247] + W[131] * W[204] + W[174] * W[161]
+            + W[217] * W[118] + W[260] * W[75] + W[303] * W[32];
+    W[305] = W[73] * W[261] / 7.0;
+    W[304] = -W[73] * W[262] / 7.0;
 #ifdef EOMC_PACKS
-    EOMC_AT2(W + 321) = EOMC_AT2(W + 18) * X[15] + EOMC_AT2(W + 61) * X[13] + EOMC_AT2(W + 104) * X[11]
-            + EOMC_AT2(W + 147) * X[9] + EOMC_AT2(W + 190) * X[7] + EOMC_AT2(W + 233) * X[5] + EOMC_AT2(W + 276) * X[3]
-            + EOMC_AT2(W + 319) * X[1];
+    EOMC_AT2(W + 307) = EOMC_AT2(W + 3) * W[333] + EOMC_AT2(W + 46) * W[290] + EOMC_AT2(W + 89) * W[247]
+            + EOMC_AT2(W + 132) * W[204] + EOMC_AT2(W + 175) * W[161] + EOMC_AT2(W + 218) * W[118]
+            + EOMC_AT2(W + 261) * W[75] + EOMC_AT2(W + 304) * W[32];
+    EOMC_AT2(W + 309) = W[2] * EOMC_AT2(W + 304) + W[45] * EOMC_AT2(W + 261) + W[88] * EOMC_AT2(W + 218)
+            + W[131] * EOMC_AT2(W + 175) + W[174] * EOMC_AT2(W + 132) + W[217] * EOMC_AT2(W + 89)
+            + W[260] * EOMC_AT2(W + 46) + W[303] * EOMC_AT2(W + 3);
 #else
-    W[321] = W[18] * X[15] + W[61] * X[13] + W[104] * X[11] + W[147] * X[9] + W[190] * X[7] + W[233] * X[5]
-            + W[276] * X[3] + W[319] * X[1];
-    W[322] = W[19] * X[15] + W[62] * X[13] + W[105] * X[11] + W[148] * X[9] + W[191] * X[7] + W[234] * X[5]
-            + W[277] * X[3] + W[320] * X[1];
+    W[307] = W[3] * W[333] + W[46] * W[290] + W[89] * W[247] + W[132] * W[204] + W[175] * W[161]
+            + W[218] * W[118] + W[261] * W[75] + W[304] * W[32];
+    W[308] = W[4] * W[333] + W[47] * W[290] + W[90] * W[247] + W[133] * W[204] + W[176] * W[161]
+            + W[219] * W[118] + W[262] * W[75] + W[305] * W[32];
+    W[309] = W[2] * W[304] + W[45] * W[261] + W[88] * W[218] + W[131] * W[175] + W[174] * W[132]
+            + W[217] * W[89] + W[260] * W[46] + W[303] * W[3];
+    W[310] = W[2] * W[305] + W[45] * W[262] + W[88] * W[219] + W[131] * W[176] + W[174] * W[133]
+            + W[217] * W[90] + W[260] * W[47] + W[303] * W[4];
 #endif
-    W[323] = W[25] * X[15] + W[68] * X[13] + W[111] * X[11] + W[154] * X[9] + W[197] * X[7] + W[240] * X[5]
-            + W[283] * X[3] + W[326] * X[1];
-    W[324] = W[29] * X[15] + W[72] * X[13] + W[115] * X[11] + W[158] * X[9] + W[201] * X[7] + W[244] * X[5]
-            + W[287] * X[3] + W[330] * X[1];
-    W[331] = W[321] - W[311];
+    W[341] = W[5] * W[338] + W[48] * W[295] + W[91] * W[252] + W[134] * W[209] + W[177] * W[166]
+            + W[220] * W[123] + W[263] * W[80] + W[306] * W[37];
+#ifdef EOMC_PACKS
+    EOMC_AT4(W + 311) = W[0] * EOMC_AT4(W + 307);
+    EOMC_AT4(W + 315) = EOMC_AT4(W + 6) * X[15] + EOMC_AT4(W + 49) * X[13] + EOMC_AT4(W + 92) * X[11]
+            + EOMC_AT4(W + 135) * X[9] + EOMC_AT4(W + 178) * X[7] + EOMC_AT4(W + 221) * X[5] + EOMC_AT4(W + 264) * X[3]
+            + EOMC_AT4(W + 307) * X[1];
+#else
+    W[311] = W[0] * W[307];
+    W[312] = W[0] * W[308];
+    W[313] = W[0] * W[309];
+    W[314] = W[0] * W[310];
+    W[315] = W[6] * X[15] + W[49] * X[13] + W[92] * X[11] + W[135] * X[9] + W[178] * X[7] + W[221] * X[5]
+            + W[264] * X[3] + W[307] * X[1];
+    W[316] = W[7] * X[15] + W[50] * X[13] + W[93] * X[11] + W[136] * X[9] + W[179] * X[7] + W[222] * X[5]
+            + W[265] * X[3] + W[308] * X[1];
+    W[317] = W[8] * X[15] + W[51] * X[13] + W[94] * X[11] + W[137] * X[9] + W[180] * X[7] + W[223] * X[5]
+            + W[266] * X[3] + W[309] * X[1];
+    W[318] = W[9] * X[15] + W[52] * X[13] + W[95] * X[11] + W[138] * X[9] + W[181] * X[7] + W[224] * X[5]
+            + W[267] * X[3] + W[310] * X[1];
+#endif
+    W[319] = W[315] - W[314];
+    W[337] = W[311] - W[318];
+    W[335] = W[316] + W[313];
+    W[336] = W[312] + W[317];
+    W[321] = W[0] * W[335];
+    W[322] = W[0] * W[319];
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 324) = X[1] * EOMC_AT2(W + 336) + X[3] * EOMC_AT2(W + 293) + X[5] * EOMC_AT2(W + 250)
+            + X[7] * EOMC_AT2(W + 207) + X[9] * EOMC_AT2(W + 164) + X[11] * EOMC_AT2(W + 121)
+            + X[13] * EOMC_AT2(W + 78) + X[15] * EOMC_AT2(W + 35);
+    EOMC_AT2(W + 326) = EOMC_AT2(W + 324) + EOMC_AT2(W + 321);
+#else
+    W[324] = X[1] * W[336] + X[3] * W[293] + X[5] * W[250] + X[7] * W[207] + X[9] * W[164] + X[11] * W[121]
+            + X[13] * W[78] + X[15] * W[35];
+    W[325] = X[1] * W[337] + X[3] * W[294] + X[5] * W[251] + X[7] * W[208] + X[9] * W[165] + X[11] * W[122]
+            + X[13] * W[79] + X[15] * W[36];
+    W[326] = W[324] + W[321];
+    W[327] = W[325] + W[322];
+#endif
 }
 
-/* Lines 21 .. 37 of taylor_run's order 8. */
+/* Lines 30 .. 37 of taylor_run's order 8. */
+static EOMC_NOINLINE EOMC_UNCHECKED void
+spinning_hoop_taylor_run_18(eomc_real *restrict W, eomc_real *restrict X)
+{
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 371) = EOMC_AT2(W + 6) * EOMC_AT2(W + 369) + EOMC_AT2(W + 49) * EOMC_AT2(W + 326)
+            + EOMC_AT2(W + 92) * EOMC_AT2(W + 283) + EOMC_AT2(W + 135) * EOMC_AT2(W + 240) + EOMC_AT2(W + 178) * EOMC_AT2(W + 197)
+            + EOMC_AT2(W + 221) * EOMC_AT2(W + 154) + EOMC_AT2(W + 264) * EOMC_AT2(W + 111) + EOMC_AT2(W + 307) * EOMC_AT2(W + 68)
+            + EOMC_AT2(W + 350) * EOMC_AT2(W + 25);
+#else
+    W[371] = W[6] * W[369] + W[49] * W[326] + W[92] * W[283] + W[135] * W[240] + W[178] * W[197]
+            + W[221] * W[154] + W[264] * W[111] + W[307] * W[68] + W[350] * W[25];
+    W[372] = W[7] * W[370] + W[50] * W[327] + W[93] * W[284] + W[136] * W[241] + W[179] * W[198]
+            + W[222] * W[155] + W[265] * W[112] + W[308] * W[69] + W[351] * W[26];
+#endif
+    W[385] = W[384] + W[372];
+    W[363] = W[385] - W[371];
+    W[366] = W[1] * W[363];
+    W[386] = W[383] + W[366];
+    X[18] = X[17] / 9.0;
+    X[19] = -W[386] / W[1] / 9.0;
+}
+
+/* Lines 0 .. 29 of taylor_run's order 9. */
 static EOMC_NOINLINE EOMC_UNCHECKED void
 spinning_hoop_taylor_run_19(eomc_real *restrict W, eomc_real *restrict X)
 {
-    W[375] = W[357] - W[367];
-    W[378] = W[365] + W[355];
-    W[382] = W[356] + W[366];
-    W[358] = W[0] * W[378];
-    W[359] = W[0] * W[374];
-    W[368] = X[1] * W[382] + X[3] * W[339] + X[5] * W[296] + X[7] * W[253] + X[9] * W[210] + X[11] * W[167]
-            + X[13] * W[124] + X[15] * W[81] + X[17] * W[38];
-    W[370] = X[1] * W[375] + X[3] * W[332] + X[5] * W[289] + X[7] * W[246] + X[9] * W[203] + X[11] * W[160]
-            + X[13] * W[117] + X[15] * W[74] + X[17] * W[31];
-    W[379] = W[368] + W[358];
-    W[380] = W[370] + W[359];
-    W[371] = W[19] * W[380] + W[62] * W[337] + W[105] * W[294] + W[148] * W[251] + W[191] * W[208]
-            + W[234] * W[165] + W[277] * W[122] + W[320] * W[79] + W[363] * W[36];
-    W[372] = W[18] * W[379] + W[61] * W[336] + W[104] * W[293] + W[147] * W[250] + W[190] * W[207]
-            + W[233] * W[164] + W[276] * W[121] + W[319] * W[78] + W[362] * W[35];
-    W[377] = W[361] + W[371];
-    W[376] = W[377] - W[372];
-    W[353] = W[2] * W[376];
-    W[381] = W[352] + W[353];
-    X[18] = X[17] / 9.0;
-    X[19] = -W[381] / W[2] / 9.0;
-}
-
-/* Lines 0 .. 20 of taylor_run's order 9. */
-static EOMC_NOINLINE EOMC_UNCHECKED void
-spinning_hoop_taylor_run_20(eomc_real *restrict W, eomc_real *restrict X)
-{
-    W[390] = (X[2] * W[349] + 2.0 * X[4] * W[306] + 3.0 * X[6] * W[263] + 4.0 * X[8] * W[220]
-            + 5.0 * X[10] * W[177] + 6.0 * X[12] * W[134] + 7.0 * X[14] * W[91] + 8.0 * X[16] * W[48]
-            + 9.0 * X[18] * W[5]) / 9.0;
-    W[392] = -((X[2] * W[347] + 2.0 * X[4] * W[304] + 3.0 * X[6] * W[261] + 4.0 * X[8] * W[218]
-            + 5.0 * X[10] * W[175] + 6.0 * X[12] * W[132] + 7.0 * X[14] * W[89] + 8.0 * X[16] * W[46]
-            + 9.0 * X[18] * W[3])) / 9.0;
-    W[393] = (X[1] * X[19] + X[3] * X[17] + X[5] * X[15] + X[7] * X[13] + X[9] * X[11]) * 2.0;
-    W[395] = W[1] * W[390];
-    W[403] = W[3] * W[392] + W[46] * W[349] + W[89] * W[306] + W[132] * W[263] + W[175] * W[220]
-            + W[218] * W[177] + W[261] * W[134] + W[304] * W[91] + W[347] * W[48] + W[390] * W[5];
-    W[391] = W[50] * W[385] / 9.0;
-    W[428] = -W[50] * W[348] / 9.0;
-    W[404] = W[16] * W[393] + W[59] * W[350] + W[102] * W[307] + W[145] * W[264] + W[188] * W[221]
-            + W[231] * W[178] + W[274] * W[135] + W[317] * W[92] + W[360] * W[49] + W[403] * W[6];
-    W[405] = W[41] * W[392] + W[84] * W[349] + W[127] * W[306] + W[170] * W[263] + W[213] * W[220]
-            + W[256] * W[177] + W[299] * W[134] + W[342] * W[91] + W[385] * W[48] + W[428] * W[5];
-    W[406] = W[4] * W[392] + W[47] * W[349] + W[90] * W[306] + W[133] * W[263] + W[176] * W[220]
-            + W[219] * W[177] + W[262] * W[134] + W[305] * W[91] + W[348] * W[48] + W[391] * W[5];
-    W[412] = W[3] * W[428] + W[46] * W[385] + W[89] * W[342] + W[132] * W[299] + W[175] * W[256]
-            + W[218] * W[213] + W[261] * W[170] + W[304] * W[127] + W[347] * W[84] + W[390] * W[41];
-    W[416] = W[3] * W[391] + W[46] * W[348] + W[89] * W[305] + W[132] * W[262] + W[175] * W[219]
-            + W[218] * W[176] + W[261] * W[133] + W[304] * W[90] + W[347] * W[47] + W[390] * W[4];
-    W[397] = W[0] * W[416];
-    W[398] = W[0] * W[412];
-    W[399] = W[0] * W[406];
-    W[400] = W[0] * W[405];
+    W[389] = (X[2] * W[376] + 2.0 * X[4] * W[333] + 3.0 * X[6] * W[290] + 4.0 * X[8] * W[247]
+            + 5.0 * X[10] * W[204] + 6.0 * X[12] * W[161] + 7.0 * X[14] * W[118] + 8.0 * X[16] * W[75]
+            + 9.0 * X[18] * W[32]) / 9.0;
+    W[419] = -((X[2] * W[346] + 2.0 * X[4] * W[303] + 3.0 * X[6] * W[260] + 4.0 * X[8] * W[217]
+            + 5.0 * X[10] * W[174] + 6.0 * X[12] * W[131] + 7.0 * X[14] * W[88] + 8.0 * X[16] * W[45]
+            + 9.0 * X[18] * W[2])) / 9.0;
+    W[424] = (X[1] * X[19] + X[3] * X[17] + X[5] * X[15] + X[7] * X[13] + X[9] * X[11]) * 2.0;
+    W[426] = W[38] * W[389];
+    W[392] = W[2] * W[419] + W[45] * W[376] + W[88] * W[333] + W[131] * W[290] + W[174] * W[247]
+            + W[217] * W[204] + W[260] * W[161] + W[303] * W[118] + W[346] * W[75] + W[389] * W[32];
+    W[391] = W[73] * W[347] / 9.0;
+    W[390] = -W[73] * W[348] / 9.0;
 #ifdef EOMC_PACKS
-    EOMC_AT2(W + 407) = EOMC_AT2(W + 18) * X[19] + EOMC_AT2(W + 61) * X[17] + EOMC_AT2(W + 104) * X[15]
-            + EOMC_AT2(W + 147) * X[13] + EOMC_AT2(W + 190) * X[11] + EOMC_AT2(W + 233) * X[9]
-            + EOMC_AT2(W + 276) * X[7] + EOMC_AT2(W + 319) * X[5] + EOMC_AT2(W + 362) * X[3] + EOMC_AT2(W + 405) * X[1];
+    EOMC_AT2(W + 393) = EOMC_AT2(W + 3) * W[419] + EOMC_AT2(W + 46) * W[376] + EOMC_AT2(W + 89) * W[333]
+            + EOMC_AT2(W + 132) * W[290] + EOMC_AT2(W + 175) * W[247] + EOMC_AT2(W + 218) * W[204]
+            + EOMC_AT2(W + 261) * W[161] + EOMC_AT2(W + 304) * W[118] + EOMC_AT2(W + 347) * W[75]
+            + EOMC_AT2(W + 390) * W[32];
+    EOMC_AT2(W + 395) = W[2] * EOMC_AT2(W + 390) + W[45] * EOMC_AT2(W + 347) + W[88] * EOMC_AT2(W + 304)
+            + W[131] * EOMC_AT2(W + 261) + W[174] * EOMC_AT2(W + 218) + W[217] * EOMC_AT2(W + 175)
+            + W[260] * EOMC_AT2(W + 132) + W[303] * EOMC_AT2(W + 89) + W[346] * EOMC_AT2(W + 46)
+            + W[389] * EOMC_AT2(W + 3);
 #else
-    W[407] = W[18] * X[19] + W[61] * X[17] + W[104] * X[15] + W[147] * X[13] + W[190] * X[11]
-            + W[233] * X[9] + W[276] * X[7] + W[319] * X[5] + W[362] * X[3] + W[405] * X[1];
-    W[408] = W[19] * X[19] + W[62] * X[17] + W[105] * X[15] + W[148] * X[13] + W[191] * X[11]
-            + W[234] * X[9] + W[277] * X[7] + W[320] * X[5] + W[363] * X[3] + W[406] * X[1];
+    W[393] = W[3] * W[419] + W[46] * W[376] + W[89] * W[333] + W[132] * W[290] + W[175] * W[247]
+            + W[218] * W[204] + W[261] * W[161] + W[304] * W[118] + W[347] * W[75] + W[390] * W[32];
+    W[394] = W[4] * W[419] + W[47] * W[376] + W[90] * W[333] + W[133] * W[290] + W[176] * W[247]
+            + W[219] * W[204] + W[262] * W[161] + W[305] * W[118] + W[348] * W[75] + W[391] * W[32];
+    W[395] = W[2] * W[390] + W[45] * W[347] + W[88] * W[304] + W[131] * W[261] + W[174] * W[218]
+            + W[217] * W[175] + W[260] * W[132] + W[303] * W[89] + W[346] * W[46] + W[389] * W[3];
+    W[396] = W[2] * W[391] + W[45] * W[348] + W[88] * W[305] + W[131] * W[262] + W[174] * W[219]
+            + W[217] * W[176] + W[260] * W[133] + W[303] * W[90] + W[346] * W[47] + W[389] * W[4];
 #endif
-    W[409] = W[25] * X[19] + W[68] * X[17] + W[111] * X[15] + W[154] * X[13] + W[197] * X[11]
-            + W[240] * X[9] + W[283] * X[7] + W[326] * X[5] + W[369] * X[3] + W[412] * X[1];
-    W[410] = W[29] * X[19] + W[72] * X[17] + W[115] * X[15] + W[158] * X[13] + W[201] * X[11]
-            + W[244] * X[9] + W[287] * X[7] + W[330] * X[5] + W[373] * X[3] + W[416] * X[1];
-    W[417] = W[407] - W[397];
+    W[427] = W[5] * W[424] + W[48] * W[381] + W[91] * W[338] + W[134] * W[295] + W[177] * W[252]
+            + W[220] * W[209] + W[263] * W[166] + W[306] * W[123] + W[349] * W[80] + W[392] * W[37];
+#ifdef EOMC_PACKS
+    EOMC_AT4(W + 397) = W[0] * EOMC_AT4(W + 393);
+    EOMC_AT4(W + 401) = EOMC_AT4(W + 6) * X[19] + EOMC_AT4(W + 49) * X[17] + EOMC_AT4(W + 92) * X[15]
+            + EOMC_AT4(W + 135) * X[13] + EOMC_AT4(W + 178) * X[11] + EOMC_AT4(W + 221) * X[9]
+            + EOMC_AT4(W + 264) * X[7] + EOMC_AT4(W + 307) * X[5] + EOMC_AT4(W + 350) * X[3] + EOMC_AT4(W + 393) * X[1];
+#else
+    W[397] = W[0] * W[393];
+    W[398] = W[0] * W[394];
+    W[399] = W[0] * W[395];
+    W[400] = W[0] * W[396];
+    W[401] = W[6] * X[19] + W[49] * X[17] + W[92] * X[15] + W[135] * X[13] + W[178] * X[11] + W[221] * X[9]
+            + W[264] * X[7] + W[307] * X[5] + W[350] * X[3] + W[393] * X[1];
+    W[402] = W[7] * X[19] + W[50] * X[17] + W[93] * X[15] + W[136] * X[13] + W[179] * X[11] + W[222] * X[9]
+            + W[265] * X[7] + W[308] * X[5] + W[351] * X[3] + W[394] * X[1];
+    W[403] = W[8] * X[19] + W[51] * X[17] + W[94] * X[15] + W[137] * X[13] + W[180] * X[11] + W[223] * X[9]
+            + W[266] * X[7] + W[309] * X[5] + W[352] * X[3] + W[395] * X[1];
+    W[404] = W[9] * X[19] + W[52] * X[17] + W[95] * X[15] + W[138] * X[13] + W[181] * X[11] + W[224] * X[9]
+            + W[267] * X[7] + W[310] * X[5] + W[353] * X[3] + W[396] * X[1];
+#endif
+    W[405] = W[401] - W[400];
+    W[423] = W[397] - W[404];
+    W[421] = W[402] + W[399];
+    W[422] = W[398] + W[403];
+    W[407] = W[0] * W[421];
+    W[408] = W[0] * W[405];
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 410) = X[1] * EOMC_AT2(W + 422) + X[3] * EOMC_AT2(W + 379) + X[5] * EOMC_AT2(W + 336)
+            + X[7] * EOMC_AT2(W + 293) + X[9] * EOMC_AT2(W + 250) + X[11] * EOMC_AT2(W + 207)
+            + X[13] * EOMC_AT2(W + 164) + X[15] * EOMC_AT2(W + 121) + X[17] * EOMC_AT2(W + 78)
+            + X[19] * EOMC_AT2(W + 35);
+    EOMC_AT2(W + 412) = EOMC_AT2(W + 410) + EOMC_AT2(W + 407);
+#else
+    W[410] = X[1] * W[422] + X[3] * W[379] + X[5] * W[336] + X[7] * W[293] + X[9] * W[250] + X[11] * W[207]
+            + X[13] * W[164] + X[15] * W[121] + X[17] * W[78] + X[19] * W[35];
+    W[411] = X[1] * W[423] + X[3] * W[380] + X[5] * W[337] + X[7] * W[294] + X[9] * W[251] + X[11] * W[208]
+            + X[13] * W[165] + X[15] * W[122] + X[17] * W[79] + X[19] * W[36];
+    W[412] = W[410] + W[407];
+    W[413] = W[411] + W[408];
+#endif
 }
 
-/* Lines 21 .. 37 of taylor_run's order 10. */
+/* Lines 30 .. 37 of taylor_run's order 10. */
+static EOMC_NOINLINE EOMC_UNCHECKED void
+spinning_hoop_taylor_run_22(eomc_real *restrict W, eomc_real *restrict X)
+{
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 457) = EOMC_AT2(W + 6) * EOMC_AT2(W + 455) + EOMC_AT2(W + 49) * EOMC_AT2(W + 412)
+            + EOMC_AT2(W + 92) * EOMC_AT2(W + 369) + EOMC_AT2(W + 135) * EOMC_AT2(W + 326) + EOMC_AT2(W + 178) * EOMC_AT2(W + 283)
+            + EOMC_AT2(W + 221) * EOMC_AT2(W + 240) + EOMC_AT2(W + 264) * EOMC_AT2(W + 197) + EOMC_AT2(W + 307) * EOMC_AT2(W + 154)
+            + EOMC_AT2(W + 350) * EOMC_AT2(W + 111) + EOMC_AT2(W + 393) * EOMC_AT2(W + 68) + EOMC_AT2(W + 436) * EOMC_AT2(W + 25);
+#else
+    W[457] = W[6] * W[455] + W[49] * W[412] + W[92] * W[369] + W[135] * W[326] + W[178] * W[283]
+            + W[221] * W[240] + W[264] * W[197] + W[307] * W[154] + W[350] * W[111] + W[393] * W[68]
+            + W[436] * W[25];
+    W[458] = W[7] * W[456] + W[50] * W[413] + W[93] * W[370] + W[136] * W[327] + W[179] * W[284]
+            + W[222] * W[241] + W[265] * W[198] + W[308] * W[155] + W[351] * W[112] + W[394] * W[69]
+            + W[437] * W[26];
+#endif
+    W[471] = W[470] + W[458];
+    W[449] = W[471] - W[457];
+    W[452] = W[1] * W[449];
+    W[472] = W[469] + W[452];
+    X[22] = X[21] / 11.0;
+    X[23] = -W[472] / W[1] / 11.0;
+}
+
+/* Lines 0 .. 29 of taylor_run's order 11. */
 static EOMC_NOINLINE EOMC_UNCHECKED void
 spinning_hoop_taylor_run_23(eomc_real *restrict W, eomc_real *restrict X)
 {
-    W[461] = W[443] - W[453];
-    W[464] = W[451] + W[441];
-    W[468] = W[442] + W[452];
-    W[444] = W[0] * W[464];
-    W[445] = W[0] * W[460];
-    W[454] = X[1] * W[468] + X[3] * W[425] + X[5] * W[382] + X[7] * W[339] + X[9] * W[296] + X[11] * W[253]
-            + X[13] * W[210] + X[15] * W[167] + X[17] * W[124] + X[19] * W[81] + X[21] * W[38];
-    W[456] = X[1] * W[461] + X[3] * W[418] + X[5] * W[375] + X[7] * W[332] + X[9] * W[289] + X[11] * W[246]
-            + X[13] * W[203] + X[15] * W[160] + X[17] * W[117] + X[19] * W[74] + X[21] * W[31];
-    W[465] = W[454] + W[444];
-    W[466] = W[456] + W[445];
-    W[457] = W[19] * W[466] + W[62] * W[423] + W[105] * W[380] + W[148] * W[337] + W[191] * W[294]
-            + W[234] * W[251] + W[277] * W[208] + W[320] * W[165] + W[363] * W[122] + W[406] * W[79]
-            + W[449] * W[36];
-    W[458] = W[18] * W[465] + W[61] * W[422] + W[104] * W[379] + W[147] * W[336] + W[190] * W[293]
-            + W[233] * W[250] + W[276] * W[207] + W[319] * W[164] + W[362] * W[121] + W[405] * W[78]
-            + W[448] * W[35];
-    W[463] = W[447] + W[457];
-    W[462] = W[463] - W[458];
-    W[439] = W[2] * W[462];
-    W[467] = W[438] + W[439];
-    X[22] = X[21] / 11.0;
-    X[23] = -W[467] / W[2] / 11.0;
-}
-
-/* Lines 0 .. 20 of taylor_run's order 11. */
-static EOMC_NOINLINE EOMC_UNCHECKED void
-spinning_hoop_taylor_run_24(eomc_real *restrict W, eomc_real *restrict X)
-{
-    W[476] = (X[2] * W[435] + 2.0 * X[4] * W[392] + 3.0 * X[6] * W[349] + 4.0 * X[8] * W[306]
-            + 5.0 * X[10] * W[263] + 6.0 * X[12] * W[220] + 7.0 * X[14] * W[177] + 8.0 * X[16] * W[134]
-            + 9.0 * X[18] * W[91] + 10.0 * X[20] * W[48] + 11.0 * X[22] * W[5]) / 11.0;
-    W[478] = -((X[2] * W[433] + 2.0 * X[4] * W[390] + 3.0 * X[6] * W[347] + 4.0 * X[8] * W[304]
-            + 5.0 * X[10] * W[261] + 6.0 * X[12] * W[218] + 7.0 * X[14] * W[175] + 8.0 * X[16] * W[132]
-            + 9.0 * X[18] * W[89] + 10.0 * X[20] * W[46] + 11.0 * X[22] * W[3])) / 11.0;
-    W[479] = (X[1] * X[23] + X[3] * X[21] + X[5] * X[19] + X[7] * X[17] + X[9] * X[15] + X[11] * X[13]) * 2.0;
-    W[481] = W[1] * W[476];
-    W[489] = W[3] * W[478] + W[46] * W[435] + W[89] * W[392] + W[132] * W[349] + W[175] * W[306]
-            + W[218] * W[263] + W[261] * W[220] + W[304] * W[177] + W[347] * W[134] + W[390] * W[91]
-            + W[433] * W[48] + W[476] * W[5];
-    W[477] = W[50] * W[471] / 11.0;
-    W[514] = -W[50] * W[434] / 11.0;
-    W[490] = W[16] * W[479] + W[59] * W[436] + W[102] * W[393] + W[145] * W[350] + W[188] * W[307]
-            + W[231] * W[264] + W[274] * W[221] + W[317] * W[178] + W[360] * W[135] + W[403] * W[92]
-            + W[446] * W[49] + W[489] * W[6];
-    W[491] = W[41] * W[478] + W[84] * W[435] + W[127] * W[392] + W[170] * W[349] + W[213] * W[306]
-            + W[256] * W[263] + W[299] * W[220] + W[342] * W[177] + W[385] * W[134] + W[428] * W[91]
-            + W[471] * W[48] + W[514] * W[5];
-    W[492] = W[4] * W[478] + W[47] * W[435] + W[90] * W[392] + W[133] * W[349] + W[176] * W[306]
-            + W[219] * W[263] + W[262] * W[220] + W[305] * W[177] + W[348] * W[134] + W[391] * W[91]
-            + W[434] * W[48] + W[477] * W[5];
-    W[498] = W[3] * W[514] + W[46] * W[471] + W[89] * W[428] + W[132] * W[385] + W[175] * W[342]
-            + W[218] * W[299] + W[261] * W[256] + W[304] * W[213] + W[347] * W[170] + W[390] * W[127]
-            + W[433] * W[84] + W[476] * W[41];
-    W[502] = W[3] * W[477] + W[46] * W[434] + W[89] * W[391] + W[132] * W[348] + W[175] * W[305]
-            + W[218] * W[262] + W[261] * W[219] + W[304] * W[176] + W[347] * W[133] + W[390] * W[90]
-            + W[433] * W[47] + W[476] * W[4];
-    W[483] = W[0] * W[502];
-    W[484] = W[0] * W[498];
-    W[485] = W[0] * W[492];
-    W[486] = W[0] * W[491];
+    W[475] = (X[2] * W[462] + 2.0 * X[4] * W[419] + 3.0 * X[6] * W[376] + 4.0 * X[8] * W[333]
+            + 5.0 * X[10] * W[290] + 6.0 * X[12] * W[247] + 7.0 * X[14] * W[204] + 8.0 * X[16] * W[161]
+            + 9.0 * X[18] * W[118] + 10.0 * X[20] * W[75] + 11.0 * X[22] * W[32]) / 11.0;
+    W[505] = -((X[2] * W[432] + 2.0 * X[4] * W[389] + 3.0 * X[6] * W[346] + 4.0 * X[8] * W[303]
+            + 5.0 * X[10] * W[260] + 6.0 * X[12] * W[217] + 7.0 * X[14] * W[174] + 8.0 * X[16] * W[131]
+            + 9.0 * X[18] * W[88] + 10.0 * X[20] * W[45] + 11.0 * X[22] * W[2])) / 11.0;
+    W[510] = (X[1] * X[23] + X[3] * X[21] + X[5] * X[19] + X[7] * X[17] + X[9] * X[15] + X[11] * X[13]) * 2.0;
+    W[512] = W[38] * W[475];
+    W[478] = W[2] * W[505] + W[45] * W[462] + W[88] * W[419] + W[131] * W[376] + W[174] * W[333]
+            + W[217] * W[290] + W[260] * W[247] + W[303] * W[204] + W[346] * W[161] + W[389] * W[118]
+            + W[432] * W[75] + W[475] * W[32];
+    W[477] = W[73] * W[433] / 11.0;
+    W[476] = -W[73] * W[434] / 11.0;
 #ifdef EOMC_PACKS
-    EOMC_AT2(W + 493) = EOMC_AT2(W + 18) * X[23] + EOMC_AT2(W + 61) * X[21] + EOMC_AT2(W + 104) * X[19]
-            + EOMC_AT2(W + 147) * X[17] + EOMC_AT2(W + 190) * X[15] + EOMC_AT2(W + 233) * X[13]
-            + EOMC_AT2(W + 276) * X[11] + EOMC_AT2(W + 319) * X[9] + EOMC_AT2(W + 362) * X[7]
-            + EOMC_AT2(W + 405) * X[5] + EOMC_AT2(W + 448) * X[3] + EOMC_AT2(W + 491) * X[1];
+    EOMC_AT2(W + 479) = EOMC_AT2(W + 3) * W[505] + EOMC_AT2(W + 46) * W[462] + EOMC_AT2(W + 89) * W[419]
+            + EOMC_AT2(W + 132) * W[376] + EOMC_AT2(W + 175) * W[333] + EOMC_AT2(W + 218) * W[290]
+            + EOMC_AT2(W + 261) * W[247] + EOMC_AT2(W + 304) * W[204] + EOMC_AT2(W + 347) * W[161]
+            + EOMC_AT2(W + 390) * W[118] + EOMC_AT2(W + 433) * W[75] + EOMC_AT2(W + 476) * W[32];
+    EOMC_AT2(W + 481) = W[2] * EOMC_AT2(W + 476) + W[45] * EOMC_AT2(W + 433) + W[88] * EOMC_AT2(W + 390)
+            + W[131] * EOMC_AT2(W + 347) + W[174] * EOMC_AT2(W + 304) + W[217] * EOMC_AT2(W + 261)
+            + W[260] * EOMC_AT2(W + 218) + W[303] * EOMC_AT2(W + 175) + W[346] * EOMC_AT2(W + 132)
+            + W[389] * EOMC_AT2(W + 89) + W[432] * EOMC_AT2(W + 46) + W[475] * EOMC_AT2(W + 3);
 #else
-    W[493] = W[18] * X[23] + W[61] * X[21] + W[104] * X[19] + W[147] * X[17] + W[190] * X[15]
-            + W[233] * X[13] + W[276] * X[11] + W[319] * X[9] + W[362] * X[7] + W[405] * X[5]
-            + W[448] * X[3] + W[491] * X[1];
-    W[494] = W[19] * X[23] + W[62] * X[21] + W[105] * X[19] + W[148] * X[17] + W[191] * X[15]
-            + W[234] * X[13] + W[277] * X[11] + W[320] * X[9] + W[363] * X[7] + W[406] * X[5]
-            + W[449] * X[3] + W[492] * X[1];
+    W[479] = W[3] * W[505] + W[46] * W[462] + W[89] * W[419] + W[132] * W[376] + W[175] * W[333]
+            + W[218] * W[290] + W[261] * W[247] + W[304] * W[204] + W[347] * W[161] + W[390] * W[118]
+            + W[433] * W[75] + W[476] * W[32];
+    W[480] = W[4] * W[505] + W[47] * W[462] + W[90] * W[419] + W[133] * W[376] + W[176] * W[333]
+            + W[219] * W[290] + W[262] * W[247] + W[305] * W[204] + W[348] * W[161] + W[391] * W[118]
+            + W[434] * W[75] + W[477] * W[32];
+    W[481] = W[2] * W[476] + W[45] * W[433] + W[88] * W[390] + W[131] * W[347] + W[174] * W[304]
+            + W[217] * W[261] + W[260] * W[218] + W[303] * W[175] + W[346] * W[132] + W[389] * W[89]
+            + W[432] * W[46] + W[475] * W[3];
+    W[482] = W[2] * W[477] + W[45] * W[434] + W[88] * W[391] + W[131] * W[348] + W[174] * W[305]
+            + W[217] * W[262] + W[260] * W[219] + W[303] * W[176] + W[346] * W[133] + W[389] * W[90]
+            + W[432] * W[47] + W[475] * W[4];
 #endif
-    W[495] = W[25] * X[23] + W[68] * X[21] + W[111] * X[19] + W[154] * X[17] + W[197] * X[15]
-            + W[240] * X[13] + W[283] * X[11] + W[326] * X[9] + W[369] * X[7] + W[412] * X[5]
-            + W[455] * X[3] + W[498] * X[1];
-    W[496] = W[29] * X[23] + W[72] * X[21] + W[115] * X[19] + W[158] * X[17] + W[201] * X[15]
-            + W[244] * X[13] + W[287] * X[11] + W[330] * X[9] + W[373] * X[7] + W[416] * X[5]
-            + W[459] * X[3] + W[502] * X[1];
-    W[503] = W[493] - W[483];
+    W[513] = W[5] * W[510] + W[48] * W[467] + W[91] * W[424] + W[134] * W[381] + W[177] * W[338]
+            + W[220] * W[295] + W[263] * W[252] + W[306] * W[209] + W[349] * W[166] + W[392] * W[123]
+            + W[435] * W[80] + W[478] * W[37];
+#ifdef EOMC_PACKS
+    EOMC_AT4(W + 483) = W[0] * EOMC_AT4(W + 479);
+    EOMC_AT4(W + 487) = EOMC_AT4(W + 6) * X[23] + EOMC_AT4(W + 49) * X[21] + EOMC_AT4(W + 92) * X[19]
+            + EOMC_AT4(W + 135) * X[17] + EOMC_AT4(W + 178) * X[15] + EOMC_AT4(W + 221) * X[13]
+            + EOMC_AT4(W + 264) * X[11] + EOMC_AT4(W + 307) * X[9] + EOMC_AT4(W + 350) * X[7]
+            + EOMC_AT4(W + 393) * X[5] + EOMC_AT4(W + 436) * X[3] + EOMC_AT4(W + 479) * X[1];
+#else
+    W[483] = W[0] * W[479];
+    W[484] = W[0] * W[480];
+    W[485] = W[0] * W[481];
+    W[486] = W[0] * W[482];
+    W[487] = W[6] * X[23] + W[49] * X[21] + W[92] * X[19] + W[135] * X[17] + W[178] * X[15] + W[221] * X[13]
+            + W[264] * X[11] + W[307] * X[9] + W[350] * X[7] + W[393] * X[5] + W[436] * X[3] + W[479] * X[1];
+    W[488] = W[7] * X[23] + W[50] * X[21] + W[93] * X[19] + W[136] * X[17] + W[179] * X[15] + W[222] * X[13]
+            + W[265] * X[11] + W[308] * X[9] + W[351] * X[7] + W[394] * X[5] + W[437] * X[3] + W[480] * X[1];
+    W[489] = W[8] * X[23] + W[51] * X[21] + W[94] * X[19] + W[137] * X[17] + W[180] * X[15] + W[223] * X[13]
+            + W[266] * X[11] + W[309] * X[9] + W[352] * X[7] + W[395] * X[5] + W[438] * X[3] + W[481] * X[1];
+    W[490] = W[9] * X[23] + W[52] * X[21] + W[95] * X[19] + W[138] * X[17] + W[181] * X[15] + W[224] * X[13]
+            + W[267] * X[11] + W[310] * X[9] + W[353] * X[7] + W[396] * X[5] + W[439] * X[3] + W[482] * X[1];
+#endif
+    W[491] = W[487] - W[486];
+    W[509] = W[483] - W[490];
+    W[507] = W[488] + W[485];
+    W[508] = W[484] + W[489];
+    W[493] = W[0] * W[507];
+    W[494] = W[0] * W[491];
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 496) = X[1] * EOMC_AT2(W + 508) + X[3] * EOMC_AT2(W + 465) + X[5] * EOMC_AT2(W + 422)
+            + X[7] * EOMC_AT2(W + 379) + X[9] * EOMC_AT2(W + 336) + X[11] * EOMC_AT2(W + 293)
+            + X[13] * EOMC_AT2(W + 250) + X[15] * EOMC_AT2(W + 207) + X[17] * EOMC_AT2(W + 164)
+            + X[19] * EOMC_AT2(W + 121) + X[21] * EOMC_AT2(W + 78) + X[23] * EOMC_AT2(W + 35);
+    EOMC_AT2(W + 498) = EOMC_AT2(W + 496) + EOMC_AT2(W + 493);
+#else
+    W[496] = X[1] * W[508] + X[3] * W[465] + X[5] * W[422] + X[7] * W[379] + X[9] * W[336] + X[11] * W[293]
+            + X[13] * W[250] + X[15] * W[207] + X[17] * W[164] + X[19] * W[121] + X[21] * W[78]
+            + X[23] * W[35];
+    W[497] = X[1] * W[509] + X[3] * W[466] + X[5] * W[423] + X[7] * W[380] + X[9] * W[337] + X[11] * W[294]
+            + X[13] * W[251] + X[15] * W[208] + X[17] * W[165] + X[19] * W[122] + X[21] * W[79]
+            + X[23] * W[36];
+    W[498] = W[496] + W[493];
+    W[499] = W[497] + W[494];
+#endif
 }
 
-/* Lines 21 .. 37 of taylor_run's order 12. */
+/* Lines 30 .. 37 of taylor_run's order 12. */
+static EOMC_NOINLINE EOMC_UNCHECKED void
+spinning_hoop_taylor_run_26(eomc_real *restrict W, eomc_real *restrict X)
+{
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 543) = EOMC_AT2(W + 6) * EOMC_AT2(W + 541) + EOMC_AT2(W + 49) * EOMC_AT2(W + 498)
+            + EOMC_AT2(W + 92) * EOMC_AT2(W + 455) + EOMC_AT2(W + 135) * EOMC_AT2(W + 412) + EOMC_AT2(W + 178) * EOMC_AT2(W + 369)
+            + EOMC_AT2(W + 221) * EOMC_AT2(W + 326) + EOMC_AT2(W + 264) * EOMC_AT2(W + 283) + EOMC_AT2(W + 307) * EOMC_AT2(W + 240)
+            + EOMC_AT2(W + 350) * EOMC_AT2(W + 197) + EOMC_AT2(W + 393) * EOMC_AT2(W + 154) + EOMC_AT2(W + 436) * EOMC_AT2(W + 111)
+            + EOMC_AT2(W + 479) * EOMC_AT2(W + 68) + EOMC_AT2(W + 522) * EOMC_AT2(W + 25);
+#else
+    W[543] = W[6] * W[541] + W[49] * W[498] + W[92] * W[455] + W[135] * W[412] + W[178] * W[369]
+            + W[221] * W[326] + W[264] * W[283] + W[307] * W[240] + W[350] * W[197] + W[393] * W[154]
+            + W[436] * W[111] + W[479] * W[68] + W[522] * W[25];
+    W[544] = W[7] * W[542] + W[50] * W[499] + W[93] * W[456] + W[136] * W[413] + W[179] * W[370]
+            + W[222] * W[327] + W[265] * W[284] + W[308] * W[241] + W[351] * W[198] + W[394] * W[155]
+            + W[437] * W[112] + W[480] * W[69] + W[523] * W[26];
+#endif
+    W[557] = W[556] + W[544];
+    W[535] = W[557] - W[543];
+    W[538] = W[1] * W[535];
+    W[558] = W[555] + W[538];
+    X[26] = X[25] / 13.0;
+    X[27] = -W[558] / W[1] / 13.0;
+}
+
+/* Lines 0 .. 29 of taylor_run's order 13. */
 static EOMC_NOINLINE EOMC_UNCHECKED void
 spinning_hoop_taylor_run_27(eomc_real *restrict W, eomc_real *restrict X)
 {
-    W[547] = W[529] - W[539];
-    W[550] = W[537] + W[527];
-    W[554] = W[528] + W[538];
-    W[530] = W[0] * W[550];
-    W[531] = W[0] * W[546];
-    W[540] = X[1] * W[554] + X[3] * W[511] + X[5] * W[468] + X[7] * W[425] + X[9] * W[382] + X[11] * W[339]
-            + X[13] * W[296] + X[15] * W[253] + X[17] * W[210] + X[19] * W[167] + X[21] * W[124]
-            + X[23] * W[81] + X[25] * W[38];
-    W[542] = X[1] * W[547] + X[3] * W[504] + X[5] * W[461] + X[7] * W[418] + X[9] * W[375] + X[11] * W[332]
-            + X[13] * W[289] + X[15] * W[246] + X[17] * W[203] + X[19] * W[160] + X[21] * W[117]
-            + X[23] * W[74] + X[25] * W[31];
-    W[551] = W[540] + W[530];
-    W[552] = W[542] + W[531];
-    W[543] = W[19] * W[552] + W[62] * W[509] + W[105] * W[466] + W[148] * W[423] + W[191] * W[380]
-            + W[234] * W[337] + W[277] * W[294] + W[320] * W[251] + W[363] * W[208] + W[406] * W[165]
-            + W[449] * W[122] + W[492] * W[79] + W[535] * W[36];
-    W[544] = W[18] * W[551] + W[61] * W[508] + W[104] * W[465] + W[147] * W[422] + W[190] * W[379]
-            + W[233] * W[336] + W[276] * W[293] + W[319] * W[250] + W[362] * W[207] + W[405] * W[164]
-            + W[448] * W[121] + W[491] * W[78] + W[534] * W[35];
-    W[549] = W[533] + W[543];
-    W[548] = W[549] - W[544];
-    W[525] = W[2] * W[548];
-    W[553] = W[524] + W[525];
-    X[26] = X[25] / 13.0;
-    X[27] = -W[553] / W[2] / 13.0;
-}
-
-/* Lines 0 .. 20 of taylor_run's order 13. */
-static EOMC_NOINLINE EOMC_UNCHECKED void
-spinning_hoop_taylor_run_28(eomc_real *restrict W, eomc_real *restrict X)
-{
-    W[562] = (X[2] * W[521] + 2.0 * X[4] * W[478] + 3.0 * X[6] * W[435] + 4.0 * X[8] * W[392]
-            + 5.0 * X[10] * W[349] + 6.0 * X[12] * W[306] + 7.0 * X[14] * W[263] + 8.0 * X[16] * W[220]
-            + 9.0 * X[18] * W[177] + 10.0 * X[20] * W[134] + 11.0 * X[22] * W[91] + 12.0 * X[24] * W[48]
-            + 13.0 * X[26] * W[5]) / 13.0;
-    W[564] = -((X[2] * W[519] + 2.0 * X[4] * W[476] + 3.0 * X[6] * W[433] + 4.0 * X[8] * W[390]
-            + 5.0 * X[10] * W[347] + 6.0 * X[12] * W[304] + 7.0 * X[14] * W[261] + 8.0 * X[16] * W[218]
-            + 9.0 * X[18] * W[175] + 10.0 * X[20] * W[132] + 11.0 * X[22] * W[89] + 12.0 * X[24] * W[46]
-            + 13.0 * X[26] * W[3])) / 13.0;
-    W[565] = (X[1] * X[27] + X[3] * X[25] + X[5] * X[23] + X[7] * X[21] + X[9] * X[19] + X[11] * X[17]
+    W[561] = (X[2] * W[548] + 2.0 * X[4] * W[505] + 3.0 * X[6] * W[462] + 4.0 * X[8] * W[419]
+            + 5.0 * X[10] * W[376] + 6.0 * X[12] * W[333] + 7.0 * X[14] * W[290] + 8.0 * X[16] * W[247]
+            + 9.0 * X[18] * W[204] + 10.0 * X[20] * W[161] + 11.0 * X[22] * W[118] + 12.0 * X[24] * W[75]
+            + 13.0 * X[26] * W[32]) / 13.0;
+    W[591] = -((X[2] * W[518] + 2.0 * X[4] * W[475] + 3.0 * X[6] * W[432] + 4.0 * X[8] * W[389]
+            + 5.0 * X[10] * W[346] + 6.0 * X[12] * W[303] + 7.0 * X[14] * W[260] + 8.0 * X[16] * W[217]
+            + 9.0 * X[18] * W[174] + 10.0 * X[20] * W[131] + 11.0 * X[22] * W[88] + 12.0 * X[24] * W[45]
+            + 13.0 * X[26] * W[2])) / 13.0;
+    W[596] = (X[1] * X[27] + X[3] * X[25] + X[5] * X[23] + X[7] * X[21] + X[9] * X[19] + X[11] * X[17]
             + X[13] * X[15]) * 2.0;
-    W[567] = W[1] * W[562];
-    W[575] = W[3] * W[564] + W[46] * W[521] + W[89] * W[478] + W[132] * W[435] + W[175] * W[392]
-            + W[218] * W[349] + W[261] * W[306] + W[304] * W[263] + W[347] * W[220] + W[390] * W[177]
-            + W[433] * W[134] + W[476] * W[91] + W[519] * W[48] + W[562] * W[5];
-    W[563] = W[50] * W[557] / 13.0;
-    W[600] = -W[50] * W[520] / 13.0;
-    W[576] = W[16] * W[565] + W[59] * W[522] + W[102] * W[479] + W[145] * W[436] + W[188] * W[393]
-            + W[231] * W[350] + W[274] * W[307] + W[317] * W[264] + W[360] * W[221] + W[403] * W[178]
-            + W[446] * W[135] + W[489] * W[92] + W[532] * W[49] + W[575] * W[6];
-    W[577] = W[41] * W[564] + W[84] * W[521] + W[127] * W[478] + W[170] * W[435] + W[213] * W[392]
-            + W[256] * W[349] + W[299] * W[306] + W[342] * W[263] + W[385] * W[220] + W[428] * W[177]
-            + W[471] * W[134] + W[514] * W[91] + W[557] * W[48] + W[600] * W[5];
-    W[578] = W[4] * W[564] + W[47] * W[521] + W[90] * W[478] + W[133] * W[435] + W[176] * W[392]
-            + W[219] * W[349] + W[262] * W[306] + W[305] * W[263] + W[348] * W[220] + W[391] * W[177]
-            + W[434] * W[134] + W[477] * W[91] + W[520] * W[48] + W[563] * W[5];
-    W[584] = W[3] * W[600] + W[46] * W[557] + W[89] * W[514] + W[132] * W[471] + W[175] * W[428]
-            + W[218] * W[385] + W[261] * W[342] + W[304] * W[299] + W[347] * W[256] + W[390] * W[213]
-            + W[433] * W[170] + W[476] * W[127] + W[519] * W[84] + W[562] * W[41];
-    W[588] = W[3] * W[563] + W[46] * W[520] + W[89] * W[477] + W[132] * W[434] + W[175] * W[391]
-            + W[218] * W[348] + W[261] * W[305] + W[304] * W[262] + W[347] * W[219] + W[390] * W[176]
-            + W[433] * W[133] + W[476] * W[90] + W[519] * W[47] + W[562] * W[4];
-    W[569] = W[0] * W[588];
-    W[570] = W[0] * W[584];
-    W[571] = W[0] * W[578];
-    W[572] = W[0] * W[577];
+    W[598] = W[38] * W[561];
+    W[564] = W[2] * W[591] + W[45] * W[548] + W[88] * W[505] + W[131] * W[462] + W[174] * W[419]
+            + W[217] * W[376] + W[260] * W[333] + W[303] * W[290] + W[346] * W[247] + W[389] * W[204]
+            + W[432] * W[161] + W[475] * W[118] + W[518] * W[75] + W[561] * W[32];
+    W[563] = W[73] * W[519] / 13.0;
+    W[562] = -W[73] * W[520] / 13.0;
 #ifdef EOMC_PACKS
-    EOMC_AT2(W + 579) = EOMC_AT2(W + 18) * X[27] + EOMC_AT2(W + 61) * X[25] + EOMC_AT2(W + 104) * X[23]
-            + EOMC_AT2(W + 147) * X[21] + EOMC_AT2(W + 190) * X[19] + EOMC_AT2(W + 233) * X[17]
-            + EOMC_AT2(W + 276) * X[15] + EOMC_AT2(W + 319) * X[13] + EOMC_AT2(W + 362) * X[11]
-            + EOMC_AT2(W + 405) * X[9] + EOMC_AT2(W + 448) * X[7] + EOMC_AT2(W + 491) * X[5] + EOMC_AT2(W + 534) * X[3]
-            + EOMC_AT2(W + 577) * X[1];
+    EOMC_AT2(W + 565) = EOMC_AT2(W + 3) * W[591] + EOMC_AT2(W + 46) * W[548] + EOMC_AT2(W + 89) * W[505]
+            + EOMC_AT2(W + 132) * W[462] + EOMC_AT2(W + 175) * W[419] + EOMC_AT2(W + 218) * W[376]
+            + EOMC_AT2(W + 261) * W[333] + EOMC_AT2(W + 304) * W[290] + EOMC_AT2(W + 347) * W[247]
+            + EOMC_AT2(W + 390) * W[204] + EOMC_AT2(W + 433) * W[161] + EOMC_AT2(W + 476) * W[118]
+            + EOMC_AT2(W + 519) * W[75] + EOMC_AT2(W + 562) * W[32];
+    EOMC_AT2(W + 567) = W[2] * EOMC_AT2(W + 562) + W[45] * EOMC_AT2(W + 519) + W[88] * EOMC_AT2(W + 476)
+            + W[131] * EOMC_AT2(W + 433) + W[174] * EOMC_AT2(W + 390) + W[217] * EOMC_AT2(W + 347)
+            + W[260] * EOMC_AT2(W + 304) + W[303] * EOMC_AT2(W + 261) + W[346] * EOMC_AT2(W + 218)
+            + W[389] * EOMC_AT2(W + 175) + W[432] * EOMC_AT2(W + 132) + W[475] * EOMC_AT2(W + 89)
+            + W[518] * EOMC_AT2(W + 46) + W[561] * EOMC_AT2(W + 3);
 #else
-    W[579] = W[18] * X[27] + W[61] * X[25] + W[104] * X[23] + W[147] * X[21] + W[190] * X[19]
-            + W[233] * X[17] + W[276] * X[15] + W[319] * X[13] + W[362] * X[11] + W[405] * X[9]
-            + W[448] * X[7] + W[491] * X[5] + W[534] * X[3] + W[577] * X[1];
-    W[580] = W[19] * X[27] + W[62] * X[25] + W[105] * X[23] + W[148] * X[21] + W[191] * X[19]
-            + W[234] * X[17] + W[277] * X[15] + W[320] * X[13] + W[363] * X[11] + W[406] * X[9]
-            + W[449] * X[7] + W[492] * X[5] + W[535] * X[3] + W[578] * X[1];
+    W[565] = W[3] * W[591] + W[46] * W[548] + W[89] * W[505] + W[132] * W[462] + W[175] * W[419]
+            + W[218] * W[376] + W[261] * W[333] + W[304] * W[290] + W[347] * W[247] + W[390] * W[204]
+            + W[433] * W[161] + W[476] * W[118] + W[519] * W[75] + W[562] * W[32];
+    W[566] = W[4] * W[591] + W[47] * W[548] + W[90] * W[505] + W[133] * W[462] + W[176] * W[419]
+            + W[219] * W[376] + W[262] * W[333] + W[305] * W[290] + W[348] * W[247] + W[391] * W[204]
+            + W[434] * W[161] + W[477] * W[118] + W[520] * W[75] + W[563] * W[32];
+    W[567] = W[2] * W[562] + W[45] * W[519] + W[88] * W[476] + W[131] * W[433] + W[174] * W[390]
+            + W[217] * W[347] + W[260] * W[304] + W[303] * W[261] + W[346] * W[218] + W[389] * W[175]
+            + W[432] * W[132] + W[475] * W[89] + W[518] * W[46] + W[561] * W[3];
+    W[568] = W[2] * W[563] + W[45] * W[520] + W[88] * W[477] + W[131] * W[434] + W[174] * W[391]
+            + W[217] * W[348] + W[260] * W[305] + W[303] * W[262] + W[346] * W[219] + W[389] * W[176]
+            + W[432] * W[133] + W[475] * W[90] + W[518] * W[47] + W[561] * W[4];
 #endif
-    W[581] = W[25] * X[27] + W[68] * X[25] + W[111] * X[23] + W[154] * X[21] + W[197] * X[19]
-            + W[240] * X[17] + W[283] * X[15] + W[326] * X[13] + W[369] * X[11] + W[412] * X[9]
-            + W[455] * X[7] + W[498] * X[5] + W[541] * X[3] + W[584] * X[1];
-    W[582] = W[29] * X[27] + W[72] * X[25] + W[115] * X[23] + W[158] * X[21] + W[201] * X[19]
-            + W[244] * X[17] + W[287] * X[15] + W[330] * X[13] + W[373] * X[11] + W[416] * X[9]
-            + W[459] * X[7] + W[502] * X[5] + W[545] * X[3] + W[588] * X[1];
-    W[589] = W[579] - W[569];
+    W[599] = W[5] * W[596] + W[48] * W[553] + W[91] * W[510] + W[134] * W[467] + W[177] * W[424]
+            + W[220] * W[381] + W[263] * W[338] + W[306] * W[295] + W[349] * W[252] + W[392] * W[209]
+            + W[435] * W[166] + W[478] * W[123] + W[521] * W[80] + W[564] * W[37];
+#ifdef EOMC_PACKS
+    EOMC_AT4(W + 569) = W[0] * EOMC_AT4(W + 565);
+    EOMC_AT4(W + 573) = EOMC_AT4(W + 6) * X[27] + EOMC_AT4(W + 49) * X[25] + EOMC_AT4(W + 92) * X[23]
+            + EOMC_AT4(W + 135) * X[21] + EOMC_AT4(W + 178) * X[19] + EOMC_AT4(W + 221) * X[17]
+            + EOMC_AT4(W + 264) * X[15] + EOMC_AT4(W + 307) * X[13] + EOMC_AT4(W + 350) * X[11]
+            + EOMC_AT4(W + 393) * X[9] + EOMC_AT4(W + 436) * X[7] + EOMC_AT4(W + 479) * X[5] + EOMC_AT4(W + 522) * X[3]
+            + EOMC_AT4(W + 565) * X[1];
+#else
+    W[569] = W[0] * W[565];
+    W[570] = W[0] * W[566];
+    W[571] = W[0] * W[567];
+    W[572] = W[0] * W[568];
+    W[573] = W[6] * X[27] + W[49] * X[25] + W[92] * X[23] + W[135] * X[21] + W[178] * X[19] + W[221] * X[17]
+            + W[264] * X[15] + W[307] * X[13] + W[350] * X[11] + W[393] * X[9] + W[436] * X[7]
+            + W[479] * X[5] + W[522] * X[3] + W[565] * X[1];
+    W[574] = W[7] * X[27] + W[50] * X[25] + W[93] * X[23] + W[136] * X[21] + W[179] * X[19] + W[222] * X[17]
+            + W[265] * X[15] + W[308] * X[13] + W[351] * X[11] + W[394] * X[9] + W[437] * X[7]
+            + W[480] * X[5] + W[523] * X[3] + W[566] * X[1];
+    W[575] = W[8] * X[27] + W[51] * X[25] + W[94] * X[23] + W[137] * X[21] + W[180] * X[19] + W[223] * X[17]
+            + W[266] * X[15] + W[309] * X[13] + W[352] * X[11] + W[395] * X[9] + W[438] * X[7]
+            + W[481] * X[5] + W[524] * X[3] + W[567] * X[1];
+    W[576] = W[9] * X[27] + W[52] * X[25] + W[95] * X[23] + W[138] * X[21] + W[181] * X[19] + W[224] * X[17]
+            + W[267] * X[15] + W[310] * X[13] + W[353] * X[11] + W[396] * X[9] + W[439] * X[7]
+            + W[482] * X[5] + W[525] * X[3] + W[568] * X[1];
+#endif
+    W[577] = W[573] - W[572];
+    W[595] = W[569] - W[576];
+    W[593] = W[574] + W[571];
+    W[594] = W[570] + W[575];
+    W[579] = W[0] * W[593];
+    W[580] = W[0] * W[577];
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 582) = X[1] * EOMC_AT2(W + 594) + X[3] * EOMC_AT2(W + 551) + X[5] * EOMC_AT2(W + 508)
+            + X[7] * EOMC_AT2(W + 465) + X[9] * EOMC_AT2(W + 422) + X[11] * EOMC_AT2(W + 379)
+            + X[13] * EOMC_AT2(W + 336) + X[15] * EOMC_AT2(W + 293) + X[17] * EOMC_AT2(W + 250)
+            + X[19] * EOMC_AT2(W + 207) + X[21] * EOMC_AT2(W + 164) + X[23] * EOMC_AT2(W + 121)
+            + X[25] * EOMC_AT2(W + 78) + X[27] * EOMC_AT2(W + 35);
+    EOMC_AT2(W + 584) = EOMC_AT2(W + 582) + EOMC_AT2(W + 579);
+#else
+    W[582] = X[1] * W[594] + X[3] * W[551] + X[5] * W[508] + X[7] * W[465] + X[9] * W[422] + X[11] * W[379]
+            + X[13] * W[336] + X[15] * W[293] + X[17] * W[250] + X[19] * W[207] + X[21] * W[164]
+            + X[23] * W[121] + X[25] * W[78] + X[27] * W[35];
+    W[583] = X[1] * W[595] + X[3] * W[552] + X[5] * W[509] + X[7] * W[466] + X[9] * W[423] + X[11] * W[380]
+            + X[13] * W[337] + X[15] * W[294] + X[17] * W[251] + X[19] * W[208] + X[21] * W[165]
+            + X[23] * W[122] + X[25] * W[79] + X[27] * W[36];
+    W[584] = W[582] + W[579];
+    W[585] = W[583] + W[580];
+#endif
 }
 
-/* Lines 21 .. 37 of taylor_run's order 14. */
+/* Lines 30 .. 37 of taylor_run's order 14. */
+static EOMC_NOINLINE EOMC_UNCHECKED void
+spinning_hoop_taylor_run_30(eomc_real *restrict W, eomc_real *restrict X)
+{
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 629) = EOMC_AT2(W + 6) * EOMC_AT2(W + 627) + EOMC_AT2(W + 49) * EOMC_AT2(W + 584)
+            + EOMC_AT2(W + 92) * EOMC_AT2(W + 541) + EOMC_AT2(W + 135) * EOMC_AT2(W + 498) + EOMC_AT2(W + 178) * EOMC_AT2(W + 455)
+            + EOMC_AT2(W + 221) * EOMC_AT2(W + 412) + EOMC_AT2(W + 264) * EOMC_AT2(W + 369) + EOMC_AT2(W + 307) * EOMC_AT2(W + 326)
+            + EOMC_AT2(W + 350) * EOMC_AT2(W + 283) + EOMC_AT2(W + 393) * EOMC_AT2(W + 240) + EOMC_AT2(W + 436) * EOMC_AT2(W + 197)
+            + EOMC_AT2(W + 479) * EOMC_AT2(W + 154) + EOMC_AT2(W + 522) * EOMC_AT2(W + 111) + EOMC_AT2(W + 565) * EOMC_AT2(W + 68)
+            + EOMC_AT2(W + 608) * EOMC_AT2(W + 25);
+#else
+    W[629] = W[6] * W[627] + W[49] * W[584] + W[92] * W[541] + W[135] * W[498] + W[178] * W[455]
+            + W[221] * W[412] + W[264] * W[369] + W[307] * W[326] + W[350] * W[283] + W[393] * W[240]
+            + W[436] * W[197] + W[479] * W[154] + W[522] * W[111] + W[565] * W[68] + W[608] * W[25];
+    W[630] = W[7] * W[628] + W[50] * W[585] + W[93] * W[542] + W[136] * W[499] + W[179] * W[456]
+            + W[222] * W[413] + W[265] * W[370] + W[308] * W[327] + W[351] * W[284] + W[394] * W[241]
+            + W[437] * W[198] + W[480] * W[155] + W[523] * W[112] + W[566] * W[69] + W[609] * W[26];
+#endif
+    W[643] = W[642] + W[630];
+    W[621] = W[643] - W[629];
+    W[624] = W[1] * W[621];
+    W[644] = W[641] + W[624];
+    X[30] = X[29] / 15.0;
+    X[31] = -W[644] / W[1] / 15.0;
+}
+
+/* Lines 0 .. 29 of taylor_run's order 15. */
 static EOMC_NOINLINE EOMC_UNCHECKED void
 spinning_hoop_taylor_run_31(eomc_real *restrict W, eomc_real *restrict X)
 {
-    W[633] = W[615] - W[625];
-    W[636] = W[623] + W[613];
-    W[640] = W[614] + W[624];
-    W[616] = W[0] * W[636];
-    W[617] = W[0] * W[632];
-    W[626] = X[1] * W[640] + X[3] * W[597] + X[5] * W[554] + X[7] * W[511] + X[9] * W[468] + X[11] * W[425]
-            + X[13] * W[382] + X[15] * W[339] + X[17] * W[296] + X[19] * W[253] + X[21] * W[210]
-            + X[23] * W[167] + X[25] * W[124] + X[27] * W[81] + X[29] * W[38];
-    W[628] = X[1] * W[633] + X[3] * W[590] + X[5] * W[547] + X[7] * W[504] + X[9] * W[461] + X[11] * W[418]
-            + X[13] * W[375] + X[15] * W[332] + X[17] * W[289] + X[19] * W[246] + X[21] * W[203]
-            + X[23] * W[160] + X[25] * W[117] + X[27] * W[74] + X[29] * W[31];
-    W[637] = W[626] + W[616];
-    W[638] = W[628] + W[617];
-    W[629] = W[19] * W[638] + W[62] * W[595] + W[105] * W[552] + W[148] * W[509] + W[191] * W[466]
-            + W[234] * W[423] + W[277] * W[380] + W[320] * W[337] + W[363] * W[294] + W[406] * W[251]
-            + W[449] * W[208] + W[492] * W[165] + W[535] * W[122] + W[578] * W[79] + W[621] * W[36];
-    W[630] = W[18] * W[637] + W[61] * W[594] + W[104] * W[551] + W[147] * W[508] + W[190] * W[465]
-            + W[233] * W[422] + W[276] * W[379] + W[319] * W[336] + W[362] * W[293] + W[405] * W[250]
-            + W[448] * W[207] + W[491] * W[164] + W[534] * W[121] + W[577] * W[78] + W[620] * W[35];
-    W[635] = W[619] + W[629];
-    W[634] = W[635] - W[630];
-    W[611] = W[2] * W[634];
-    W[639] = W[610] + W[611];
-    X[30] = X[29] / 15.0;
-    X[31] = -W[639] / W[2] / 15.0;
-}
-
-/* Lines 0 .. 20 of taylor_run's order 15. */
-static EOMC_NOINLINE EOMC_UNCHECKED void
-spinning_hoop_taylor_run_32(eomc_real *restrict W, eomc_real *restrict X)
-{
-    W[648] = (X[2] * W[607] + 2.0 * X[4] * W[564] + 3.0 * X[6] * W[521] + 4.0 * X[8] * W[478]
-            + 5.0 * X[10] * W[435] + 6.0 * X[12] * W[392] + 7.0 * X[14] * W[349] + 8.0 * X[16] * W[306]
-            + 9.0 * X[18] * W[263] + 10.0 * X[20] * W[220] + 11.0 * X[22] * W[177] + 12.0 * X[24] * W[134]
-            + 13.0 * X[26] * W[91] + 14.0 * X[28] * W[48] + 15.0 * X[30] * W[5]) / 15.0;
-    W[650] = -((X[2] * W[605] + 2.0 * X[4] * W[562] + 3.0 * X[6] * W[519] + 4.0 * X[8] * W[476]
-            + 5.0 * X[10] * W[433] + 6.0 * X[12] * W[390] + 7.0 * X[14] * W[347] + 8.0 * X[16] * W[304]
-            + 9.0 * X[18] * W[261] + 10.0 * X[20] * W[218] + 11.0 * X[22] * W[175] + 12.0 * X[24] * W[132]
-            + 13.0 * X[26] * W[89] + 14.0 * X[28] * W[46] + 15.0 * X[30] * W[3])) / 15.0;
-    W[651] = (X[1] * X[31] + X[3] * X[29] + X[5] * X[27] + X[7] * X[25] + X[9] * X[23] + X[11] * X[21]
+    W[647] = (X[2] * W[634] + 2.0 * X[4] * W[591] + 3.0 * X[6] * W[548] + 4.0 * X[8] * W[505]
+            + 5.0 * X[10] * W[462] + 6.0 * X[12] * W[419] + 7.0 * X[14] * W[376] + 8.0 * X[16] * W[333]
+            + 9.0 * X[18] * W[290] + 10.0 * X[20] * W[247] + 11.0 * X[22] * W[204] + 12.0 * X[24] * W[161]
+            + 13.0 * X[26] * W[118] + 14.0 * X[28] * W[75] + 15.0 * X[30] * W[32]) / 15.0;
+    W[677] = -((X[2] * W[604] + 2.0 * X[4] * W[561] + 3.0 * X[6] * W[518] + 4.0 * X[8] * W[475]
+            + 5.0 * X[10] * W[432] + 6.0 * X[12] * W[389] + 7.0 * X[14] * W[346] + 8.0 * X[16] * W[303]
+            + 9.0 * X[18] * W[260] + 10.0 * X[20] * W[217] + 11.0 * X[22] * W[174] + 12.0 * X[24] * W[131]
+            + 13.0 * X[26] * W[88] + 14.0 * X[28] * W[45] + 15.0 * X[30] * W[2])) / 15.0;
+    W[682] = (X[1] * X[31] + X[3] * X[29] + X[5] * X[27] + X[7] * X[25] + X[9] * X[23] + X[11] * X[21]
             + X[13] * X[19] + X[15] * X[17]) * 2.0;
-    W[653] = W[1] * W[648];
-    W[661] = W[3] * W[650] + W[46] * W[607] + W[89] * W[564] + W[132] * W[521] + W[175] * W[478]
-            + W[218] * W[435] + W[261] * W[392] + W[304] * W[349] + W[347] * W[306] + W[390] * W[263]
-            + W[433] * W[220] + W[476] * W[177] + W[519] * W[134] + W[562] * W[91] + W[605] * W[48]
-            + W[648] * W[5];
-    W[649] = W[50] * W[643] / 15.0;
-    W[686] = -W[50] * W[606] / 15.0;
-    W[662] = W[16] * W[651] + W[59] * W[608] + W[102] * W[565] + W[145] * W[522] + W[188] * W[479]
-            + W[231] * W[436] + W[274] * W[393] + W[317] * W[350] + W[360] * W[307] + W[403] * W[264]
-            + W[446] * W[221] + W[489] * W[178] + W[532] * W[135] + W[575] * W[92] + W[618] * W[49]
-            + W[661] * W[6];
-    W[663] = W[41] * W[650] + W[84] * W[607] + W[127] * W[564] + W[170] * W[521] + W[213] * W[478]
-            + W[256] * W[435] + W[299] * W[392] + W[342] * W[349] + W[385] * W[306] + W[428] * W[263]
-            + W[471] * W[220] + W[514] * W[177] + W[557] * W[134] + W[600] * W[91] + W[643] * W[48]
-            + W[686] * W[5];
-    W[664] = W[4] * W[650] + W[47] * W[607] + W[90] * W[564] + W[133] * W[521] + W[176] * W[478]
-            + W[219] * W[435] + W[262] * W[392] + W[305] * W[349] + W[348] * W[306] + W[391] * W[263]
-            + W[434] * W[220] + W[477] * W[177] + W[520] * W[134] + W[563] * W[91] + W[606] * W[48]
-            + W[649] * W[5];
-    W[670] = W[3] * W[686] + W[46] * W[643] + W[89] * W[600] + W[132] * W[557] + W[175] * W[514]
-            + W[218] * W[471] + W[261] * W[428] + W[304] * W[385] + W[347] * W[342] + W[390] * W[299]
-            + W[433] * W[256] + W[476] * W[213] + W[519] * W[170] + W[562] * W[127] + W[605] * W[84]
-            + W[648] * W[41];
-    W[674] = W[3] * W[649] + W[46] * W[606] + W[89] * W[563] + W[132] * W[520] + W[175] * W[477]
-            + W[218] * W[434] + W[261] * W[391] + W[304] * W[348] + W[347] * W[305] + W[390] * W[262]
-            + W[433] * W[219] + W[476] * W[176] + W[519] * W[133] + W[562] * W[90] + W[605] * W[47]
-            + W[648] * W[4];
-    W[655] = W[0] * W[674];
-    W[656] = W[0] * W[670];
-    W[657] = W[0] * W[664];
-    W[658] = W[0] * W[663];
+    W[684] = W[38] * W[647];
+    W[650] = W[2] * W[677] + W[45] * W[634] + W[88] * W[591] + W[131] * W[548] + W[174] * W[505]
+            + W[217] * W[462] + W[260] * W[419] + W[303] * W[376] + W[346] * W[333] + W[389] * W[290]
+            + W[432] * W[247] + W[475] * W[204] + W[518] * W[161] + W[561] * W[118] + W[604] * W[75]
+            + W[647] * W[32];
+    W[649] = W[73] * W[605] / 15.0;
+    W[648] = -W[73] * W[606] / 15.0;
 #ifdef EOMC_PACKS
-    EOMC_AT2(W + 665) = EOMC_AT2(W + 18) * X[31] + EOMC_AT2(W + 61) * X[29] + EOMC_AT2(W + 104) * X[27]
-            + EOMC_AT2(W + 147) * X[25] + EOMC_AT2(W + 190) * X[23] + EOMC_AT2(W + 233) * X[21]
-            + EOMC_AT2(W + 276) * X[19] + EOMC_AT2(W + 319) * X[17] + EOMC_AT2(W + 362) * X[15]
-            + EOMC_AT2(W + 405) * X[13] + EOMC_AT2(W + 448) * X[11] + EOMC_AT2(W + 491) * X[9]
-            + EOMC_AT2(W + 534) * X[7] + EOMC_AT2(W + 577) * X[5] + EOMC_AT2(W + 620) * X[3] + EOMC_AT2(W + 663) * X[1];
+    EOMC_AT2(W + 651) = EOMC_AT2(W + 3) * W[677] + EOMC_AT2(W + 46) * W[634] + EOMC_AT2(W + 89) * W[591]
+            + EOMC_AT2(W + 132) * W[548] + EOMC_AT2(W + 175) * W[505] + EOMC_AT2(W + 218) * W[462]
+            + EOMC_AT2(W + 261) * W[419] + EOMC_AT2(W + 304) * W[376] + EOMC_AT2(W + 347) * W[333]
+            + EOMC_AT2(W + 390) * W[290] + EOMC_AT2(W + 433) * W[247] + EOMC_AT2(W + 476) * W[204]
+            + EOMC_AT2(W + 519) * W[161] + EOMC_AT2(W + 562) * W[118] + EOMC_AT2(W + 605) * W[75]
+            + EOMC_AT2(W + 648) * W[32];
+    EOMC_AT2(W + 653) = W[2] * EOMC_AT2(W + 648) + W[45] * EOMC_AT2(W + 605) + W[88] * EOMC_AT2(W + 562)
+            + W[131] * EOMC_AT2(W + 519) + W[174] * EOMC_AT2(W + 476) + W[217] * EOMC_AT2(W + 433)
+            + W[260] * EOMC_AT2(W + 390) + W[303] * EOMC_AT2(W + 347) + W[346] * EOMC_AT2(W + 304)
+            + W[389] * EOMC_AT2(W + 261) + W[432] * EOMC_AT2(W + 218) + W[475] * EOMC_AT2(W + 175)
+            + W[518] * EOMC_AT2(W + 132) + W[561] * EOMC_AT2(W + 89) + W[604] * EOMC_AT2(W + 46)
+            + W[647] * EOMC_AT2(W + 3);
 #else
-    W[665] = W[18] * X[31] + W[61] * X[29] + W[104] * X[27] + W[147] * X[25] + W[190] * X[23]
-            + W[233] * X[21] + W[276] * X[19] + W[319] * X[17] + W[362] * X[15] + W[405] * X[13]
-            + W[448] * X[11] + W[491] * X[9] + W[534] * X[7] + W[577] * X[5] + W[620] * X[3] + W[663] * X[1];
-    W[666] = W[19] * X[31] + W[62] * X[29] + W[105] * X[27] + W[148] * X[25] + W[191] * X[23]
-            + W[234] * X[21] + W[277] * X[19] + W[320] * X[17] + W[363] * X[15] + W[406] * X[13]
-            + W[449] * X[11] + W[492] * X[9] + W[535] * X[7] + W[578] * X[5] + W[621] * X[3] + W[664] * X[1];
+    W[651] = W[3] * W[677] + W[46] * W[634] + W[89] * W[591] + W[132] * W[548] + W[175] * W[505]
+            + W[218] * W[462] + W[261] * W[419] + W[304] * W[376] + W[347] * W[333] + W[390] * W[290]
+            + W[433] * W[247] + W[476] * W[204] + W[519] * W[161] + W[562] * W[118] + W[605] * W[75]
+            + W[648] * W[32];
+    W[652] = W[4] * W[677] + W[47] * W[634] + W[90] * W[591] + W[133] * W[548] + W[176] * W[505]
+            + W[219] * W[462] + W[262] * W[419] + W[305] * W[376] + W[348] * W[333] + W[391] * W[290]
+            + W[434] * W[247] + W[477] * W[204] + W[520] * W[161] + W[563] * W[118] + W[606] * W[75]
+            + W[649] * W[32];
+    W[653] = W[2] * W[648] + W[45] * W[605] + W[88] * W[562] + W[131] * W[519] + W[174] * W[476]
+            + W[217] * W[433] + W[260] * W[390] + W[303] * W[347] + W[346] * W[304] + W[389] * W[261]
+            + W[432] * W[218] + W[475] * W[175] + W[518] * W[132] + W[561] * W[89] + W[604] * W[46]
+            + W[647] * W[3];
+    W[654] = W[2] * W[649] + W[45] * W[606] + W[88] * W[563] + W[131] * W[520] + W[174] * W[477]
+            + W[217] * W[434] + W[260] * W[391] + W[303] * W[348] + W[346] * W[305] + W[389] * W[262]
+            + W[432] * W[219] + W[475] * W[176] + W[518] * W[133] + W[561] * W[90] + W[604] * W[47]
+            + W[647] * W[4];
 #endif
-    W[667] = W[25] * X[31] + W[68] * X[29] + W[111] * X[27] + W[154] * X[25] + W[197] * X[23]
-            + W[240] * X[21] + W[283] * X[19] + W[326] * X[17] + W[369] * X[15] + W[412] * X[13]
-            + W[455] * X[11] + W[498] * X[9] + W[541] * X[7] + W[584] * X[5] + W[627] * X[3] + W[670] * X[1];
-    W[668] = W[29] * X[31] + W[72] * X[29] + W[115] * X[27] + W[158] * X[25] + W[201] * X[23]
-            + W[244] * X[21] + W[287] * X[19] + W[330] * X[17] + W[373] * X[15] + W[416] * X[13]
-            + W[459] * X[11] + W[502] * X[9] + W[545] * X[7] + W[588] * X[5] + W[631] * X[3] + W[674] * X[1];
-    W[675] = W[665] - W[655];
+    W[685] = W[5] * W[682] + W[48] * W[639] + W[91] * W[596] + W[134] * W[553] + W[177] * W[510]
+            + W[220] * W[467] + W[263] * W[424] + W[306] * W[381] + W[349] * W[338] + W[392] * W[295]
+            + W[435] * W[252] + W[478] * W[209] + W[521] * W[166] + W[564] * W[123] + W[607] * W[80]
+            + W[650] * W[37];
+#ifdef EOMC_PACKS
+    EOMC_AT4(W + 655) = W[0] * EOMC_AT4(W + 651);
+    EOMC_AT4(W + 659) = EOMC_AT4(W + 6) * X[31] + EOMC_AT4(W + 49) * X[29] + EOMC_AT4(W + 92) * X[27]
+            + EOMC_AT4(W + 135) * X[25] + EOMC_AT4(W + 178) * X[23] + EOMC_AT4(W + 221) * X[21]
+            + EOMC_AT4(W + 264) * X[19] + EOMC_AT4(W + 307) * X[17] + EOMC_AT4(W + 350) * X[15]
+            + EOMC_AT4(W + 393) * X[13] + EOMC_AT4(W + 436) * X[11] + EOMC_AT4(W + 479) * X[9]
+            + EOMC_AT4(W + 522) * X[7] + EOMC_AT4(W + 565) * X[5] + EOMC_AT4(W + 608) * X[3] + EOMC_AT4(W + 651) * X[1];
+#else
+    W[655] = W[0] * W[651];
+    W[656] = W[0] * W[652];
+    W[657] = W[0] * W[653];
+    W[658] = W[0] * W[654];
+    W[659] = W[6] * X[31] + W[49] * X[29] + W[92] * X[27] + W[135] * X[25] + W[178] * X[23] + W[221] * X[21]
+            + W[264] * X[19] + W[307] * X[17] + W[350] * X[15] + W[393] * X[13] + W[436] * X[11]
+            + W[479] * X[9] + W[522] * X[7] + W[565] * X[5] + W[608] * X[3] + W[651] * X[1];
+    W[660] = W[7] * X[31] + W[50] * X[29] + W[93] * X[27] + W[136] * X[25] + W[179] * X[23] + W[222] * X[21]
+            + W[265] * X[19] + W[308] * X[17] + W[351] * X[15] + W[394] * X[13] + W[437] * X[11]
+            + W[480] * X[9] + W[523] * X[7] + W[566] * X[5] + W[609] * X[3] + W[652] * X[1];
+    W[661] = W[8] * X[31] + W[51] * X[29] + W[94] * X[27] + W[137] * X[25] + W[180] * X[23] + W[223] * X[21]
+            + W[266] * X[19] + W[309] * X[17] + W[352] * X[15] + W[395] * X[13] + W[438] * X[11]
+            + W[481] * X[9] + W[524] * X[7] + W[567] * X[5] + W[610] * X[3] + W[653] * X[1];
+    W[662] = W[9] * X[31] + W[52] * X[29] + W[95] * X[27] + W[138] * X[25] + W[181] * X[23] + W[224] * X[21]
+            + W[267] * X[19] + W[310] * X[17] + W[353] * X[15] + W[396] * X[13] + W[439] * X[11]
+            + W[482] * X[9] + W[525] * X[7] + W[568] * X[5] + W[611] * X[3] + W[654] * X[1];
+#endif
+    W[663] = W[659] - W[658];
+    W[681] = W[655] - W[662];
+    W[679] = W[660] + W[657];
+    W[680] = W[656] + W[661];
+    W[665] = W[0] * W[679];
+    W[666] = W[0] * W[663];
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 668) = X[1] * EOMC_AT2(W + 680) + X[3] * EOMC_AT2(W + 637) + X[5] * EOMC_AT2(W + 594)
+            + X[7] * EOMC_AT2(W + 551) + X[9] * EOMC_AT2(W + 508) + X[11] * EOMC_AT2(W + 465)
+            + X[13] * EOMC_AT2(W + 422) + X[15] * EOMC_AT2(W + 379) + X[17] * EOMC_AT2(W + 336)
+            + X[19] * EOMC_AT2(W + 293) + X[21] * EOMC_AT2(W + 250) + X[23] * EOMC_AT2(W + 207)
+            + X[25] * EOMC_AT2(W + 164) + X[27] * EOMC_AT2(W + 121) + X[29] * EOMC_AT2(W + 78)
+            + X[31] * EOMC_AT2(W + 35);
+    EOMC_AT2(W + 670) = EOMC_AT2(W + 668) + EOMC_AT2(W + 665);
+#else
+    W[668] = X[1] * W[680] + X[3] * W[637] + X[5] * W[594] + X[7] * W[551] + X[9] * W[508] + X[11] * W[465]
+            + X[13] * W[422] + X[15] * W[379] + X[17] * W[336] + X[19] * W[293] + X[21] * W[250]
+            + X[23] * W[207] + X[25] * W[164] + X[27] * W[121] + X[29] * W[78] + X[31] * W[35];
+    W[669] = X[1] * W[681] + X[3] * W[638] + X[5] * W[595] + X[7] * W[552] + X[9] * W[509] + X[11] * W[466]
+            + X[13] * W[423] + X[15] * W[380] + X[17] * W[337] + X[19] * W[294] + X[21] * W[251]
+            + X[23] * W[208] + X[25] * W[165] + X[27] * W[122] + X[29] * W[79] + X[31] * W[36];
+    W[670] = W[668] + W[665];
+    W[671] = W[669] + W[666];
+#endif
 }
 
-/* Lines 21 .. 37 of taylor_run's order 16. */
+/* Lines 30 .. 37 of taylor_run's order 16. */
+static EOMC_NOINLINE EOMC_UNCHECKED void
+spinning_hoop_taylor_run_34(eomc_real *restrict W, eomc_real *restrict X)
+{
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 715) = EOMC_AT2(W + 6) * EOMC_AT2(W + 713) + EOMC_AT2(W + 49) * EOMC_AT2(W + 670)
+            + EOMC_AT2(W + 92) * EOMC_AT2(W + 627) + EOMC_AT2(W + 135) * EOMC_AT2(W + 584) + EOMC_AT2(W + 178) * EOMC_AT2(W + 541)
+            + EOMC_AT2(W + 221) * EOMC_AT2(W + 498) + EOMC_AT2(W + 264) * EOMC_AT2(W + 455) + EOMC_AT2(W + 307) * EOMC_AT2(W + 412)
+            + EOMC_AT2(W + 350) * EOMC_AT2(W + 369) + EOMC_AT2(W + 393) * EOMC_AT2(W + 326) + EOMC_AT2(W + 436) * EOMC_AT2(W + 283)
+            + EOMC_AT2(W + 479) * EOMC_AT2(W + 240) + EOMC_AT2(W + 522) * EOMC_AT2(W + 197) + EOMC_AT2(W + 565) * EOMC_AT2(W + 154)
+            + EOMC_AT2(W + 608) * EOMC_AT2(W + 111) + EOMC_AT2(W + 651) * EOMC_AT2(W + 68) + EOMC_AT2(W + 694) * EOMC_AT2(W + 25);
+#else
+    W[715] = W[6] * W[713] + W[49] * W[670] + W[92] * W[627] + W[135] * W[584] + W[178] * W[541]
+            + W[221] * W[498] + W[264] * W[455] + W[307] * W[412] + W[350] * W[369] + W[393] * W[326]
+            + W[436] * W[283] + W[479] * W[240] + W[522] * W[197] + W[565] * W[154] + W[608] * W[111]
+            + W[651] * W[68] + W[694] * W[25];
+    W[716] = W[7] * W[714] + W[50] * W[671] + W[93] * W[628] + W[136] * W[585] + W[179] * W[542]
+            + W[222] * W[499] + W[265] * W[456] + W[308] * W[413] + W[351] * W[370] + W[394] * W[327]
+            + W[437] * W[284] + W[480] * W[241] + W[523] * W[198] + W[566] * W[155] + W[609] * W[112]
+            + W[652] * W[69] + W[695] * W[26];
+#endif
+    W[729] = W[728] + W[716];
+    W[707] = W[729] - W[715];
+    W[710] = W[1] * W[707];
+    W[730] = W[727] + W[710];
+    X[34] = X[33] / 17.0;
+    X[35] = -W[730] / W[1] / 17.0;
+}
+
+/* Lines 0 .. 29 of taylor_run's order 17. */
 static EOMC_NOINLINE EOMC_UNCHECKED void
 spinning_hoop_taylor_run_35(eomc_real *restrict W, eomc_real *restrict X)
 {
-    W[719] = W[701] - W[711];
-    W[722] = W[709] + W[699];
-    W[726] = W[700] + W[710];
-    W[702] = W[0] * W[722];
-    W[703] = W[0] * W[718];
-    W[712] = X[1] * W[726] + X[3] * W[683] + X[5] * W[640] + X[7] * W[597] + X[9] * W[554] + X[11] * W[511]
-            + X[13] * W[468] + X[15] * W[425] + X[17] * W[382] + X[19] * W[339] + X[21] * W[296]
-            + X[23] * W[253] + X[25] * W[210] + X[27] * W[167] + X[29] * W[124] + X[31] * W[81]
-            + X[33] * W[38];
-    W[714] = X[1] * W[719] + X[3] * W[676] + X[5] * W[633] + X[7] * W[590] + X[9] * W[547] + X[11] * W[504]
-            + X[13] * W[461] + X[15] * W[418] + X[17] * W[375] + X[19] * W[332] + X[21] * W[289]
-            + X[23] * W[246] + X[25] * W[203] + X[27] * W[160] + X[29] * W[117] + X[31] * W[74]
-            + X[33] * W[31];
-    W[723] = W[712] + W[702];
-    W[724] = W[714] + W[703];
-    W[715] = W[19] * W[724] + W[62] * W[681] + W[105] * W[638] + W[148] * W[595] + W[191] * W[552]
-            + W[234] * W[509] + W[277] * W[466] + W[320] * W[423] + W[363] * W[380] + W[406] * W[337]
-            + W[449] * W[294] + W[492] * W[251] + W[535] * W[208] + W[578] * W[165] + W[621] * W[122]
-            + W[664] * W[79] + W[707] * W[36];
-    W[716] = W[18] * W[723] + W[61] * W[680] + W[104] * W[637] + W[147] * W[594] + W[190] * W[551]
-            + W[233] * W[508] + W[276] * W[465] + W[319] * W[422] + W[362] * W[379] + W[405] * W[336]
-            + W[448] * W[293] + W[491] * W[250] + W[534] * W[207] + W[577] * W[164] + W[620] * W[121]
-            + W[663] * W[78] + W[706] * W[35];
-    W[721] = W[705] + W[715];
-    W[720] = W[721] - W[716];
-    W[697] = W[2] * W[720];
-    W[725] = W[696] + W[697];
-    X[34] = X[33] / 17.0;
-    X[35] = -W[725] / W[2] / 17.0;
-}
-
-/* Lines 0 .. 20 of taylor_run's order 17. */
-static EOMC_NOINLINE EOMC_UNCHECKED void
-spinning_hoop_taylor_run_36(eomc_real *restrict W, eomc_real *restrict X)
-{
-    W[734] = (X[2] * W[693] + 2.0 * X[4] * W[650] + 3.0 * X[6] * W[607] + 4.0 * X[8] * W[564]
-            + 5.0 * X[10] * W[521] + 6.0 * X[12] * W[478] + 7.0 * X[14] * W[435] + 8.0 * X[16] * W[392]
-            + 9.0 * X[18] * W[349] + 10.0 * X[20] * W[306] + 11.0 * X[22] * W[263] + 12.0 * X[24] * W[220]
-            + 13.0 * X[26] * W[177] + 14.0 * X[28] * W[134] + 15.0 * X[30] * W[91] + 16.0 * X[32] * W[48]
-            + 17.0 * X[34] * W[5]) / 17.0;
-    W[736] = -((X[2] * W[691] + 2.0 * X[4] * W[648] + 3.0 * X[6] * W[605] + 4.0 * X[8] * W[562]
-            + 5.0 * X[10] * W[519] + 6.0 * X[12] * W[476] + 7.0 * X[14] * W[433] + 8.0 * X[16] * W[390]
-            + 9.0 * X[18] * W[347] + 10.0 * X[20] * W[304] + 11.0 * X[22] * W[261] + 12.0 * X[24] * W[218]
-            + 13.0 * X[26] * W[175] + 14.0 * X[28] * W[132] + 15.0 * X[30] * W[89] + 16.0 * X[32] * W[46]
-            + 17.0 * X[34] * W[3])) / 17.0;
-    W[737] = (X[1] * X[35] + X[3] * X[33] + X[5] * X[31] + X[7] * X[29] + X[9] * X[27] + X[11] * X[25]
+    W[733] = (X[2] * W[720] + 2.0 * X[4] * W[677] + 3.0 * X[6] * W[634] + 4.0 * X[8] * W[591]
+            + 5.0 * X[10] * W[548] + 6.0 * X[12] * W[505] + 7.0 * X[14] * W[462] + 8.0 * X[16] * W[419]
+            + 9.0 * X[18] * W[376] + 10.0 * X[20] * W[333] + 11.0 * X[22] * W[290] + 12.0 * X[24] * W[247]
+            + 13.0 * X[26] * W[204] + 14.0 * X[28] * W[161] + 15.0 * X[30] * W[118] + 16.0 * X[32] * W[75]
+            + 17.0 * X[34] * W[32]) / 17.0;
+    W[763] = -((X[2] * W[690] + 2.0 * X[4] * W[647] + 3.0 * X[6] * W[604] + 4.0 * X[8] * W[561]
+            + 5.0 * X[10] * W[518] + 6.0 * X[12] * W[475] + 7.0 * X[14] * W[432] + 8.0 * X[16] * W[389]
+            + 9.0 * X[18] * W[346] + 10.0 * X[20] * W[303] + 11.0 * X[22] * W[260] + 12.0 * X[24] * W[217]
+            + 13.0 * X[26] * W[174] + 14.0 * X[28] * W[131] + 15.0 * X[30] * W[88] + 16.0 * X[32] * W[45]
+            + 17.0 * X[34] * W[2])) / 17.0;
+    W[768] = (X[1] * X[35] + X[3] * X[33] + X[5] * X[31] + X[7] * X[29] + X[9] * X[27] + X[11] * X[25]
             + X[13] * X[23] + X[15] * X[21] + X[17] * X[19]) * 2.0;
-    W[739] = W[1] * W[734];
-    W[747] = W[3] * W[736] + W[46] * W[693] + W[89] * W[650] + W[132] * W[607] + W[175] * W[564]
-            + W[218] * W[521] + W[261] * W[478] + W[304] * W[435] + W[347] * W[392] + W[390] * W[349]
-            + W[433] * W[306] + W[476] * W[263] + W[519] * W[220] + W[562] * W[177] + W[605] * W[134]
-            + W[648] * W[91] + W[691] * W[48] + W[734] * W[5];
-    W[735] = W[50] * W[729] / 17.0;
-    W[772] = -W[50] * W[692] / 17.0;
-    W[748] = W[16] * W[737] + W[59] * W[694] + W[102] * W[651] + W[145] * W[608] + W[188] * W[565]
-            + W[231] * W[522] + W[274] * W[479] + W[317] * W[436] + W[360] * W[393] + W[403] * W[350]
-            + W[446] * W[307] + W[489] * W[264] + W[532] * W[221] + W[575] * W[178] + W[618] * W[135]
-            + W[661] * W[92] + W[704] * W[49] + W[747] * W[6];
-    W[749] = W[41] * W[736] + W[84] * W[693] + W[127] * W[650] + W[170] * W[607] + W[213] * W[564]
-            + W[256] * W[521] + W[299] * W[478] + W[342] * W[435] + W[385] * W[392] + W[428] * W[349]
-            + W[471] * W[306] + W[514] * W[263] + W[557] * W[220] + W[600] * W[177] + W[643] * W[134]
-            + W[686] * W[91] + W[729] * W[48] + W[772] * W[5];
-    W[750] = W[4] * W[736] + W[47] * W[693] + W[90] * W[650] + W[133] * W[607] + W[176] * W[564]
-            + W[219] * W[521] + W[262] * W[478] + W[305] * W[435] + W[348] * W[392] + W[391] * W[349]
-            + W[434] * W[306] + W[477] * W[263] + W[520] * W[220] + W[563] * W[177] + W[606] * W[134]
-            + W[649] * W[91] + W[692] * W[48] + W[735] * W[5];
-    W[756] = W[3] * W[772] + W[46] * W[729] + W[89] * W[686] + W[132] * W[643] + W[175] * W[600]
-            + W[218] * W[557] + W[261] * W[514] + W[304] * W[471] + W[347] * W[428] + W[390] * W[385]
-            + W[433] * W[342] + W[476] * W[299] + W[519] * W[256] + W[562] * W[213] + W[605] * W[170]
-            + W[648] * W[127] + W[691] * W[84] + W[734] * W[41];
-    W[760] = W[3] * W[735] + W[46] * W[692] + W[89] * W[649] + W[132] * W[606] + W[175] * W[563]
-            + W[218] * W[520] + W[261] * W[477] + W[304] * W[434] + W[347] * W[391] + W[390] * W[348]
-            + W[433] * W[305] + W[476] * W[262] + W[519] * W[219] + W[562] * W[176] + W[605] * W[133]
-            + W[648] * W[90] + W[691] * W[47] + W[734] * W[4];
-    W[741] = W[0] * W[760];
-    W[742] = W[0] * W[756];
-    W[743] = W[0] * W[750];
-    W[744] = W[0] * W[749];
+    W[770] = W[38] * W[733];
+    W[736] = W[2] * W[763] + W[45] * W[720] + W[88] * W[677] + W[131] * W[634] + W[174] * W[591]
+            + W[217] * W[548] + W[260] * W[505] + W[303] * W[462] + W[346] * W[419] + W[389] * W[376]
+            + W[432] * W[333] + W[475] * W[290] + W[518] * W[247] + W[561] * W[204] + W[604] * W[161]
+            + W[647] * W[118] + W[690] * W[75] + W[733] * W[32];
+    W[735] = W[73] * W[691] / 17.0;
+    W[734] = -W[73] * W[692] / 17.0;
 #ifdef EOMC_PACKS
-    EOMC_AT2(W + 751) = EOMC_AT2(W + 18) * X[35] + EOMC_AT2(W + 61) * X[33] + EOMC_AT2(W + 104) * X[31]
-            + EOMC_AT2(W + 147) * X[29] + EOMC_AT2(W + 190) * X[27] + EOMC_AT2(W + 233) * X[25]
-            + EOMC_AT2(W + 276) * X[23] + EOMC_AT2(W + 319) * X[21] + EOMC_AT2(W + 362) * X[19]
-            + EOMC_AT2(W + 405) * X[17] + EOMC_AT2(W + 448) * X[15] + EOMC_AT2(W + 491) * X[13]
-            + EOMC_AT2(W + 534) * X[11] + EOMC_AT2(W + 577) * X[9] + EOMC_AT2(W + 620) * X[7]
-            + EOMC_AT2(W + 663) * X[5] + EOMC_AT2(W + 706) * X[3] + EOMC_AT2(W + 749) * X[1];
+    EOMC_AT2(W + 737) = EOMC_AT2(W + 3) * W[763] + EOMC_AT2(W + 46) * W[720] + EOMC_AT2(W + 89) * W[677]
+            + EOMC_AT2(W + 132) * W[634] + EOMC_AT2(W + 175) * W[591] + EOMC_AT2(W + 218) * W[548]
+            + EOMC_AT2(W + 261) * W[505] + EOMC_AT2(W + 304) * W[462] + EOMC_AT2(W + 347) * W[419]
+            + EOMC_AT2(W + 390) * W[376] + EOMC_AT2(W + 433) * W[333] + EOMC_AT2(W + 476) * W[290]
+            + EOMC_AT2(W + 519) * W[247] + EOMC_AT2(W + 562) * W[204] + EOMC_AT2(W + 605) * W[161]
+            + EOMC_AT2(W + 648) * W[118] + EOMC_AT2(W + 691) * W[75] + EOMC_AT2(W + 734) * W[32];
+    EOMC_AT2(W + 739) = W[2] * EOMC_AT2(W + 734) + W[45] * EOMC_AT2(W + 691) + W[88] * EOMC_AT2(W + 648)
+            + W[131] * EOMC_AT2(W + 605) + W[174] * EOMC_AT2(W + 562) + W[217] * EOMC_AT2(W + 519)
+            + W[260] * EOMC_AT2(W + 476) + W[303] * EOMC_AT2(W + 433) + W[346] * EOMC_AT2(W + 390)
+            + W[389] * EOMC_AT2(W + 347) + W[432] * EOMC_AT2(W + 304) + W[475] * EOMC_AT2(W + 261)
+            + W[518] * EOMC_AT2(W + 218) + W[561] * EOMC_AT2(W + 175) + W[604] * EOMC_AT2(W + 132)
+            + W[647] * EOMC_AT2(W + 89) + W[690] * EOMC_AT2(W + 46) + W[733] * EOMC_AT2(W + 3);
 #else
-    W[751] = W[18] * X[35] + W[61] * X[33] + W[104] * X[31] + W[147] * X[29] + W[190] * X[27]
-            + W[233] * X[25] + W[276] * X[23] + W[319] * X[21] + W[362] * X[19] + W[405] * X[17]
-            + W[448] * X[15] + W[491] * X[13] + W[534] * X[11] + W[577] * X[9] + W[620] * X[7]
-            + W[663] * X[5] + W[706] * X[3] + W[749] * X[1];
-    W[752] = W[19] * X[35] + W[62] * X[33] + W[105] * X[31] + W[148] * X[29] + W[191] * X[27]
-            + W[234] * X[25] + W[277] * X[23] + W[320] * X[21] + W[363] * X[19] + W[406] * X[17]
-            + W[449] * X[15] + W[492] * X[13] + W[535] * X[11] + W[578] * X[9] + W[621] * X[7]
-            + W[664] * X[5] + W[707] * X[3] + W[750] * X[1];
+    W[737] = W[3] * W[763] + W[46] * W[720] + W[89] * W[677] + W[132] * W[634] + W[175] * W[591]
+            + W[218] * W[548] + W[261] * W[505] + W[304] * W[462] + W[347] * W[419] + W[390] * W[376]
+            + W[433] * W[333] + W[476] * W[290] + W[519] * W[247] + W[562] * W[204] + W[605] * W[161]
+            + W[648] * W[118] + W[691] * W[75] + W[734] * W[32];
+    W[738] = W[4] * W[763] + W[47] * W[720] + W[90] * W[677] + W[133] * W[634] + W[176] * W[591]
+            + W[219] * W[548] + W[262] * W[505] + W[305] * W[462] + W[348] * W[419] + W[391] * W[376]
+            + W[434] * W[333] + W[477] * W[290] + W[520] * W[247] + W[563] * W[204] + W[606] * W[161]
+            + W[649] * W[118] + W[692] * W[75] + W[735] * W[32];
+    W[739] = W[2] * W[734] + W[45] * W[691] + W[88] * W[648] + W[131] * W[605] + W[174] * W[562]
+            + W[217] * W[519] + W[260] * W[476] + W[303] * W[433] + W[346] * W[390] + W[389] * W[347]
+            + W[432] * W[304] + W[475] * W[261] + W[518] * W[218] + W[561] * W[175] + W[604] * W[132]
+            + W[647] * W[89] + W[690] * W[46] + W[733] * W[3];
+    W[740] = W[2] * W[735] + W[45] * W[692] + W[88] * W[649] + W[131] * W[606] + W[174] * W[563]
+            + W[217] * W[520] + W[260] * W[477] + W[303] * W[434] + W[346] * W[391] + W[389] * W[348]
+            + W[432] * W[305] + W[475] * W[262] + W[518] * W[219] + W[561] * W[176] + W[604] * W[133]
+            + W[647] * W[90] + W[690] * W[47] + W[733] * W[4];
 #endif
-    W[753] = W[25] * X[35] + W[68] * X[33] + W[111] * X[31] + W[154] * X[29] + W[197] * X[27]
-            + W[240] * X[25] + W[283] * X[23] + W[326] * X[21] + W[369] * X[19] + W[412] * X[17]
-            + W[455] * X[15] + W[498] * X[13] + W[541] * X[11] + W[584] * X[9] + W[627] * X[7]
-            + W[670] * X[5] + W[713] * X[3] + W[756] * X[1];
-    W[754] = W[29] * X[35] + W[72] * X[33] + W[115] * X[31] + W[158] * X[29] + W[201] * X[27]
-            + W[244] * X[25] + W[287] * X[23] + W[330] * X[21] + W[373] * X[19] + W[416] * X[17]
-            + W[459] * X[15] + W[502] * X[13] + W[545] * X[11] + W[588] * X[9] + W[631] * X[7]
-            + W[674] * X[5] + W[717] * X[3] + W[760] * X[1];
-    W[761] = W[751] - W[741];
+    W[771] = W[5] * W[768] + W[48] * W[725] + W[91] * W[682] + W[134] * W[639] + W[177] * W[596]
+            + W[220] * W[553] + W[263] * W[510] + W[306] * W[467] + W[349] * W[424] + W[392] * W[381]
+            + W[435] * W[338] + W[478] * W[295] + W[521] * W[252] + W[564] * W[209] + W[607] * W[166]
+            + W[650] * W[123] + W[693] * W[80] + W[736] * W[37];
+#ifdef EOMC_PACKS
+    EOMC_AT4(W + 741) = W[0] * EOMC_AT4(W + 737);
+    EOMC_AT4(W + 745) = EOMC_AT4(W + 6) * X[35] + EOMC_AT4(W + 49) * X[33] + EOMC_AT4(W + 92) * X[31]
+            + EOMC_AT4(W + 135) * X[29] + EOMC_AT4(W + 178) * X[27] + EOMC_AT4(W + 221) * X[25]
+            + EOMC_AT4(W + 264) * X[23] + EOMC_AT4(W + 307) * X[21] + EOMC_AT4(W + 350) * X[19]
+            + EOMC_AT4(W + 393) * X[17] + EOMC_AT4(W + 436) * X[15] + EOMC_AT4(W + 479) * X[13]
+            + EOMC_AT4(W + 522) * X[11] + EOMC_AT4(W + 565) * X[9] + EOMC_AT4(W + 608) * X[7]
+            + EOMC_AT4(W + 651) * X[5] + EOMC_AT4(W + 694) * X[3] + EOMC_AT4(W + 737) * X[1];
+#else
+    W[741] = W[0] * W[737];
+    W[742] = W[0] * W[738];
+    W[743] = W[0] * W[739];
+    W[744] = W[0] * W[740];
+    W[745] = W[6] * X[35] + W[49] * X[33] + W[92] * X[31] + W[135] * X[29] + W[178] * X[27] + W[221] * X[25]
+            + W[264] * X[23] + W[307] * X[21] + W[350] * X[19] + W[393] * X[17] + W[436] * X[15]
+            + W[479] * X[13] + W[522] * X[11] + W[565] * X[9] + W[608] * X[7] + W[651] * X[5]
+            + W[694] * X[3] + W[737] * X[1];
+    W[746] = W[7] * X[35] + W[50] * X[33] + W[93] * X[31] + W[136] * X[29] + W[179] * X[27] + W[222] * X[25]
+            + W[265] * X[23] + W[308] * X[21] + W[351] * X[19] + W[394] * X[17] + W[437] * X[15]
+            + W[480] * X[13] + W[523] * X[11] + W[566] * X[9] + W[609] * X[7] + W[652] * X[5]
+            + W[695] * X[3] + W[738] * X[1];
+    W[747] = W[8] * X[35] + W[51] * X[33] + W[94] * X[31] + W[137] * X[29] + W[180] * X[27] + W[223] * X[25]
+            + W[266] * X[23] + W[309] * X[21] + W[352] * X[19] + W[395] * X[17] + W[438] * X[15]
+            + W[481] * X[13] + W[524] * X[11] + W[567] * X[9] + W[610] * X[7] + W[653] * X[5]
+            + W[696] * X[3] + W[739] * X[1];
+    W[748] = W[9] * X[35] + W[52] * X[33] + W[95] * X[31] + W[138] * X[29] + W[181] * X[27] + W[224] * X[25]
+            + W[267] * X[23] + W[310] * X[21] + W[353] * X[19] + W[396] * X[17] + W[439] * X[15]
+            + W[482] * X[13] + W[525] * X[11] + W[568] * X[9] + W[611] * X[7] + W[654] * X[5]
+            + W[697] * X[3] + W[740] * X[1];
+#endif
+    W[749] = W[745] - W[744];
+    W[767] = W[741] - W[748];
+    W[765] = W[746] + W[743];
+    W[766] = W[742] + W[747];
+    W[751] = W[0] * W[765];
+    W[752] = W[0] * W[749];
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 754) = X[1] * EOMC_AT2(W + 766) + X[3] * EOMC_AT2(W + 723) + X[5] * EOMC_AT2(W + 680)
+            + X[7] * EOMC_AT2(W + 637) + X[9] * EOMC_AT2(W + 594) + X[11] * EOMC_AT2(W + 551)
+            + X[13] * EOMC_AT2(W + 508) + X[15] * EOMC_AT2(W + 465) + X[17] * EOMC_AT2(W + 422)
+            + X[19] * EOMC_AT2(W + 379) + X[21] * EOMC_AT2(W + 336) + X[23] * EOMC_AT2(W + 293)
+            + X[25] * EOMC_AT2(W + 250) + X[27] * EOMC_AT2(W + 207) + X[29] * EOMC_AT2(W + 164)
+            + X[31] * EOMC_AT2(W + 121) + X[33] * EOMC_AT2(W + 78) + X[35] * EOMC_AT2(W + 35);
+    EOMC_AT2(W + 756) = EOMC_AT2(W + 754) + EOMC_AT2(W + 751);
+#else
+    W[754] = X[1] * W[766] + X[3] * W[723] + X[5] * W[680] + X[7] * W[637] + X[9] * W[594] + X[11] * W[551]
+            + X[13] * W[508] + X[15] * W[465] + X[17] * W[422] + X[19] * W[379] + X[21] * W[336]
+            + X[23] * W[293] + X[25] * W[250] + X[27] * W[207] + X[29] * W[164] + X[31] * W[121]
+            + X[33] * W[78] + X[35] * W[35];
+    W[755] = X[1] * W[767] + X[3] * W[724] + X[5] * W[681] + X[7] * W[638] + X[9] * W[595] + X[11] * W[552]
+            + X[13] * W[509] + X[15] * W[466] + X[17] * W[423] + X[19] * W[380] + X[21] * W[337]
+            + X[23] * W[294] + X[25] * W[251] + X[27] * W[208] + X[29] * W[165] + X[31] * W[122]
+            + X[33] * W[79] + X[35] * W[36];
+    W[756] = W[754] + W[751];
+    W[757] = W[755] + W[752];
+#endif
 }
 
-/* Lines 21 .. 37 of taylor_run's order 18. */
+/* Lines 30 .. 37 of taylor_run's order 18. */
+static EOMC_NOINLINE EOMC_UNCHECKED void
+spinning_hoop_taylor_run_38(eomc_real *restrict W, eomc_real *restrict X)
+{
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 801) = EOMC_AT2(W + 6) * EOMC_AT2(W + 799) + EOMC_AT2(W + 49) * EOMC_AT2(W + 756)
+            + EOMC_AT2(W + 92) * EOMC_AT2(W + 713) + EOMC_AT2(W + 135) * EOMC_AT2(W + 670) + EOMC_AT2(W + 178) * EOMC_AT2(W + 627)
+            + EOMC_AT2(W + 221) * EOMC_AT2(W + 584) + EOMC_AT2(W + 264) * EOMC_AT2(W + 541) + EOMC_AT2(W + 307) * EOMC_AT2(W + 498)
+            + EOMC_AT2(W + 350) * EOMC_AT2(W + 455) + EOMC_AT2(W + 393) * EOMC_AT2(W + 412) + EOMC_AT2(W + 436) * EOMC_AT2(W + 369)
+            + EOMC_AT2(W + 479) * EOMC_AT2(W + 326) + EOMC_AT2(W + 522) * EOMC_AT2(W + 283) + EOMC_AT2(W + 565) * EOMC_AT2(W + 240)
+            + EOMC_AT2(W + 608) * EOMC_AT2(W + 197) + EOMC_AT2(W + 651) * EOMC_AT2(W + 154) + EOMC_AT2(W + 694) * EOMC_AT2(W + 111)
+            + EOMC_AT2(W + 737) * EOMC_AT2(W + 68) + EOMC_AT2(W + 780) * EOMC_AT2(W + 25);
+#else
+    W[801] = W[6] * W[799] + W[49] * W[756] + W[92] * W[713] + W[135] * W[670] + W[178] * W[627]
+            + W[221] * W[584] + W[264] * W[541] + W[307] * W[498] + W[350] * W[455] + W[393] * W[412]
+            + W[436] * W[369] + W[479] * W[326] + W[522] * W[283] + W[565] * W[240] + W[608] * W[197]
+            + W[651] * W[154] + W[694] * W[111] + W[737] * W[68] + W[780] * W[25];
+    W[802] = W[7] * W[800] + W[50] * W[757] + W[93] * W[714] + W[136] * W[671] + W[179] * W[628]
+            + W[222] * W[585] + W[265] * W[542] + W[308] * W[499] + W[351] * W[456] + W[394] * W[413]
+            + W[437] * W[370] + W[480] * W[327] + W[523] * W[284] + W[566] * W[241] + W[609] * W[198]
+            + W[652] * W[155] + W[695] * W[112] + W[738] * W[69] + W[781] * W[26];
+#endif
+    W[815] = W[814] + W[802];
+    W[793] = W[815] - W[801];
+    W[796] = W[1] * W[793];
+    W[816] = W[813] + W[796];
+    X[38] = X[37] / 19.0;
+    X[39] = -W[816] / W[1] / 19.0;
+}
+
+/* Lines 0 .. 29 of taylor_run's order 19. */
 static EOMC_NOINLINE EOMC_UNCHECKED void
 spinning_hoop_taylor_run_39(eomc_real *restrict W, eomc_real *restrict X)
 {
-    W[805] = W[787] - W[797];
-    W[808] = W[795] + W[785];
-    W[812] = W[786] + W[796];
-    W[788] = W[0] * W[808];
-    W[789] = W[0] * W[804];
-    W[798] = X[1] * W[812] + X[3] * W[769] + X[5] * W[726] + X[7] * W[683] + X[9] * W[640] + X[11] * W[597]
-            + X[13] * W[554] + X[15] * W[511] + X[17] * W[468] + X[19] * W[425] + X[21] * W[382]
-            + X[23] * W[339] + X[25] * W[296] + X[27] * W[253] + X[29] * W[210] + X[31] * W[167]
-            + X[33] * W[124] + X[35] * W[81] + X[37] * W[38];
-    W[800] = X[1] * W[805] + X[3] * W[762] + X[5] * W[719] + X[7] * W[676] + X[9] * W[633] + X[11] * W[590]
-            + X[13] * W[547] + X[15] * W[504] + X[17] * W[461] + X[19] * W[418] + X[21] * W[375]
-            + X[23] * W[332] + X[25] * W[289] + X[27] * W[246] + X[29] * W[203] + X[31] * W[160]
-            + X[33] * W[117] + X[35] * W[74] + X[37] * W[31];
-    W[809] = W[798] + W[788];
-    W[810] = W[800] + W[789];
-    W[801] = W[19] * W[810] + W[62] * W[767] + W[105] * W[724] + W[148] * W[681] + W[191] * W[638]
-            + W[234] * W[595] + W[277] * W[552] + W[320] * W[509] + W[363] * W[466] + W[406] * W[423]
-            + W[449] * W[380] + W[492] * W[337] + W[535] * W[294] + W[578] * W[251] + W[621] * W[208]
-            + W[664] * W[165] + W[707] * W[122] + W[750] * W[79] + W[793] * W[36];
-    W[802] = W[18] * W[809] + W[61] * W[766] + W[104] * W[723] + W[147] * W[680] + W[190] * W[637]
-            + W[233] * W[594] + W[276] * W[551] + W[319] * W[508] + W[362] * W[465] + W[405] * W[422]
-            + W[448] * W[379] + W[491] * W[336] + W[534] * W[293] + W[577] * W[250] + W[620] * W[207]
-            + W[663] * W[164] + W[706] * W[121] + W[749] * W[78] + W[792] * W[35];
-    W[807] = W[791] + W[801];
-    W[806] = W[807] - W[802];
-    W[783] = W[2] * W[806];
-    W[811] = W[782] + W[783];
-    X[38] = X[37] / 19.0;
-    X[39] = -W[811] / W[2] / 19.0;
-}
-
-/* Lines 0 .. 20 of taylor_run's order 19. */
-static EOMC_NOINLINE EOMC_UNCHECKED void
-spinning_hoop_taylor_run_40(eomc_real *restrict W, eomc_real *restrict X)
-{
-    W[820] = (X[2] * W[779] + 2.0 * X[4] * W[736] + 3.0 * X[6] * W[693] + 4.0 * X[8] * W[650]
-            + 5.0 * X[10] * W[607] + 6.0 * X[12] * W[564] + 7.0 * X[14] * W[521] + 8.0 * X[16] * W[478]
-            + 9.0 * X[18] * W[435] + 10.0 * X[20] * W[392] + 11.0 * X[22] * W[349] + 12.0 * X[24] * W[306]
-            + 13.0 * X[26] * W[263] + 14.0 * X[28] * W[220] + 15.0 * X[30] * W[177] + 16.0 * X[32] * W[134]
-            + 17.0 * X[34] * W[91] + 18.0 * X[36] * W[48] + 19.0 * X[38] * W[5]) / 19.0;
-    W[822] = -((X[2] * W[777] + 2.0 * X[4] * W[734] + 3.0 * X[6] * W[691] + 4.0 * X[8] * W[648]
-            + 5.0 * X[10] * W[605] + 6.0 * X[12] * W[562] + 7.0 * X[14] * W[519] + 8.0 * X[16] * W[476]
-            + 9.0 * X[18] * W[433] + 10.0 * X[20] * W[390] + 11.0 * X[22] * W[347] + 12.0 * X[24] * W[304]
-            + 13.0 * X[26] * W[261] + 14.0 * X[28] * W[218] + 15.0 * X[30] * W[175] + 16.0 * X[32] * W[132]
-            + 17.0 * X[34] * W[89] + 18.0 * X[36] * W[46] + 19.0 * X[38] * W[3])) / 19.0;
-    W[823] = (X[1] * X[39] + X[3] * X[37] + X[5] * X[35] + X[7] * X[33] + X[9] * X[31] + X[11] * X[29]
+    W[819] = (X[2] * W[806] + 2.0 * X[4] * W[763] + 3.0 * X[6] * W[720] + 4.0 * X[8] * W[677]
+            + 5.0 * X[10] * W[634] + 6.0 * X[12] * W[591] + 7.0 * X[14] * W[548] + 8.0 * X[16] * W[505]
+            + 9.0 * X[18] * W[462] + 10.0 * X[20] * W[419] + 11.0 * X[22] * W[376] + 12.0 * X[24] * W[333]
+            + 13.0 * X[26] * W[290] + 14.0 * X[28] * W[247] + 15.0 * X[30] * W[204] + 16.0 * X[32] * W[161]
+            + 17.0 * X[34] * W[118] + 18.0 * X[36] * W[75] + 19.0 * X[38] * W[32]) / 19.0;
+    W[849] = -((X[2] * W[776] + 2.0 * X[4] * W[733] + 3.0 * X[6] * W[690] + 4.0 * X[8] * W[647]
+            + 5.0 * X[10] * W[604] + 6.0 * X[12] * W[561] + 7.0 * X[14] * W[518] + 8.0 * X[16] * W[475]
+            + 9.0 * X[18] * W[432] + 10.0 * X[20] * W[389] + 11.0 * X[22] * W[346] + 12.0 * X[24] * W[303]
+            + 13.0 * X[26] * W[260] + 14.0 * X[28] * W[217] + 15.0 * X[30] * W[174] + 16.0 * X[32] * W[131]
+            + 17.0 * X[34] * W[88] + 18.0 * X[36] * W[45] + 19.0 * X[38] * W[2])) / 19.0;
+    W[854] = (X[1] * X[39] + X[3] * X[37] + X[5] * X[35] + X[7] * X[33] + X[9] * X[31] + X[11] * X[29]
             + X[13] * X[27] + X[15] * X[25] + X[17] * X[23] + X[19] * X[21]) * 2.0;
-    W[825] = W[1] * W[820];
-    W[833] = W[3] * W[822] + W[46] * W[779] + W[89] * W[736] + W[132] * W[693] + W[175] * W[650]
-            + W[218] * W[607] + W[261] * W[564] + W[304] * W[521] + W[347] * W[478] + W[390] * W[435]
-            + W[433] * W[392] + W[476] * W[349] + W[519] * W[306] + W[562] * W[263] + W[605] * W[220]
-            + W[648] * W[177] + W[691] * W[134] + W[734] * W[91] + W[777] * W[48] + W[820] * W[5];
-    W[821] = W[50] * W[815] / 19.0;
-    W[858] = -W[50] * W[778] / 19.0;
-    W[834] = W[16] * W[823] + W[59] * W[780] + W[102] * W[737] + W[145] * W[694] + W[188] * W[651]
-            + W[231] * W[608] + W[274] * W[565] + W[317] * W[522] + W[360] * W[479] + W[403] * W[436]
-            + W[446] * W[393] + W[489] * W[350] + W[532] * W[307] + W[575] * W[264] + W[618] * W[221]
-            + W[661] * W[178] + W[704] * W[135] + W[747] * W[92] + W[790] * W[49] + W[833] * W[6];
-    W[835] = W[41] * W[822] + W[84] * W[779] + W[127] * W[736] + W[170] * W[693] + W[213] * W[650]
-            + W[256] * W[607] + W[299] * W[564] + W[342] * W[521] + W[385] * W[478] + W[428] * W[435]
-            + W[471] * W[392] + W[514] * W[349] + W[557] * W[306] + W[600] * W[263] + W[643] * W[220]
-            + W[686] * W[177] + W[729] * W[134] + W[772] * W[91] + W[815] * W[48] + W[858] * W[5];
-    W[836] = W[4] * W[822] + W[47] * W[779] + W[90] * W[736] + W[133] * W[693] + W[176] * W[650]
-            + W[219] * W[607] + W[262] * W[564] + W[305] * W[521] + W[348] * W[478] + W[391] * W[435]
-            + W[434] * W[392] + W[477] * W[349] + W[520] * W[306] + W[563] * W[263] + W[606] * W[220]
-            + W[649] * W[177] + W[692] * W[134] + W[735] * W[91] + W[778] * W[48] + W[821] * W[5];
-    W[842] = W[3] * W[858] + W[46] * W[815] + W[89] * W[772] + W[132] * W[729] + W[175] * W[686]
-            + W[218] * W[643] + W[261] * W[600] + W[304] * W[557] + W[347] * W[514] + W[390] * W[471]
-            + W[433] * W[428] + W[476] * W[385] + W[519] * W[342] + W[562] * W[299] + W[605] * W[256]
-            + W[648] * W[213] + W[691] * W[170] + W[734] * W[127] + W[777] * W[84] + W[820] * W[41];
-    W[846] = W[3] * W[821] + W[46] * W[778] + W[89] * W[735] + W[132] * W[692] + W[175] * W[649]
-            + W[218] * W[606] + W[261] * W[563] + W[304] * W[520] + W[347] * W[477] + W[390] * W[434]
-            + W[433] * W[391] + W[476] * W[348] + W[519] * W[305] + W[562] * W[262] + W[605] * W[219]
-            + W[648] * W[176] + W[691] * W[133] + W[734] * W[90] + W[777] * W[47] + W[820] * W[4];
-    W[827] = W[0] * W[846];
-    W[828] = W[0] * W[842];
-    W[829] = W[0] * W[836];
-    W[830] = W[0] * W[835];
+    W[856] = W[38] * W[819];
+    W[822] = W[2] * W[849] + W[45] * W[806] + W[88] * W[763] + W[131] * W[720] + W[174] * W[677]
+            + W[217] * W[634] + W[260] * W[591] + W[303] * W[548] + W[346] * W[505] + W[389] * W[462]
+            + W[432] * W[419] + W[475] * W[376] + W[518] * W[333] + W[561] * W[290] + W[604] * W[247]
+            + W[647] * W[204] + W[690] * W[161] + W[733] * W[118] + W[776] * W[75] + W[819] * W[32];
+    W[821] = W[73] * W[777] / 19.0;
+    W[820] = -W[73] * W[778] / 19.0;
 #ifdef EOMC_PACKS
-    EOMC_AT2(W + 837) = EOMC_AT2(W + 18) * X[39] + EOMC_AT2(W + 61) * X[37] + EOMC_AT2(W + 104) * X[35]
-            + EOMC_AT2(W + 147) * X[33] + EOMC_AT2(W + 190) * X[31] + EOMC_AT2(W + 233) * X[29]
-            + EOMC_AT2(W + 276) * X[27] + EOMC_AT2(W + 319) * X[25] + EOMC_AT2(W + 362) * X[23]
-            + EOMC_AT2(W + 405) * X[21] + EOMC_AT2(W + 448) * X[19] + EOMC_AT2(W + 491) * X[17]
-            + EOMC_AT2(W + 534) * X[15] + EOMC_AT2(W + 577) * X[13] + EOMC_AT2(W + 620) * X[11]
-            + EOMC_AT2(W + 663) * X[9] + EOMC_AT2(W + 706) * X[7] + EOMC_AT2(W + 749) * X[5] + EOMC_AT2(W + 792) * X[3]
-            + EOMC_AT2(W + 835) * X[1];
+    EOMC_AT2(W + 823) = EOMC_AT2(W + 3) * W[849] + EOMC_AT2(W + 46) * W[806] + EOMC_AT2(W + 89) * W[763]
+            + EOMC_AT2(W + 132) * W[720] + EOMC_AT2(W + 175) * W[677] + EOMC_AT2(W + 218) * W[634]
+            + EOMC_AT2(W + 261) * W[591] + EOMC_AT2(W + 304) * W[548] + EOMC_AT2(W + 347) * W[505]
+            + EOMC_AT2(W + 390) * W[462] + EOMC_AT2(W + 433) * W[419] + EOMC_AT2(W + 476) * W[376]
+            + EOMC_AT2(W + 519) * W[333] + EOMC_AT2(W + 562) * W[290] + EOMC_AT2(W + 605) * W[247]
+            + EOMC_AT2(W + 648) * W[204] + EOMC_AT2(W + 691) * W[161] + EOMC_AT2(W + 734) * W[118]
+            + EOMC_AT2(W + 777) * W[75] + EOMC_AT2(W + 820) * W[32];
+    EOMC_AT2(W + 825) = W[2] * EOMC_AT2(W + 820) + W[45] * EOMC_AT2(W + 777) + W[88] * EOMC_AT2(W + 734)
+            + W[131] * EOMC_AT2(W + 691) + W[174] * EOMC_AT2(W + 648) + W[217] * EOMC_AT2(W + 605)
+            + W[260] * EOMC_AT2(W + 562) + W[303] * EOMC_AT2(W + 519) + W[346] * EOMC_AT2(W + 476)
+            + W[389] * EOMC_AT2(W + 433) + W[432] * EOMC_AT2(W + 390) + W[475] * EOMC_AT2(W + 347)
+            + W[518] * EOMC_AT2(W + 304) + W[561] * EOMC_AT2(W + 261) + W[604] * EOMC_AT2(W + 218)
+            + W[647] * EOMC_AT2(W + 175) + W[690] * EOMC_AT2(W + 132) + W[733] * EOMC_AT2(W + 89)
+            + W[776] * EOMC_AT2(W + 46) + W[819] * EOMC_AT2(W + 3);
 #else
-    W[837] = W[18] * X[39] + W[61] * X[37] + W[104] * X[35] + W[147] * X[33] + W[190] * X[31]
-            + W[233] * X[29] + W[276] * X[27] + W[319] * X[25] + W[362] * X[23] + W[405] * X[21]
-            + W[448] * X[19] + W[491] * X[17] + W[534] * X[15] + W[577] * X[13] + W[620] * X[11]
-            + W[663] * X[9] + W[706] * X[7] + W[749] * X[5] + W[792] * X[3] + W[835] * X[1];
-    W[838] = W[19] * X[39] + W[62] * X[37] + W[105] * X[35] + W[148] * X[33] + W[191] * X[31]
-            + W[234] * X[29] + W[277] * X[27] + W[320] * X[25] + W[363] * X[23] + W[406] * X[21]
-            + W[449] * X[19] + W[492] * X[17] + W[535] * X[15] + W[578] * X[13] + W[621] * X[11]
-            + W[664] * X[9] + W[707] * X[7] + W[750] * X[5] + W[793] * X[3] + W[836] * X[1];
+    W[823] = W[3] * W[849] + W[46] * W[806] + W[89] * W[763] + W[132] * W[720] + W[175] * W[677]
+            + W[218] * W[634] + W[261] * W[591] + W[304] * W[548] + W[347] * W[505] + W[390] * W[462]
+            + W[433] * W[419] + W[476] * W[376] + W[519] * W[333] + W[562] * W[290] + W[605] * W[247]
+            + W[648] * W[204] + W[691] * W[161] + W[734] * W[118] + W[777] * W[75] + W[820] * W[32];
+    W[824] = W[4] * W[849] + W[47] * W[806] + W[90] * W[763] + W[133] * W[720] + W[176] * W[677]
+            + W[219] * W[634] + W[262] * W[591] + W[305] * W[548] + W[348] * W[505] + W[391] * W[462]
+            + W[434] * W[419] + W[477] * W[376] + W[520] * W[333] + W[563] * W[290] + W[606] * W[247]
+            + W[649] * W[204] + W[692] * W[161] + W[735] * W[118] + W[778] * W[75] + W[821] * W[32];
+    W[825] = W[2] * W[820] + W[45] * W[777] + W[88] * W[734] + W[131] * W[691] + W[174] * W[648]
+            + W[217] * W[605] + W[260] * W[562] + W[303] * W[519] + W[346] * W[476] + W[389] * W[433]
+            + W[432] * W[390] + W[475] * W[347] + W[518] * W[304] + W[561] * W[261] + W[604] * W[218]
+            + W[647] * W[175] + W[690] * W[132] + W[733] * W[89] + W[776] * W[46] + W[819] * W[3];
+    W[826] = W[2] * W[821] + W[45] * W[778] + W[88] * W[735] + W[131] * W[692] + W[174] * W[649]
+            + W[217] * W[606] + W[260] * W[563] + W[303] * W[520] + W[346] * W[477] + W[389] * W[434]
+            + W[432] * W[391] + W[475] * W[348] + W[518] * W[305] + W[561] * W[262] + W[604] * W[219]
+            + W[647] * W[176] + W[690] * W[133] + W[733] * W[90] + W[776] * W[47] + W[819] * W[4];
 #endif
-    W[839] = W[25] * X[39] + W[68] * X[37] + W[111] * X[35] + W[154] * X[33] + W[197] * X[31]
-            + W[240] * X[29] + W[283] * X[27] + W[326] * X[25] + W[369] * X[23] + W[412] * X[21]
-            + W[455] * X[19] + W[498] * X[17] + W[541] * X[15] + W[584] * X[13] + W[627] * X[11]
-            + W[670] * X[9] + W[713] * X[7] + W[756] * X[5] + W[799] * X[3] + W[842] * X[1];
-    W[840] = W[29] * X[39] + W[72] * X[37] + W[115] * X[35] + W[158] * X[33] + W[201] * X[31]
-            + W[244] * X[29] + W[287] * X[27] + W[330] * X[25] + W[373] * X[23] + W[416] * X[21]
-            + W[459] * X[19] + W[502] * X[17] + W[545] * X[15] + W[588] * X[13] + W[631] * X[11]
-            + W[674] * X[9] + W[717] * X[7] + W[760] * X[5] + W[803] * X[3] + W[846] * X[1];
-    W[847] = W[837] - W[827];
+    W[857] = W[5] * W[854] + W[48] * W[811] + W[91] * W[768] + W[134] * W[725] + W[177] * W[682]
+            + W[220] * W[639] + W[263] * W[596] + W[306] * W[553] + W[349] * W[510] + W[392] * W[467]
+            + W[435] * W[424] + W[478] * W[381] + W[521] * W[338] + W[564] * W[295] + W[607] * W[252]
+            + W[650] * W[209] + W[693] * W[166] + W[736] * W[123] + W[779] * W[80] + W[822] * W[37];
+#ifdef EOMC_PACKS
+    EOMC_AT4(W + 827) = W[0] * EOMC_AT4(W + 823);
+    EOMC_AT4(W + 831) = EOMC_AT4(W + 6) * X[39] + EOMC_AT4(W + 49) * X[37] + EOMC_AT4(W + 92) * X[35]
+            + EOMC_AT4(W + 135) * X[33] + EOMC_AT4(W + 178) * X[31] + EOMC_AT4(W + 221) * X[29]
+            + EOMC_AT4(W + 264) * X[27] + EOMC_AT4(W + 307) * X[25] + EOMC_AT4(W + 350) * X[23]
+            + EOMC_AT4(W + 393) * X[21] + EOMC_AT4(W + 436) * X[19] + EOMC_AT4(W + 479) * X[17]
+            + EOMC_AT4(W + 522) * X[15] + EOMC_AT4(W + 565) * X[13] + EOMC_AT4(W + 608) * X[11]
+            + EOMC_AT4(W + 651) * X[9] + EOMC_AT4(W + 694) * X[7] + EOMC_AT4(W + 737) * X[5] + EOMC_AT4(W + 780) * X[3]
+            + EOMC_AT4(W + 823) * X[1];
+#else
+    W[827] = W[0] * W[823];
+    W[828] = W[0] * W[824];
+    W[829] = W[0] * W[825];
+    W[830] = W[0] * W[826];
+    W[831] = W[6] * X[39] + W[49] * X[37] + W[92] * X[35] + W[135] * X[33] + W[178] * X[31] + W[221] * X[29]
+            + W[264] * X[27] + W[307] * X[25] + W[350] * X[23] + W[393] * X[21] + W[436] * X[19]
+            + W[479] * X[17] + W[522] * X[15] + W[565] * X[13] + W[608] * X[11] + W[651] * X[9]
+            + W[694] * X[7] + W[737] * X[5] + W[780] * X[3] + W[823] * X[1];
+    W[832] = W[7] * X[39] + W[50] * X[37] + W[93] * X[35] + W[136] * X[33] + W[179] * X[31] + W[222] * X[29]
+            + W[265] * X[27] + W[308] * X[25] + W[351] * X[23] + W[394] * X[21] + W[437] * X[19]
+            + W[480] * X[17] + W[523] * X[15] + W[566] * X[13] + W[609] * X[11] + W[652] * X[9]
+            + W[695] * X[7] + W[738] * X[5] + W[781] * X[3] + W[824] * X[1];
+    W[833] = W[8] * X[39] + W[51] * X[37] + W[94] * X[35] + W[137] * X[33] + W[180] * X[31] + W[223] * X[29]
+            + W[266] * X[27] + W[309] * X[25] + W[352] * X[23] + W[395] * X[21] + W[438] * X[19]
+            + W[481] * X[17] + W[524] * X[15] + W[567] * X[13] + W[610] * X[11] + W[653] * X[9]
+            + W[696] * X[7] + W[739] * X[5] + W[782] * X[3] + W[825] * X[1];
+    W[834] = W[9] * X[39] + W[52] * X[37] + W[95] * X[35] + W[138] * X[33] + W[181] * X[31] + W[224] * X[29]
+            + W[267] * X[27] + W[310] * X[25] + W[353] * X[23] + W[396] * X[21] + W[439] * X[19]
+            + W[482] * X[17] + W[525] * X[15] + W[568] * X[13] + W[611] * X[11] + W[654] * X[9]
+            + W[697] * X[7] + W[740] * X[5] + W[783] * X[3] + W[826] * X[1];
+#endif
+    W[835] = W[831] - W[830];
+    W[853] = W[827] - W[834];
+    W[851] = W[832] + W[829];
+    W[852] = W[828] + W[833];
+    W[837] = W[0] * W[851];
+    W[838] = W[0] * W[835];
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 840) = X[1] * EOMC_AT2(W + 852) + X[3] * EOMC_AT2(W + 809) + X[5] * EOMC_AT2(W + 766)
+            + X[7] * EOMC_AT2(W + 723) + X[9] * EOMC_AT2(W + 680) + X[11] * EOMC_AT2(W + 637)
+            + X[13] * EOMC_AT2(W + 594) + X[15] * EOMC_AT2(W + 551) + X[17] * EOMC_AT2(W + 508)
+            + X[19] * EOMC_AT2(W + 465) + X[21] * EOMC_AT2(W + 422) + X[23] * EOMC_AT2(W + 379)
+            + X[25] * EOMC_AT2(W + 336) + X[27] * EOMC_AT2(W + 293) + X[29] * EOMC_AT2(W + 250)
+            + X[31] * EOMC_AT2(W + 207) + X[33] * EOMC_AT2(W + 164) + X[35] * EOMC_AT2(W + 121)
+            + X[37] * EOMC_AT2(W + 78) + X[39] * EOMC_AT2(W + 35);
+    EOMC_AT2(W + 842) = EOMC_AT2(W + 840) + EOMC_AT2(W + 837);
+#else
+    W[840] = X[1] * W[852] + X[3] * W[809] + X[5] * W[766] + X[7] * W[723] + X[9] * W[680] + X[11] * W[637]
+            + X[13] * W[594] + X[15] * W[551] + X[17] * W[508] + X[19] * W[465] + X[21] * W[422]
+            + X[23] * W[379] + X[25] * W[336] + X[27] * W[293] + X[29] * W[250] + X[31] * W[207]
+            + X[33] * W[164] + X[35] * W[121] + X[37] * W[78] + X[39] * W[35];
+    W[841] = X[1] * W[853] + X[3] * W[810] + X[5] * W[767] + X[7] * W[724] + X[9] * W[681] + X[11] * W[638]
+            + X[13] * W[595] + X[15] * W[552] + X[17] * W[509] + X[19] * W[466] + X[21] * W[423]
+            + X[23] * W[380] + X[25] * W[337] + X[27] * W[294] + X[29] * W[251] + X[31] * W[208]
+            + X[33] * W[165] + X[35] * W[122] + X[37] * W[79] + X[39] * W[36];
+    W[842] = W[840] + W[837];
+    W[843] = W[841] + W[838];
+#endif
 }
 
 EOMC_PART EOMC_UNCHECKED void
@@ -1490,43 +1750,41 @@ spinning_hoop_taylor_run_2(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED void
 spinning_hoop_taylor_run_3(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED void
-spinning_hoop_taylor_run_4(eomc_real *restrict W, eomc_real *restrict X);
-EOMC_PART EOMC_UNCHECKED void
-spinning_hoop_taylor_run_6(eomc_real *restrict W, eomc_real *restrict X);
+spinning_hoop_taylor_run_5(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED void
 spinning_hoop_taylor_run_8(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED void
-spinning_hoop_taylor_run_10(eomc_real *restrict W, eomc_real *restrict X);
+spinning_hoop_taylor_run_9(eomc_real *restrict W, eomc_real *restrict X);
+EOMC_PART EOMC_UNCHECKED void
+spinning_hoop_taylor_run_12(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED void
 spinning_hoop_taylor_run_13(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED void
-spinning_hoop_taylor_run_14(eomc_real *restrict W, eomc_real *restrict X);
+spinning_hoop_taylor_run_16(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED void
 spinning_hoop_taylor_run_17(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED void
-spinning_hoop_taylor_run_18(eomc_real *restrict W, eomc_real *restrict X);
+spinning_hoop_taylor_run_20(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED void
 spinning_hoop_taylor_run_21(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED void
-spinning_hoop_taylor_run_22(eomc_real *restrict W, eomc_real *restrict X);
+spinning_hoop_taylor_run_24(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED void
 spinning_hoop_taylor_run_25(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED void
-spinning_hoop_taylor_run_26(eomc_real *restrict W, eomc_real *restrict X);
+spinning_hoop_taylor_run_28(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED void
 spinning_hoop_taylor_run_29(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED void
-spinning_hoop_taylor_run_30(eomc_real *restrict W, eomc_real *restrict X);
+spinning_hoop_taylor_run_32(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED void
 spinning_hoop_taylor_run_33(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED void
-spinning_hoop_taylor_run_34(eomc_real *restrict W, eomc_real *restrict X);
+spinning_hoop_taylor_run_36(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED void
 spinning_hoop_taylor_run_37(eomc_real *restrict W, eomc_real *restrict X);
 EOMC_PART EOMC_UNCHECKED void
-spinning_hoop_taylor_run_38(eomc_real *restrict W, eomc_real *restrict X);
-EOMC_PART EOMC_UNCHECKED void
-spinning_hoop_taylor_run_41(eomc_real *restrict W, eomc_real *restrict X);
+spinning_hoop_taylor_run_40(eomc_real *restrict W, eomc_real *restrict X);
 static int
 spinning_hoop_taylor_run(int K, eomc_real t0, const eomc_real *p,
     const eomc_real *u, eomc_real *T, eomc_real *X, eomc_tay_solve solve,
@@ -1553,104 +1811,103 @@ spinning_hoop_taylor_run(int K, eomc_real t0, const eomc_real *p,
     /* order 0 */
     spinning_hoop_taylor_run_1(t0, p, W, X);
     spinning_hoop_taylor_run_2(W, X);
-    spinning_hoop_taylor_run_3(W, X);
     if (K == 1)
         goto out;
     /* order 1 */
+    spinning_hoop_taylor_run_3(W, X);
     spinning_hoop_taylor_run_4(W, X);
-    spinning_hoop_taylor_run_5(W, X);
     if (K == 2)
         goto out;
     /* order 2 */
+    spinning_hoop_taylor_run_5(W, X);
     spinning_hoop_taylor_run_6(W, X);
-    spinning_hoop_taylor_run_7(W, X);
     if (K == 3)
         goto out;
     /* order 3 */
+    spinning_hoop_taylor_run_7(W, X);
     spinning_hoop_taylor_run_8(W, X);
-    spinning_hoop_taylor_run_9(W, X);
     if (K == 4)
         goto out;
     /* order 4 */
+    spinning_hoop_taylor_run_9(W, X);
     spinning_hoop_taylor_run_10(W, X);
-    spinning_hoop_taylor_run_11(W, X);
     if (K == 5)
         goto out;
     /* order 5 */
+    spinning_hoop_taylor_run_11(W, X);
     spinning_hoop_taylor_run_12(W, X);
-    spinning_hoop_taylor_run_13(W, X);
     if (K == 6)
         goto out;
     /* order 6 */
+    spinning_hoop_taylor_run_13(W, X);
     spinning_hoop_taylor_run_14(W, X);
-    spinning_hoop_taylor_run_15(W, X);
     if (K == 7)
         goto out;
     /* order 7 */
+    spinning_hoop_taylor_run_15(W, X);
     spinning_hoop_taylor_run_16(W, X);
-    spinning_hoop_taylor_run_17(W, X);
     if (K == 8)
         goto out;
     /* order 8 */
+    spinning_hoop_taylor_run_17(W, X);
     spinning_hoop_taylor_run_18(W, X);
-    spinning_hoop_taylor_run_19(W, X);
     if (K == 9)
         goto out;
     /* order 9 */
+    spinning_hoop_taylor_run_19(W, X);
     spinning_hoop_taylor_run_20(W, X);
-    spinning_hoop_taylor_run_21(W, X);
     if (K == 10)
         goto out;
     /* order 10 */
+    spinning_hoop_taylor_run_21(W, X);
     spinning_hoop_taylor_run_22(W, X);
-    spinning_hoop_taylor_run_23(W, X);
     if (K == 11)
         goto out;
     /* order 11 */
+    spinning_hoop_taylor_run_23(W, X);
     spinning_hoop_taylor_run_24(W, X);
-    spinning_hoop_taylor_run_25(W, X);
     if (K == 12)
         goto out;
     /* order 12 */
+    spinning_hoop_taylor_run_25(W, X);
     spinning_hoop_taylor_run_26(W, X);
-    spinning_hoop_taylor_run_27(W, X);
     if (K == 13)
         goto out;
     /* order 13 */
+    spinning_hoop_taylor_run_27(W, X);
     spinning_hoop_taylor_run_28(W, X);
-    spinning_hoop_taylor_run_29(W, X);
     if (K == 14)
         goto out;
     /* order 14 */
+    spinning_hoop_taylor_run_29(W, X);
     spinning_hoop_taylor_run_30(W, X);
-    spinning_hoop_taylor_run_31(W, X);
     if (K == 15)
         goto out;
     /* order 15 */
+    spinning_hoop_taylor_run_31(W, X);
     spinning_hoop_taylor_run_32(W, X);
-    spinning_hoop_taylor_run_33(W, X);
     if (K == 16)
         goto out;
     /* order 16 */
+    spinning_hoop_taylor_run_33(W, X);
     spinning_hoop_taylor_run_34(W, X);
-    spinning_hoop_taylor_run_35(W, X);
     if (K == 17)
         goto out;
     /* order 17 */
+    spinning_hoop_taylor_run_35(W, X);
     spinning_hoop_taylor_run_36(W, X);
-    spinning_hoop_taylor_run_37(W, X);
     if (K == 18)
         goto out;
     /* order 18 */
+    spinning_hoop_taylor_run_37(W, X);
     spinning_hoop_taylor_run_38(W, X);
-    spinning_hoop_taylor_run_39(W, X);
     if (K == 19)
         goto out;
     /* order 19 */
+    spinning_hoop_taylor_run_39(W, X);
     spinning_hoop_taylor_run_40(W, X);
-    spinning_hoop_taylor_run_41(W, X);
 out:
-    T[19 * S] = W[2]; /* M's diagonal, entry 0 */
+    T[19 * S] = W[1]; /* M's diagonal, entry 0 */
     return 0;
 }
 #endif
@@ -1768,874 +2025,1125 @@ const eomc_model_ext spinning_hoop_model_ext = {
 #define spinning_hoop_taylor_run_1 spinning_hoop_taylor_run_1_ext
 #define spinning_hoop_taylor_run_2 spinning_hoop_taylor_run_2_ext
 #define spinning_hoop_taylor_run_3 spinning_hoop_taylor_run_3_ext
-#define spinning_hoop_taylor_run_4 spinning_hoop_taylor_run_4_ext
-#define spinning_hoop_taylor_run_6 spinning_hoop_taylor_run_6_ext
+#define spinning_hoop_taylor_run_5 spinning_hoop_taylor_run_5_ext
 #define spinning_hoop_taylor_run_8 spinning_hoop_taylor_run_8_ext
-#define spinning_hoop_taylor_run_10 spinning_hoop_taylor_run_10_ext
+#define spinning_hoop_taylor_run_9 spinning_hoop_taylor_run_9_ext
+#define spinning_hoop_taylor_run_12 spinning_hoop_taylor_run_12_ext
 #define spinning_hoop_taylor_run_13 spinning_hoop_taylor_run_13_ext
-#define spinning_hoop_taylor_run_14 spinning_hoop_taylor_run_14_ext
+#define spinning_hoop_taylor_run_16 spinning_hoop_taylor_run_16_ext
 #define spinning_hoop_taylor_run_17 spinning_hoop_taylor_run_17_ext
-#define spinning_hoop_taylor_run_18 spinning_hoop_taylor_run_18_ext
+#define spinning_hoop_taylor_run_20 spinning_hoop_taylor_run_20_ext
 #define spinning_hoop_taylor_run_21 spinning_hoop_taylor_run_21_ext
-#define spinning_hoop_taylor_run_22 spinning_hoop_taylor_run_22_ext
+#define spinning_hoop_taylor_run_24 spinning_hoop_taylor_run_24_ext
 #define spinning_hoop_taylor_run_25 spinning_hoop_taylor_run_25_ext
-#define spinning_hoop_taylor_run_26 spinning_hoop_taylor_run_26_ext
+#define spinning_hoop_taylor_run_28 spinning_hoop_taylor_run_28_ext
 #define spinning_hoop_taylor_run_29 spinning_hoop_taylor_run_29_ext
-#define spinning_hoop_taylor_run_30 spinning_hoop_taylor_run_30_ext
+#define spinning_hoop_taylor_run_32 spinning_hoop_taylor_run_32_ext
 #define spinning_hoop_taylor_run_33 spinning_hoop_taylor_run_33_ext
-#define spinning_hoop_taylor_run_34 spinning_hoop_taylor_run_34_ext
+#define spinning_hoop_taylor_run_36 spinning_hoop_taylor_run_36_ext
 #define spinning_hoop_taylor_run_37 spinning_hoop_taylor_run_37_ext
-#define spinning_hoop_taylor_run_38 spinning_hoop_taylor_run_38_ext
-#define spinning_hoop_taylor_run_41 spinning_hoop_taylor_run_41_ext
+#define spinning_hoop_taylor_run_40 spinning_hoop_taylor_run_40_ext
 #endif
 #ifndef EOMC_EXTENDED
-/* Lines 0 .. 19 of taylor_run's order 0, in the fourth unit. */
+/* Lines 0 .. 27 of taylor_run's order 0, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED void
 spinning_hoop_taylor_run_1(eomc_real t0, const eomc_real *p,
     eomc_real *restrict W, eomc_real *restrict X)
 {
     W[0] = p[3];
-    W[39] = t0;
-    W[3] = sin(X[0]);
-    W[5] = cos(X[0]);
-    W[2] = p[4];
-    W[6] = X[1] * X[1];
-    W[1] = p[6];
-    W[7] = W[0] * W[39];
-    W[8] = W[1] * W[3];
-    W[16] = W[3] * W[5];
-    W[4] = sin(W[7]);
-    W[41] = cos(W[7]);
-    W[17] = W[16] * W[6];
-    W[18] = W[41] * W[5];
-    W[19] = W[4] * W[5];
-    W[25] = W[3] * W[41];
-    W[29] = W[3] * W[4];
-    W[10] = W[0] * W[29];
-    W[11] = W[0] * W[25];
-    W[12] = W[0] * W[19];
+    W[29] = t0;
+    W[2] = sin(X[0]);
+    W[32] = cos(X[0]);
+    W[1] = p[4];
+    W[37] = X[1] * X[1];
+    W[38] = p[6];
+    W[5] = W[2] * W[32];
+    W[30] = W[0] * W[29];
+    W[39] = W[38] * W[2];
+    W[4] = sin(W[30]);
+    W[3] = cos(W[30]);
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 6) = EOMC_AT2(W + 3) * W[32];
+    EOMC_AT2(W + 8) = W[2] * EOMC_AT2(W + 3);
+#else
+    W[6] = W[3] * W[32];
+    W[7] = W[4] * W[32];
+    W[8] = W[2] * W[3];
+    W[9] = W[2] * W[4];
+#endif
+    W[40] = W[5] * W[37];
+#ifdef EOMC_PACKS
+    EOMC_AT4(W + 10) = W[0] * EOMC_AT4(W + 6);
+    EOMC_AT4(W + 14) = EOMC_AT4(W + 6) * X[1];
+#else
+    W[10] = W[0] * W[6];
+    W[11] = W[0] * W[7];
+    W[12] = W[0] * W[8];
+    W[13] = W[0] * W[9];
+    W[14] = W[6] * X[1];
+    W[15] = W[7] * X[1];
+    W[16] = W[8] * X[1];
+    W[17] = W[9] * X[1];
+#endif
+    W[18] = W[14] - W[13];
+    W[36] = W[10] - W[17];
+    W[34] = W[15] + W[12];
 }
 
-/* Lines 20 .. 40 of taylor_run's order 0, in the fourth unit. */
+/* Lines 28 .. 42 of taylor_run's order 0, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED void
 spinning_hoop_taylor_run_2(eomc_real *restrict W, eomc_real *restrict X)
 {
-    W[13] = W[0] * W[18];
+    W[35] = W[11] + W[16];
+    W[20] = W[0] * W[34];
+    W[21] = W[0] * W[18];
 #ifdef EOMC_PACKS
-    EOMC_AT2(W + 20) = EOMC_AT2(W + 18) * X[1];
+    EOMC_AT2(W + 23) = X[1] * EOMC_AT2(W + 35);
+    EOMC_AT2(W + 25) = EOMC_AT2(W + 23) + EOMC_AT2(W + 20);
+    EOMC_AT2(W + 27) = EOMC_AT2(W + 6) * EOMC_AT2(W + 25);
 #else
-    W[20] = W[18] * X[1];
-    W[21] = W[19] * X[1];
+    W[23] = X[1] * W[35];
+    W[24] = X[1] * W[36];
+    W[25] = W[23] + W[20];
+    W[26] = W[24] + W[21];
+    W[27] = W[6] * W[25];
+    W[28] = W[7] * W[26];
 #endif
-    W[22] = W[25] * X[1];
-    W[23] = W[29] * X[1];
-    W[30] = W[20] - W[10];
-    W[31] = W[13] - W[23];
-    W[34] = W[21] + W[11];
-    W[38] = W[12] + W[22];
-    W[14] = W[0] * W[34];
-    W[15] = W[0] * W[30];
-    W[24] = X[1] * W[38];
-    W[26] = X[1] * W[31];
-    W[35] = W[24] + W[14];
-    W[36] = W[26] + W[15];
-    W[27] = W[19] * W[36];
-    W[28] = W[18] * W[35];
-    W[33] = W[17] + W[27];
-    W[32] = W[33] - W[28];
-    W[9] = W[2] * W[32];
-    W[37] = W[8] + W[9];
+    W[41] = W[40] + W[28];
+    W[19] = W[41] - W[27];
+    W[22] = W[1] * W[19];
+    W[42] = W[39] + W[22];
+    X[2] = X[1];
+    X[3] = -W[42] / W[1];
 }
 
-/* Lines 41 .. 42 of taylor_run's order 0, in the fourth unit. */
+/* Lines 0 .. 27 of taylor_run's order 1, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED void
 spinning_hoop_taylor_run_3(eomc_real *restrict W, eomc_real *restrict X)
 {
-    X[2] = X[1];
-    X[3] = -W[37] / W[2];
-}
-
-/* Lines 0 .. 20 of taylor_run's order 1, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED void
-spinning_hoop_taylor_run_4(eomc_real *restrict W, eomc_real *restrict X)
-{
-    W[82] = 1.0;
-    W[46] = X[2] * W[5];
-    W[48] = -X[2] * W[3];
-    W[49] = X[1] * X[3] * 2.0;
-    W[50] = W[0] * W[82];
-    W[51] = W[1] * W[46];
-    W[59] = W[3] * W[48] + W[46] * W[5];
-    W[47] = W[50] * W[41];
-    W[84] = -W[50] * W[4];
-    W[60] = W[16] * W[49] + W[59] * W[6];
-    W[61] = W[41] * W[48] + W[84] * W[5];
-    W[62] = W[4] * W[48] + W[47] * W[5];
-    W[68] = W[3] * W[84] + W[46] * W[41];
-    W[72] = W[3] * W[47] + W[46] * W[4];
-    W[53] = W[0] * W[72];
-    W[54] = W[0] * W[68];
-    W[55] = W[0] * W[62];
-    W[56] = W[0] * W[61];
+    W[72] = 1.0;
+    W[45] = X[2] * W[32];
+    W[75] = -X[2] * W[2];
+    W[80] = X[1] * X[3] * 2.0;
+    W[73] = W[0] * W[72];
+    W[82] = W[38] * W[45];
+    W[48] = W[2] * W[75] + W[45] * W[32];
+    W[47] = W[73] * W[3];
+    W[46] = -W[73] * W[4];
 #ifdef EOMC_PACKS
-    EOMC_AT2(W + 63) = EOMC_AT2(W + 18) * X[3] + EOMC_AT2(W + 61) * X[1];
+    EOMC_AT2(W + 49) = EOMC_AT2(W + 3) * W[75] + EOMC_AT2(W + 46) * W[32];
+    EOMC_AT2(W + 51) = W[2] * EOMC_AT2(W + 46) + W[45] * EOMC_AT2(W + 3);
 #else
-    W[63] = W[18] * X[3] + W[61] * X[1];
-    W[64] = W[19] * X[3] + W[62] * X[1];
+    W[49] = W[3] * W[75] + W[46] * W[32];
+    W[50] = W[4] * W[75] + W[47] * W[32];
+    W[51] = W[2] * W[46] + W[45] * W[3];
+    W[52] = W[2] * W[47] + W[45] * W[4];
 #endif
-    W[65] = W[25] * X[3] + W[68] * X[1];
-}
-
-/* Lines 0 .. 20 of taylor_run's order 2, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED void
-spinning_hoop_taylor_run_6(eomc_real *restrict W, eomc_real *restrict X)
-{
-    W[89] = (X[2] * W[48] + 2.0 * X[4] * W[5]) / 2.0;
-    W[91] = -((X[2] * W[46] + 2.0 * X[4] * W[3])) / 2.0;
-    W[92] = X[1] * X[5] * 2.0 + X[3] * X[3];
-    W[94] = W[1] * W[89];
-    W[102] = W[3] * W[91] + W[46] * W[48] + W[89] * W[5];
-    W[90] = W[50] * W[84] / 2.0;
-    W[127] = -W[50] * W[47] / 2.0;
-    W[103] = W[16] * W[92] + W[59] * W[49] + W[102] * W[6];
-    W[104] = W[41] * W[91] + W[84] * W[48] + W[127] * W[5];
-    W[105] = W[4] * W[91] + W[47] * W[48] + W[90] * W[5];
-    W[111] = W[3] * W[127] + W[46] * W[84] + W[89] * W[41];
-    W[115] = W[3] * W[90] + W[46] * W[47] + W[89] * W[4];
-    W[96] = W[0] * W[115];
-    W[97] = W[0] * W[111];
-    W[98] = W[0] * W[105];
-    W[99] = W[0] * W[104];
+    W[83] = W[5] * W[80] + W[48] * W[37];
 #ifdef EOMC_PACKS
-    EOMC_AT2(W + 106) = EOMC_AT2(W + 18) * X[5] + EOMC_AT2(W + 61) * X[3] + EOMC_AT2(W + 104) * X[1];
+    EOMC_AT4(W + 53) = W[0] * EOMC_AT4(W + 49);
+    EOMC_AT4(W + 57) = EOMC_AT4(W + 6) * X[3] + EOMC_AT4(W + 49) * X[1];
 #else
-    W[106] = W[18] * X[5] + W[61] * X[3] + W[104] * X[1];
-    W[107] = W[19] * X[5] + W[62] * X[3] + W[105] * X[1];
+    W[53] = W[0] * W[49];
+    W[54] = W[0] * W[50];
+    W[55] = W[0] * W[51];
+    W[56] = W[0] * W[52];
+    W[57] = W[6] * X[3] + W[49] * X[1];
+    W[58] = W[7] * X[3] + W[50] * X[1];
+    W[59] = W[8] * X[3] + W[51] * X[1];
+    W[60] = W[9] * X[3] + W[52] * X[1];
 #endif
-    W[108] = W[25] * X[5] + W[68] * X[3] + W[111] * X[1];
-    W[109] = W[29] * X[5] + W[72] * X[3] + W[115] * X[1];
-    W[116] = W[106] - W[96];
+    W[61] = W[57] - W[56];
+    W[79] = W[53] - W[60];
+    W[77] = W[58] + W[55];
+    W[78] = W[54] + W[59];
+    W[63] = W[0] * W[77];
+    W[64] = W[0] * W[61];
 }
 
-/* Lines 0 .. 20 of taylor_run's order 3, in the fourth unit. */
+/* Lines 0 .. 29 of taylor_run's order 2, in the fourth unit. */
+EOMC_PART EOMC_UNCHECKED void
+spinning_hoop_taylor_run_5(eomc_real *restrict W, eomc_real *restrict X)
+{
+    W[88] = (X[2] * W[75] + 2.0 * X[4] * W[32]) / 2.0;
+    W[118] = -((X[2] * W[45] + 2.0 * X[4] * W[2])) / 2.0;
+    W[123] = X[1] * X[5] * 2.0 + X[3] * X[3];
+    W[125] = W[38] * W[88];
+    W[91] = W[2] * W[118] + W[45] * W[75] + W[88] * W[32];
+    W[90] = W[73] * W[46] / 2.0;
+    W[89] = -W[73] * W[47] / 2.0;
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 92) = EOMC_AT2(W + 3) * W[118] + EOMC_AT2(W + 46) * W[75] + EOMC_AT2(W + 89) * W[32];
+    EOMC_AT2(W + 94) = W[2] * EOMC_AT2(W + 89) + W[45] * EOMC_AT2(W + 46) + W[88] * EOMC_AT2(W + 3);
+#else
+    W[92] = W[3] * W[118] + W[46] * W[75] + W[89] * W[32];
+    W[93] = W[4] * W[118] + W[47] * W[75] + W[90] * W[32];
+    W[94] = W[2] * W[89] + W[45] * W[46] + W[88] * W[3];
+    W[95] = W[2] * W[90] + W[45] * W[47] + W[88] * W[4];
+#endif
+    W[126] = W[5] * W[123] + W[48] * W[80] + W[91] * W[37];
+#ifdef EOMC_PACKS
+    EOMC_AT4(W + 96) = W[0] * EOMC_AT4(W + 92);
+    EOMC_AT4(W + 100) = EOMC_AT4(W + 6) * X[5] + EOMC_AT4(W + 49) * X[3] + EOMC_AT4(W + 92) * X[1];
+#else
+    W[96] = W[0] * W[92];
+    W[97] = W[0] * W[93];
+    W[98] = W[0] * W[94];
+    W[99] = W[0] * W[95];
+    W[100] = W[6] * X[5] + W[49] * X[3] + W[92] * X[1];
+    W[101] = W[7] * X[5] + W[50] * X[3] + W[93] * X[1];
+    W[102] = W[8] * X[5] + W[51] * X[3] + W[94] * X[1];
+    W[103] = W[9] * X[5] + W[52] * X[3] + W[95] * X[1];
+#endif
+    W[104] = W[100] - W[99];
+    W[122] = W[96] - W[103];
+    W[120] = W[101] + W[98];
+    W[121] = W[97] + W[102];
+    W[106] = W[0] * W[120];
+    W[107] = W[0] * W[104];
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 109) = X[1] * EOMC_AT2(W + 121) + X[3] * EOMC_AT2(W + 78) + X[5] * EOMC_AT2(W + 35);
+    EOMC_AT2(W + 111) = EOMC_AT2(W + 109) + EOMC_AT2(W + 106);
+#else
+    W[109] = X[1] * W[121] + X[3] * W[78] + X[5] * W[35];
+    W[110] = X[1] * W[122] + X[3] * W[79] + X[5] * W[36];
+    W[111] = W[109] + W[106];
+    W[112] = W[110] + W[107];
+#endif
+}
+
+/* Lines 30 .. 37 of taylor_run's order 3, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED void
 spinning_hoop_taylor_run_8(eomc_real *restrict W, eomc_real *restrict X)
 {
-    W[132] = (X[2] * W[91] + 2.0 * X[4] * W[48] + 3.0 * X[6] * W[5]) / 3.0;
-    W[134] = -((X[2] * W[89] + 2.0 * X[4] * W[46] + 3.0 * X[6] * W[3])) / 3.0;
-    W[135] = (X[1] * X[7] + X[3] * X[5]) * 2.0;
-    W[137] = W[1] * W[132];
-    W[145] = W[3] * W[134] + W[46] * W[91] + W[89] * W[48] + W[132] * W[5];
-    W[133] = W[50] * W[127] / 3.0;
-    W[170] = -W[50] * W[90] / 3.0;
-    W[146] = W[16] * W[135] + W[59] * W[92] + W[102] * W[49] + W[145] * W[6];
-    W[147] = W[41] * W[134] + W[84] * W[91] + W[127] * W[48] + W[170] * W[5];
-    W[148] = W[4] * W[134] + W[47] * W[91] + W[90] * W[48] + W[133] * W[5];
-    W[154] = W[3] * W[170] + W[46] * W[127] + W[89] * W[84] + W[132] * W[41];
-    W[158] = W[3] * W[133] + W[46] * W[90] + W[89] * W[47] + W[132] * W[4];
-    W[139] = W[0] * W[158];
-    W[140] = W[0] * W[154];
-    W[141] = W[0] * W[148];
-    W[142] = W[0] * W[147];
 #ifdef EOMC_PACKS
-    EOMC_AT2(W + 149) = EOMC_AT2(W + 18) * X[7] + EOMC_AT2(W + 61) * X[5] + EOMC_AT2(W + 104) * X[3]
-            + EOMC_AT2(W + 147) * X[1];
+    EOMC_AT2(W + 156) = EOMC_AT2(W + 6) * EOMC_AT2(W + 154) + EOMC_AT2(W + 49) * EOMC_AT2(W + 111)
+            + EOMC_AT2(W + 92) * EOMC_AT2(W + 68) + EOMC_AT2(W + 135) * EOMC_AT2(W + 25);
 #else
-    W[149] = W[18] * X[7] + W[61] * X[5] + W[104] * X[3] + W[147] * X[1];
-    W[150] = W[19] * X[7] + W[62] * X[5] + W[105] * X[3] + W[148] * X[1];
+    W[156] = W[6] * W[154] + W[49] * W[111] + W[92] * W[68] + W[135] * W[25];
+    W[157] = W[7] * W[155] + W[50] * W[112] + W[93] * W[69] + W[136] * W[26];
 #endif
-    W[151] = W[25] * X[7] + W[68] * X[5] + W[111] * X[3] + W[154] * X[1];
-    W[152] = W[29] * X[7] + W[72] * X[5] + W[115] * X[3] + W[158] * X[1];
-    W[159] = W[149] - W[139];
+    W[170] = W[169] + W[157];
+    W[148] = W[170] - W[156];
+    W[151] = W[1] * W[148];
+    W[171] = W[168] + W[151];
+    X[8] = X[7] / 4.0;
+    X[9] = -W[171] / W[1] / 4.0;
 }
 
-/* Lines 0 .. 20 of taylor_run's order 4, in the fourth unit. */
+/* Lines 0 .. 29 of taylor_run's order 4, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED void
-spinning_hoop_taylor_run_10(eomc_real *restrict W, eomc_real *restrict X)
+spinning_hoop_taylor_run_9(eomc_real *restrict W, eomc_real *restrict X)
 {
-    W[175] = (X[2] * W[134] + 2.0 * X[4] * W[91] + 3.0 * X[6] * W[48] + 4.0 * X[8] * W[5]) / 4.0;
-    W[177] = -((X[2] * W[132] + 2.0 * X[4] * W[89] + 3.0 * X[6] * W[46] + 4.0 * X[8] * W[3])) / 4.0;
-    W[178] = (X[1] * X[9] + X[3] * X[7]) * 2.0 + X[5] * X[5];
-    W[180] = W[1] * W[175];
-    W[188] = W[3] * W[177] + W[46] * W[134] + W[89] * W[91] + W[132] * W[48] + W[175] * W[5];
-    W[176] = W[50] * W[170] / 4.0;
-    W[213] = -W[50] * W[133] / 4.0;
-    W[189] = W[16] * W[178] + W[59] * W[135] + W[102] * W[92] + W[145] * W[49] + W[188] * W[6];
-    W[190] = W[41] * W[177] + W[84] * W[134] + W[127] * W[91] + W[170] * W[48] + W[213] * W[5];
-    W[191] = W[4] * W[177] + W[47] * W[134] + W[90] * W[91] + W[133] * W[48] + W[176] * W[5];
-    W[197] = W[3] * W[213] + W[46] * W[170] + W[89] * W[127] + W[132] * W[84] + W[175] * W[41];
-    W[201] = W[3] * W[176] + W[46] * W[133] + W[89] * W[90] + W[132] * W[47] + W[175] * W[4];
-    W[182] = W[0] * W[201];
-    W[183] = W[0] * W[197];
-    W[184] = W[0] * W[191];
-    W[185] = W[0] * W[190];
+    W[174] = (X[2] * W[161] + 2.0 * X[4] * W[118] + 3.0 * X[6] * W[75] + 4.0 * X[8] * W[32]) / 4.0;
+    W[204] = -((X[2] * W[131] + 2.0 * X[4] * W[88] + 3.0 * X[6] * W[45] + 4.0 * X[8] * W[2])) / 4.0;
+    W[209] = (X[1] * X[9] + X[3] * X[7]) * 2.0 + X[5] * X[5];
+    W[211] = W[38] * W[174];
+    W[177] = W[2] * W[204] + W[45] * W[161] + W[88] * W[118] + W[131] * W[75] + W[174] * W[32];
+    W[176] = W[73] * W[132] / 4.0;
+    W[175] = -W[73] * W[133] / 4.0;
 #ifdef EOMC_PACKS
-    EOMC_AT2(W + 192) = EOMC_AT2(W + 18) * X[9] + EOMC_AT2(W + 61) * X[7] + EOMC_AT2(W + 104) * X[5]
-            + EOMC_AT2(W + 147) * X[3] + EOMC_AT2(W + 190) * X[1];
+    EOMC_AT2(W + 178) = EOMC_AT2(W + 3) * W[204] + EOMC_AT2(W + 46) * W[161] + EOMC_AT2(W + 89) * W[118]
+            + EOMC_AT2(W + 132) * W[75] + EOMC_AT2(W + 175) * W[32];
+    EOMC_AT2(W + 180) = W[2] * EOMC_AT2(W + 175) + W[45] * EOMC_AT2(W + 132) + W[88] * EOMC_AT2(W + 89)
+            + W[131] * EOMC_AT2(W + 46) + W[174] * EOMC_AT2(W + 3);
 #else
-    W[192] = W[18] * X[9] + W[61] * X[7] + W[104] * X[5] + W[147] * X[3] + W[190] * X[1];
-    W[193] = W[19] * X[9] + W[62] * X[7] + W[105] * X[5] + W[148] * X[3] + W[191] * X[1];
+    W[178] = W[3] * W[204] + W[46] * W[161] + W[89] * W[118] + W[132] * W[75] + W[175] * W[32];
+    W[179] = W[4] * W[204] + W[47] * W[161] + W[90] * W[118] + W[133] * W[75] + W[176] * W[32];
+    W[180] = W[2] * W[175] + W[45] * W[132] + W[88] * W[89] + W[131] * W[46] + W[174] * W[3];
+    W[181] = W[2] * W[176] + W[45] * W[133] + W[88] * W[90] + W[131] * W[47] + W[174] * W[4];
 #endif
-    W[194] = W[25] * X[9] + W[68] * X[7] + W[111] * X[5] + W[154] * X[3] + W[197] * X[1];
-    W[195] = W[29] * X[9] + W[72] * X[7] + W[115] * X[5] + W[158] * X[3] + W[201] * X[1];
-    W[202] = W[192] - W[182];
+    W[212] = W[5] * W[209] + W[48] * W[166] + W[91] * W[123] + W[134] * W[80] + W[177] * W[37];
+#ifdef EOMC_PACKS
+    EOMC_AT4(W + 182) = W[0] * EOMC_AT4(W + 178);
+    EOMC_AT4(W + 186) = EOMC_AT4(W + 6) * X[9] + EOMC_AT4(W + 49) * X[7] + EOMC_AT4(W + 92) * X[5]
+            + EOMC_AT4(W + 135) * X[3] + EOMC_AT4(W + 178) * X[1];
+#else
+    W[182] = W[0] * W[178];
+    W[183] = W[0] * W[179];
+    W[184] = W[0] * W[180];
+    W[185] = W[0] * W[181];
+    W[186] = W[6] * X[9] + W[49] * X[7] + W[92] * X[5] + W[135] * X[3] + W[178] * X[1];
+    W[187] = W[7] * X[9] + W[50] * X[7] + W[93] * X[5] + W[136] * X[3] + W[179] * X[1];
+    W[188] = W[8] * X[9] + W[51] * X[7] + W[94] * X[5] + W[137] * X[3] + W[180] * X[1];
+    W[189] = W[9] * X[9] + W[52] * X[7] + W[95] * X[5] + W[138] * X[3] + W[181] * X[1];
+#endif
+    W[190] = W[186] - W[185];
+    W[208] = W[182] - W[189];
+    W[206] = W[187] + W[184];
+    W[207] = W[183] + W[188];
+    W[192] = W[0] * W[206];
+    W[193] = W[0] * W[190];
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 195) = X[1] * EOMC_AT2(W + 207) + X[3] * EOMC_AT2(W + 164) + X[5] * EOMC_AT2(W + 121)
+            + X[7] * EOMC_AT2(W + 78) + X[9] * EOMC_AT2(W + 35);
+    EOMC_AT2(W + 197) = EOMC_AT2(W + 195) + EOMC_AT2(W + 192);
+#else
+    W[195] = X[1] * W[207] + X[3] * W[164] + X[5] * W[121] + X[7] * W[78] + X[9] * W[35];
+    W[196] = X[1] * W[208] + X[3] * W[165] + X[5] * W[122] + X[7] * W[79] + X[9] * W[36];
+    W[197] = W[195] + W[192];
+    W[198] = W[196] + W[193];
+#endif
 }
 
-/* Lines 21 .. 37 of taylor_run's order 5, in the fourth unit. */
+/* Lines 30 .. 37 of taylor_run's order 5, in the fourth unit. */
+EOMC_PART EOMC_UNCHECKED void
+spinning_hoop_taylor_run_12(eomc_real *restrict W, eomc_real *restrict X)
+{
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 242) = EOMC_AT2(W + 6) * EOMC_AT2(W + 240) + EOMC_AT2(W + 49) * EOMC_AT2(W + 197)
+            + EOMC_AT2(W + 92) * EOMC_AT2(W + 154) + EOMC_AT2(W + 135) * EOMC_AT2(W + 111) + EOMC_AT2(W + 178) * EOMC_AT2(W + 68)
+            + EOMC_AT2(W + 221) * EOMC_AT2(W + 25);
+#else
+    W[242] = W[6] * W[240] + W[49] * W[197] + W[92] * W[154] + W[135] * W[111] + W[178] * W[68]
+            + W[221] * W[25];
+    W[243] = W[7] * W[241] + W[50] * W[198] + W[93] * W[155] + W[136] * W[112] + W[179] * W[69]
+            + W[222] * W[26];
+#endif
+    W[256] = W[255] + W[243];
+    W[234] = W[256] - W[242];
+    W[237] = W[1] * W[234];
+    W[257] = W[254] + W[237];
+    X[12] = X[11] / 6.0;
+    X[13] = -W[257] / W[1] / 6.0;
+}
+
+/* Lines 0 .. 29 of taylor_run's order 6, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED void
 spinning_hoop_taylor_run_13(eomc_real *restrict W, eomc_real *restrict X)
 {
-    W[246] = W[228] - W[238];
-    W[249] = W[236] + W[226];
-    W[253] = W[227] + W[237];
-    W[229] = W[0] * W[249];
-    W[230] = W[0] * W[245];
-    W[239] = X[1] * W[253] + X[3] * W[210] + X[5] * W[167] + X[7] * W[124] + X[9] * W[81] + X[11] * W[38];
-    W[241] = X[1] * W[246] + X[3] * W[203] + X[5] * W[160] + X[7] * W[117] + X[9] * W[74] + X[11] * W[31];
-    W[250] = W[239] + W[229];
-    W[251] = W[241] + W[230];
-    W[242] = W[19] * W[251] + W[62] * W[208] + W[105] * W[165] + W[148] * W[122] + W[191] * W[79]
-            + W[234] * W[36];
-    W[243] = W[18] * W[250] + W[61] * W[207] + W[104] * W[164] + W[147] * W[121] + W[190] * W[78]
-            + W[233] * W[35];
-    W[248] = W[232] + W[242];
-    W[247] = W[248] - W[243];
-    W[224] = W[2] * W[247];
-    W[252] = W[223] + W[224];
-    X[12] = X[11] / 6.0;
-    X[13] = -W[252] / W[2] / 6.0;
-}
-
-/* Lines 0 .. 20 of taylor_run's order 6, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED void
-spinning_hoop_taylor_run_14(eomc_real *restrict W, eomc_real *restrict X)
-{
-    W[261] = (X[2] * W[220] + 2.0 * X[4] * W[177] + 3.0 * X[6] * W[134] + 4.0 * X[8] * W[91] + 5.0 * X[10] * W[48]
-            + 6.0 * X[12] * W[5]) / 6.0;
-    W[263] = -((X[2] * W[218] + 2.0 * X[4] * W[175] + 3.0 * X[6] * W[132] + 4.0 * X[8] * W[89]
-            + 5.0 * X[10] * W[46] + 6.0 * X[12] * W[3])) / 6.0;
-    W[264] = (X[1] * X[13] + X[3] * X[11] + X[5] * X[9]) * 2.0 + X[7] * X[7];
-    W[266] = W[1] * W[261];
-    W[274] = W[3] * W[263] + W[46] * W[220] + W[89] * W[177] + W[132] * W[134] + W[175] * W[91]
-            + W[218] * W[48] + W[261] * W[5];
-    W[262] = W[50] * W[256] / 6.0;
-    W[299] = -W[50] * W[219] / 6.0;
-    W[275] = W[16] * W[264] + W[59] * W[221] + W[102] * W[178] + W[145] * W[135] + W[188] * W[92]
-            + W[231] * W[49] + W[274] * W[6];
-    W[276] = W[41] * W[263] + W[84] * W[220] + W[127] * W[177] + W[170] * W[134] + W[213] * W[91]
-            + W[256] * W[48] + W[299] * W[5];
-    W[277] = W[4] * W[263] + W[47] * W[220] + W[90] * W[177] + W[133] * W[134] + W[176] * W[91]
-            + W[219] * W[48] + W[262] * W[5];
-    W[283] = W[3] * W[299] + W[46] * W[256] + W[89] * W[213] + W[132] * W[170] + W[175] * W[127]
-            + W[218] * W[84] + W[261] * W[41];
-    W[287] = W[3] * W[262] + W[46] * W[219] + W[89] * W[176] + W[132] * W[133] + W[175] * W[90]
-            + W[218] * W[47] + W[261] * W[4];
-    W[268] = W[0] * W[287];
-    W[269] = W[0] * W[283];
-    W[270] = W[0] * W[277];
-    W[271] = W[0] * W[276];
+    W[260] = (X[2] * W[247] + 2.0 * X[4] * W[204] + 3.0 * X[6] * W[161] + 4.0 * X[8] * W[118]
+            + 5.0 * X[10] * W[75] + 6.0 * X[12] * W[32]) / 6.0;
+    W[290] = -((X[2] * W[217] + 2.0 * X[4] * W[174] + 3.0 * X[6] * W[131] + 4.0 * X[8] * W[88]
+            + 5.0 * X[10] * W[45] + 6.0 * X[12] * W[2])) / 6.0;
+    W[295] = (X[1] * X[13] + X[3] * X[11] + X[5] * X[9]) * 2.0 + X[7] * X[7];
+    W[297] = W[38] * W[260];
+    W[263] = W[2] * W[290] + W[45] * W[247] + W[88] * W[204] + W[131] * W[161] + W[174] * W[118]
+            + W[217] * W[75] + W[260] * W[32];
+    W[262] = W[73] * W[218] / 6.0;
+    W[261] = -W[73] * W[219] / 6.0;
 #ifdef EOMC_PACKS
-    EOMC_AT2(W + 278) = EOMC_AT2(W + 18) * X[13] + EOMC_AT2(W + 61) * X[11] + EOMC_AT2(W + 104) * X[9]
-            + EOMC_AT2(W + 147) * X[7] + EOMC_AT2(W + 190) * X[5] + EOMC_AT2(W + 233) * X[3] + EOMC_AT2(W + 276) * X[1];
+    EOMC_AT2(W + 264) = EOMC_AT2(W + 3) * W[290] + EOMC_AT2(W + 46) * W[247] + EOMC_AT2(W + 89) * W[204]
+            + EOMC_AT2(W + 132) * W[161] + EOMC_AT2(W + 175) * W[118] + EOMC_AT2(W + 218) * W[75]
+            + EOMC_AT2(W + 261) * W[32];
+    EOMC_AT2(W + 266) = W[2] * EOMC_AT2(W + 261) + W[45] * EOMC_AT2(W + 218) + W[88] * EOMC_AT2(W + 175)
+            + W[131] * EOMC_AT2(W + 132) + W[174] * EOMC_AT2(W + 89) + W[217] * EOMC_AT2(W + 46)
+            + W[260] * EOMC_AT2(W + 3);
 #else
-    W[278] = W[18] * X[13] + W[61] * X[11] + W[104] * X[9] + W[147] * X[7] + W[190] * X[5] + W[233] * X[3]
-            + W[276] * X[1];
-    W[279] = W[19] * X[13] + W[62] * X[11] + W[105] * X[9] + W[148] * X[7] + W[191] * X[5] + W[234] * X[3]
-            + W[277] * X[1];
+    W[264] = W[3] * W[290] + W[46] * W[247] + W[89] * W[204] + W[132] * W[161] + W[175] * W[118]
+            + W[218] * W[75] + W[261] * W[32];
+    W[265] = W[4] * W[290] + W[47] * W[247] + W[90] * W[204] + W[133] * W[161] + W[176] * W[118]
+            + W[219] * W[75] + W[262] * W[32];
+    W[266] = W[2] * W[261] + W[45] * W[218] + W[88] * W[175] + W[131] * W[132] + W[174] * W[89]
+            + W[217] * W[46] + W[260] * W[3];
+    W[267] = W[2] * W[262] + W[45] * W[219] + W[88] * W[176] + W[131] * W[133] + W[174] * W[90]
+            + W[217] * W[47] + W[260] * W[4];
 #endif
-    W[280] = W[25] * X[13] + W[68] * X[11] + W[111] * X[9] + W[154] * X[7] + W[197] * X[5] + W[240] * X[3]
-            + W[283] * X[1];
-    W[281] = W[29] * X[13] + W[72] * X[11] + W[115] * X[9] + W[158] * X[7] + W[201] * X[5] + W[244] * X[3]
-            + W[287] * X[1];
-    W[288] = W[278] - W[268];
+    W[298] = W[5] * W[295] + W[48] * W[252] + W[91] * W[209] + W[134] * W[166] + W[177] * W[123]
+            + W[220] * W[80] + W[263] * W[37];
+#ifdef EOMC_PACKS
+    EOMC_AT4(W + 268) = W[0] * EOMC_AT4(W + 264);
+    EOMC_AT4(W + 272) = EOMC_AT4(W + 6) * X[13] + EOMC_AT4(W + 49) * X[11] + EOMC_AT4(W + 92) * X[9]
+            + EOMC_AT4(W + 135) * X[7] + EOMC_AT4(W + 178) * X[5] + EOMC_AT4(W + 221) * X[3] + EOMC_AT4(W + 264) * X[1];
+#else
+    W[268] = W[0] * W[264];
+    W[269] = W[0] * W[265];
+    W[270] = W[0] * W[266];
+    W[271] = W[0] * W[267];
+    W[272] = W[6] * X[13] + W[49] * X[11] + W[92] * X[9] + W[135] * X[7] + W[178] * X[5] + W[221] * X[3]
+            + W[264] * X[1];
+    W[273] = W[7] * X[13] + W[50] * X[11] + W[93] * X[9] + W[136] * X[7] + W[179] * X[5] + W[222] * X[3]
+            + W[265] * X[1];
+    W[274] = W[8] * X[13] + W[51] * X[11] + W[94] * X[9] + W[137] * X[7] + W[180] * X[5] + W[223] * X[3]
+            + W[266] * X[1];
+    W[275] = W[9] * X[13] + W[52] * X[11] + W[95] * X[9] + W[138] * X[7] + W[181] * X[5] + W[224] * X[3]
+            + W[267] * X[1];
+#endif
+    W[276] = W[272] - W[271];
+    W[294] = W[268] - W[275];
+    W[292] = W[273] + W[270];
+    W[293] = W[269] + W[274];
+    W[278] = W[0] * W[292];
+    W[279] = W[0] * W[276];
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 281) = X[1] * EOMC_AT2(W + 293) + X[3] * EOMC_AT2(W + 250) + X[5] * EOMC_AT2(W + 207)
+            + X[7] * EOMC_AT2(W + 164) + X[9] * EOMC_AT2(W + 121) + X[11] * EOMC_AT2(W + 78) + X[13] * EOMC_AT2(W + 35);
+    EOMC_AT2(W + 283) = EOMC_AT2(W + 281) + EOMC_AT2(W + 278);
+#else
+    W[281] = X[1] * W[293] + X[3] * W[250] + X[5] * W[207] + X[7] * W[164] + X[9] * W[121] + X[11] * W[78]
+            + X[13] * W[35];
+    W[282] = X[1] * W[294] + X[3] * W[251] + X[5] * W[208] + X[7] * W[165] + X[9] * W[122] + X[11] * W[79]
+            + X[13] * W[36];
+    W[283] = W[281] + W[278];
+    W[284] = W[282] + W[279];
+#endif
 }
 
-/* Lines 21 .. 37 of taylor_run's order 7, in the fourth unit. */
+/* Lines 30 .. 37 of taylor_run's order 7, in the fourth unit. */
+EOMC_PART EOMC_UNCHECKED void
+spinning_hoop_taylor_run_16(eomc_real *restrict W, eomc_real *restrict X)
+{
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 328) = EOMC_AT2(W + 6) * EOMC_AT2(W + 326) + EOMC_AT2(W + 49) * EOMC_AT2(W + 283)
+            + EOMC_AT2(W + 92) * EOMC_AT2(W + 240) + EOMC_AT2(W + 135) * EOMC_AT2(W + 197) + EOMC_AT2(W + 178) * EOMC_AT2(W + 154)
+            + EOMC_AT2(W + 221) * EOMC_AT2(W + 111) + EOMC_AT2(W + 264) * EOMC_AT2(W + 68) + EOMC_AT2(W + 307) * EOMC_AT2(W + 25);
+#else
+    W[328] = W[6] * W[326] + W[49] * W[283] + W[92] * W[240] + W[135] * W[197] + W[178] * W[154]
+            + W[221] * W[111] + W[264] * W[68] + W[307] * W[25];
+    W[329] = W[7] * W[327] + W[50] * W[284] + W[93] * W[241] + W[136] * W[198] + W[179] * W[155]
+            + W[222] * W[112] + W[265] * W[69] + W[308] * W[26];
+#endif
+    W[342] = W[341] + W[329];
+    W[320] = W[342] - W[328];
+    W[323] = W[1] * W[320];
+    W[343] = W[340] + W[323];
+    X[16] = X[15] / 8.0;
+    X[17] = -W[343] / W[1] / 8.0;
+}
+
+/* Lines 0 .. 29 of taylor_run's order 8, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED void
 spinning_hoop_taylor_run_17(eomc_real *restrict W, eomc_real *restrict X)
 {
-    W[332] = W[314] - W[324];
-    W[335] = W[322] + W[312];
-    W[339] = W[313] + W[323];
-    W[315] = W[0] * W[335];
-    W[316] = W[0] * W[331];
-    W[325] = X[1] * W[339] + X[3] * W[296] + X[5] * W[253] + X[7] * W[210] + X[9] * W[167] + X[11] * W[124]
-            + X[13] * W[81] + X[15] * W[38];
-    W[327] = X[1] * W[332] + X[3] * W[289] + X[5] * W[246] + X[7] * W[203] + X[9] * W[160] + X[11] * W[117]
-            + X[13] * W[74] + X[15] * W[31];
-    W[336] = W[325] + W[315];
-    W[337] = W[327] + W[316];
-    W[328] = W[19] * W[337] + W[62] * W[294] + W[105] * W[251] + W[148] * W[208] + W[191] * W[165]
-            + W[234] * W[122] + W[277] * W[79] + W[320] * W[36];
-    W[329] = W[18] * W[336] + W[61] * W[293] + W[104] * W[250] + W[147] * W[207] + W[190] * W[164]
-            + W[233] * W[121] + W[276] * W[78] + W[319] * W[35];
-    W[334] = W[318] + W[328];
-    W[333] = W[334] - W[329];
-    W[310] = W[2] * W[333];
-    W[338] = W[309] + W[310];
-    X[16] = X[15] / 8.0;
-    X[17] = -W[338] / W[2] / 8.0;
-}
-
-/* Lines 0 .. 20 of taylor_run's order 8, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED void
-spinning_hoop_taylor_run_18(eomc_real *restrict W, eomc_real *restrict X)
-{
-    W[347] = (X[2] * W[306] + 2.0 * X[4] * W[263] + 3.0 * X[6] * W[220] + 4.0 * X[8] * W[177]
-            + 5.0 * X[10] * W[134] + 6.0 * X[12] * W[91] + 7.0 * X[14] * W[48] + 8.0 * X[16] * W[5]) / 8.0;
-    W[349] = -((X[2] * W[304] + 2.0 * X[4] * W[261] + 3.0 * X[6] * W[218] + 4.0 * X[8] * W[175]
-            + 5.0 * X[10] * W[132] + 6.0 * X[12] * W[89] + 7.0 * X[14] * W[46] + 8.0 * X[16] * W[3])) / 8.0;
-    W[350] = (X[1] * X[17] + X[3] * X[15] + X[5] * X[13] + X[7] * X[11]) * 2.0 + X[9] * X[9];
-    W[352] = W[1] * W[347];
-    W[360] = W[3] * W[349] + W[46] * W[306] + W[89] * W[263] + W[132] * W[220] + W[175] * W[177]
-            + W[218] * W[134] + W[261] * W[91] + W[304] * W[48] + W[347] * W[5];
-    W[348] = W[50] * W[342] / 8.0;
-    W[385] = -W[50] * W[305] / 8.0;
-    W[361] = W[16] * W[350] + W[59] * W[307] + W[102] * W[264] + W[145] * W[221] + W[188] * W[178]
-            + W[231] * W[135] + W[274] * W[92] + W[317] * W[49] + W[360] * W[6];
-    W[362] = W[41] * W[349] + W[84] * W[306] + W[127] * W[263] + W[170] * W[220] + W[213] * W[177]
-            + W[256] * W[134] + W[299] * W[91] + W[342] * W[48] + W[385] * W[5];
-    W[363] = W[4] * W[349] + W[47] * W[306] + W[90] * W[263] + W[133] * W[220] + W[176] * W[177]
-            + W[219] * W[134] + W[262] * W[91] + W[305] * W[48] + W[348] * W[5];
-    W[369] = W[3] * W[385] + W[46] * W[342] + W[89] * W[299] + W[132] * W[256] + W[175] * W[213]
-            + W[218] * W[170] + W[261] * W[127] + W[304] * W[84] + W[347] * W[41];
-    W[373] = W[3] * W[348] + W[46] * W[305] + W[89] * W[262] + W[132] * W[219] + W[175] * W[176]
-            + W[218] * W[133] + W[261] * W[90] + W[304] * W[47] + W[347] * W[4];
-    W[354] = W[0] * W[373];
-    W[355] = W[0] * W[369];
-    W[356] = W[0] * W[363];
-    W[357] = W[0] * W[362];
+    W[346] = (X[2] * W[333] + 2.0 * X[4] * W[290] + 3.0 * X[6] * W[247] + 4.0 * X[8] * W[204]
+            + 5.0 * X[10] * W[161] + 6.0 * X[12] * W[118] + 7.0 * X[14] * W[75] + 8.0 * X[16] * W[32]) / 8.0;
+    W[376] = -((X[2] * W[303] + 2.0 * X[4] * W[260] + 3.0 * X[6] * W[217] + 4.0 * X[8] * W[174]
+            + 5.0 * X[10] * W[131] + 6.0 * X[12] * W[88] + 7.0 * X[14] * W[45] + 8.0 * X[16] * W[2])) / 8.0;
+    W[381] = (X[1] * X[17] + X[3] * X[15] + X[5] * X[13] + X[7] * X[11]) * 2.0 + X[9] * X[9];
+    W[383] = W[38] * W[346];
+    W[349] = W[2] * W[376] + W[45] * W[333] + W[88] * W[290] + W[131] * W[247] + W[174] * W[204]
+            + W[217] * W[161] + W[260] * W[118] + W[303] * W[75] + W[346] * W[32];
+    W[348] = W[73] * W[304] / 8.0;
+    W[347] = -W[73] * W[305] / 8.0;
 #ifdef EOMC_PACKS
-    EOMC_AT2(W + 364) = EOMC_AT2(W + 18) * X[17] + EOMC_AT2(W + 61) * X[15] + EOMC_AT2(W + 104) * X[13]
-            + EOMC_AT2(W + 147) * X[11] + EOMC_AT2(W + 190) * X[9] + EOMC_AT2(W + 233) * X[7]
-            + EOMC_AT2(W + 276) * X[5] + EOMC_AT2(W + 319) * X[3] + EOMC_AT2(W + 362) * X[1];
+    EOMC_AT2(W + 350) = EOMC_AT2(W + 3) * W[376] + EOMC_AT2(W + 46) * W[333] + EOMC_AT2(W + 89) * W[290]
+            + EOMC_AT2(W + 132) * W[247] + EOMC_AT2(W + 175) * W[204] + EOMC_AT2(W + 218) * W[161]
+            + EOMC_AT2(W + 261) * W[118] + EOMC_AT2(W + 304) * W[75] + EOMC_AT2(W + 347) * W[32];
+    EOMC_AT2(W + 352) = W[2] * EOMC_AT2(W + 347) + W[45] * EOMC_AT2(W + 304) + W[88] * EOMC_AT2(W + 261)
+            + W[131] * EOMC_AT2(W + 218) + W[174] * EOMC_AT2(W + 175) + W[217] * EOMC_AT2(W + 132)
+            + W[260] * EOMC_AT2(W + 89) + W[303] * EOMC_AT2(W + 46) + W[346] * EOMC_AT2(W + 3);
 #else
-    W[364] = W[18] * X[17] + W[61] * X[15] + W[104] * X[13] + W[147] * X[11] + W[190] * X[9] + W[233] * X[7]
-            + W[276] * X[5] + W[319] * X[3] + W[362] * X[1];
-    W[365] = W[19] * X[17] + W[62] * X[15] + W[105] * X[13] + W[148] * X[11] + W[191] * X[9] + W[234] * X[7]
-            + W[277] * X[5] + W[320] * X[3] + W[363] * X[1];
+    W[350] = W[3] * W[376] + W[46] * W[333] + W[89] * W[290] + W[132] * W[247] + W[175] * W[204]
+            + W[218] * W[161] + W[261] * W[118] + W[304] * W[75] + W[347] * W[32];
+    W[351] = W[4] * W[376] + W[47] * W[333] + W[90] * W[290] + W[133] * W[247] + W[176] * W[204]
+            + W[219] * W[161] + W[262] * W[118] + W[305] * W[75] + W[348] * W[32];
+    W[352] = W[2] * W[347] + W[45] * W[304] + W[88] * W[261] + W[131] * W[218] + W[174] * W[175]
+            + W[217] * W[132] + W[260] * W[89] + W[303] * W[46] + W[346] * W[3];
+    W[353] = W[2] * W[348] + W[45] * W[305] + W[88] * W[262] + W[131] * W[219] + W[174] * W[176]
+            + W[217] * W[133] + W[260] * W[90] + W[303] * W[47] + W[346] * W[4];
 #endif
-    W[366] = W[25] * X[17] + W[68] * X[15] + W[111] * X[13] + W[154] * X[11] + W[197] * X[9] + W[240] * X[7]
-            + W[283] * X[5] + W[326] * X[3] + W[369] * X[1];
-    W[367] = W[29] * X[17] + W[72] * X[15] + W[115] * X[13] + W[158] * X[11] + W[201] * X[9] + W[244] * X[7]
-            + W[287] * X[5] + W[330] * X[3] + W[373] * X[1];
-    W[374] = W[364] - W[354];
+    W[384] = W[5] * W[381] + W[48] * W[338] + W[91] * W[295] + W[134] * W[252] + W[177] * W[209]
+            + W[220] * W[166] + W[263] * W[123] + W[306] * W[80] + W[349] * W[37];
+#ifdef EOMC_PACKS
+    EOMC_AT4(W + 354) = W[0] * EOMC_AT4(W + 350);
+    EOMC_AT4(W + 358) = EOMC_AT4(W + 6) * X[17] + EOMC_AT4(W + 49) * X[15] + EOMC_AT4(W + 92) * X[13]
+            + EOMC_AT4(W + 135) * X[11] + EOMC_AT4(W + 178) * X[9] + EOMC_AT4(W + 221) * X[7]
+            + EOMC_AT4(W + 264) * X[5] + EOMC_AT4(W + 307) * X[3] + EOMC_AT4(W + 350) * X[1];
+#else
+    W[354] = W[0] * W[350];
+    W[355] = W[0] * W[351];
+    W[356] = W[0] * W[352];
+    W[357] = W[0] * W[353];
+    W[358] = W[6] * X[17] + W[49] * X[15] + W[92] * X[13] + W[135] * X[11] + W[178] * X[9] + W[221] * X[7]
+            + W[264] * X[5] + W[307] * X[3] + W[350] * X[1];
+    W[359] = W[7] * X[17] + W[50] * X[15] + W[93] * X[13] + W[136] * X[11] + W[179] * X[9] + W[222] * X[7]
+            + W[265] * X[5] + W[308] * X[3] + W[351] * X[1];
+    W[360] = W[8] * X[17] + W[51] * X[15] + W[94] * X[13] + W[137] * X[11] + W[180] * X[9] + W[223] * X[7]
+            + W[266] * X[5] + W[309] * X[3] + W[352] * X[1];
+    W[361] = W[9] * X[17] + W[52] * X[15] + W[95] * X[13] + W[138] * X[11] + W[181] * X[9] + W[224] * X[7]
+            + W[267] * X[5] + W[310] * X[3] + W[353] * X[1];
+#endif
+    W[362] = W[358] - W[357];
+    W[380] = W[354] - W[361];
+    W[378] = W[359] + W[356];
+    W[379] = W[355] + W[360];
+    W[364] = W[0] * W[378];
+    W[365] = W[0] * W[362];
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 367) = X[1] * EOMC_AT2(W + 379) + X[3] * EOMC_AT2(W + 336) + X[5] * EOMC_AT2(W + 293)
+            + X[7] * EOMC_AT2(W + 250) + X[9] * EOMC_AT2(W + 207) + X[11] * EOMC_AT2(W + 164)
+            + X[13] * EOMC_AT2(W + 121) + X[15] * EOMC_AT2(W + 78) + X[17] * EOMC_AT2(W + 35);
+    EOMC_AT2(W + 369) = EOMC_AT2(W + 367) + EOMC_AT2(W + 364);
+#else
+    W[367] = X[1] * W[379] + X[3] * W[336] + X[5] * W[293] + X[7] * W[250] + X[9] * W[207] + X[11] * W[164]
+            + X[13] * W[121] + X[15] * W[78] + X[17] * W[35];
+    W[368] = X[1] * W[380] + X[3] * W[337] + X[5] * W[294] + X[7] * W[251] + X[9] * W[208] + X[11] * W[165]
+            + X[13] * W[122] + X[15] * W[79] + X[17] * W[36];
+    W[369] = W[367] + W[364];
+    W[370] = W[368] + W[365];
+#endif
 }
 
-/* Lines 21 .. 37 of taylor_run's order 9, in the fourth unit. */
+/* Lines 30 .. 37 of taylor_run's order 9, in the fourth unit. */
+EOMC_PART EOMC_UNCHECKED void
+spinning_hoop_taylor_run_20(eomc_real *restrict W, eomc_real *restrict X)
+{
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 414) = EOMC_AT2(W + 6) * EOMC_AT2(W + 412) + EOMC_AT2(W + 49) * EOMC_AT2(W + 369)
+            + EOMC_AT2(W + 92) * EOMC_AT2(W + 326) + EOMC_AT2(W + 135) * EOMC_AT2(W + 283) + EOMC_AT2(W + 178) * EOMC_AT2(W + 240)
+            + EOMC_AT2(W + 221) * EOMC_AT2(W + 197) + EOMC_AT2(W + 264) * EOMC_AT2(W + 154) + EOMC_AT2(W + 307) * EOMC_AT2(W + 111)
+            + EOMC_AT2(W + 350) * EOMC_AT2(W + 68) + EOMC_AT2(W + 393) * EOMC_AT2(W + 25);
+#else
+    W[414] = W[6] * W[412] + W[49] * W[369] + W[92] * W[326] + W[135] * W[283] + W[178] * W[240]
+            + W[221] * W[197] + W[264] * W[154] + W[307] * W[111] + W[350] * W[68] + W[393] * W[25];
+    W[415] = W[7] * W[413] + W[50] * W[370] + W[93] * W[327] + W[136] * W[284] + W[179] * W[241]
+            + W[222] * W[198] + W[265] * W[155] + W[308] * W[112] + W[351] * W[69] + W[394] * W[26];
+#endif
+    W[428] = W[427] + W[415];
+    W[406] = W[428] - W[414];
+    W[409] = W[1] * W[406];
+    W[429] = W[426] + W[409];
+    X[20] = X[19] / 10.0;
+    X[21] = -W[429] / W[1] / 10.0;
+}
+
+/* Lines 0 .. 29 of taylor_run's order 10, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED void
 spinning_hoop_taylor_run_21(eomc_real *restrict W, eomc_real *restrict X)
 {
-    W[418] = W[400] - W[410];
-    W[421] = W[408] + W[398];
-    W[425] = W[399] + W[409];
-    W[401] = W[0] * W[421];
-    W[402] = W[0] * W[417];
-    W[411] = X[1] * W[425] + X[3] * W[382] + X[5] * W[339] + X[7] * W[296] + X[9] * W[253] + X[11] * W[210]
-            + X[13] * W[167] + X[15] * W[124] + X[17] * W[81] + X[19] * W[38];
-    W[413] = X[1] * W[418] + X[3] * W[375] + X[5] * W[332] + X[7] * W[289] + X[9] * W[246] + X[11] * W[203]
-            + X[13] * W[160] + X[15] * W[117] + X[17] * W[74] + X[19] * W[31];
-    W[422] = W[411] + W[401];
-    W[423] = W[413] + W[402];
-    W[414] = W[19] * W[423] + W[62] * W[380] + W[105] * W[337] + W[148] * W[294] + W[191] * W[251]
-            + W[234] * W[208] + W[277] * W[165] + W[320] * W[122] + W[363] * W[79] + W[406] * W[36];
-    W[415] = W[18] * W[422] + W[61] * W[379] + W[104] * W[336] + W[147] * W[293] + W[190] * W[250]
-            + W[233] * W[207] + W[276] * W[164] + W[319] * W[121] + W[362] * W[78] + W[405] * W[35];
-    W[420] = W[404] + W[414];
-    W[419] = W[420] - W[415];
-    W[396] = W[2] * W[419];
-    W[424] = W[395] + W[396];
-    X[20] = X[19] / 10.0;
-    X[21] = -W[424] / W[2] / 10.0;
-}
-
-/* Lines 0 .. 20 of taylor_run's order 10, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED void
-spinning_hoop_taylor_run_22(eomc_real *restrict W, eomc_real *restrict X)
-{
-    W[433] = (X[2] * W[392] + 2.0 * X[4] * W[349] + 3.0 * X[6] * W[306] + 4.0 * X[8] * W[263]
-            + 5.0 * X[10] * W[220] + 6.0 * X[12] * W[177] + 7.0 * X[14] * W[134] + 8.0 * X[16] * W[91]
-            + 9.0 * X[18] * W[48] + 10.0 * X[20] * W[5]) / 10.0;
-    W[435] = -((X[2] * W[390] + 2.0 * X[4] * W[347] + 3.0 * X[6] * W[304] + 4.0 * X[8] * W[261]
-            + 5.0 * X[10] * W[218] + 6.0 * X[12] * W[175] + 7.0 * X[14] * W[132] + 8.0 * X[16] * W[89]
-            + 9.0 * X[18] * W[46] + 10.0 * X[20] * W[3])) / 10.0;
-    W[436] = (X[1] * X[21] + X[3] * X[19] + X[5] * X[17] + X[7] * X[15] + X[9] * X[13]) * 2.0
+    W[432] = (X[2] * W[419] + 2.0 * X[4] * W[376] + 3.0 * X[6] * W[333] + 4.0 * X[8] * W[290]
+            + 5.0 * X[10] * W[247] + 6.0 * X[12] * W[204] + 7.0 * X[14] * W[161] + 8.0 * X[16] * W[118]
+            + 9.0 * X[18] * W[75] + 10.0 * X[20] * W[32]) / 10.0;
+    W[462] = -((X[2] * W[389] + 2.0 * X[4] * W[346] + 3.0 * X[6] * W[303] + 4.0 * X[8] * W[260]
+            + 5.0 * X[10] * W[217] + 6.0 * X[12] * W[174] + 7.0 * X[14] * W[131] + 8.0 * X[16] * W[88]
+            + 9.0 * X[18] * W[45] + 10.0 * X[20] * W[2])) / 10.0;
+    W[467] = (X[1] * X[21] + X[3] * X[19] + X[5] * X[17] + X[7] * X[15] + X[9] * X[13]) * 2.0
             + X[11] * X[11];
-    W[438] = W[1] * W[433];
-    W[446] = W[3] * W[435] + W[46] * W[392] + W[89] * W[349] + W[132] * W[306] + W[175] * W[263]
-            + W[218] * W[220] + W[261] * W[177] + W[304] * W[134] + W[347] * W[91] + W[390] * W[48]
-            + W[433] * W[5];
-    W[434] = W[50] * W[428] / 10.0;
-    W[471] = -W[50] * W[391] / 10.0;
-    W[447] = W[16] * W[436] + W[59] * W[393] + W[102] * W[350] + W[145] * W[307] + W[188] * W[264]
-            + W[231] * W[221] + W[274] * W[178] + W[317] * W[135] + W[360] * W[92] + W[403] * W[49]
-            + W[446] * W[6];
-    W[448] = W[41] * W[435] + W[84] * W[392] + W[127] * W[349] + W[170] * W[306] + W[213] * W[263]
-            + W[256] * W[220] + W[299] * W[177] + W[342] * W[134] + W[385] * W[91] + W[428] * W[48]
-            + W[471] * W[5];
-    W[449] = W[4] * W[435] + W[47] * W[392] + W[90] * W[349] + W[133] * W[306] + W[176] * W[263]
-            + W[219] * W[220] + W[262] * W[177] + W[305] * W[134] + W[348] * W[91] + W[391] * W[48]
-            + W[434] * W[5];
-    W[455] = W[3] * W[471] + W[46] * W[428] + W[89] * W[385] + W[132] * W[342] + W[175] * W[299]
-            + W[218] * W[256] + W[261] * W[213] + W[304] * W[170] + W[347] * W[127] + W[390] * W[84]
-            + W[433] * W[41];
-    W[459] = W[3] * W[434] + W[46] * W[391] + W[89] * W[348] + W[132] * W[305] + W[175] * W[262]
-            + W[218] * W[219] + W[261] * W[176] + W[304] * W[133] + W[347] * W[90] + W[390] * W[47]
-            + W[433] * W[4];
-    W[440] = W[0] * W[459];
-    W[441] = W[0] * W[455];
-    W[442] = W[0] * W[449];
-    W[443] = W[0] * W[448];
+    W[469] = W[38] * W[432];
+    W[435] = W[2] * W[462] + W[45] * W[419] + W[88] * W[376] + W[131] * W[333] + W[174] * W[290]
+            + W[217] * W[247] + W[260] * W[204] + W[303] * W[161] + W[346] * W[118] + W[389] * W[75]
+            + W[432] * W[32];
+    W[434] = W[73] * W[390] / 10.0;
+    W[433] = -W[73] * W[391] / 10.0;
 #ifdef EOMC_PACKS
-    EOMC_AT2(W + 450) = EOMC_AT2(W + 18) * X[21] + EOMC_AT2(W + 61) * X[19] + EOMC_AT2(W + 104) * X[17]
-            + EOMC_AT2(W + 147) * X[15] + EOMC_AT2(W + 190) * X[13] + EOMC_AT2(W + 233) * X[11]
-            + EOMC_AT2(W + 276) * X[9] + EOMC_AT2(W + 319) * X[7] + EOMC_AT2(W + 362) * X[5] + EOMC_AT2(W + 405) * X[3]
-            + EOMC_AT2(W + 448) * X[1];
+    EOMC_AT2(W + 436) = EOMC_AT2(W + 3) * W[462] + EOMC_AT2(W + 46) * W[419] + EOMC_AT2(W + 89) * W[376]
+            + EOMC_AT2(W + 132) * W[333] + EOMC_AT2(W + 175) * W[290] + EOMC_AT2(W + 218) * W[247]
+            + EOMC_AT2(W + 261) * W[204] + EOMC_AT2(W + 304) * W[161] + EOMC_AT2(W + 347) * W[118]
+            + EOMC_AT2(W + 390) * W[75] + EOMC_AT2(W + 433) * W[32];
+    EOMC_AT2(W + 438) = W[2] * EOMC_AT2(W + 433) + W[45] * EOMC_AT2(W + 390) + W[88] * EOMC_AT2(W + 347)
+            + W[131] * EOMC_AT2(W + 304) + W[174] * EOMC_AT2(W + 261) + W[217] * EOMC_AT2(W + 218)
+            + W[260] * EOMC_AT2(W + 175) + W[303] * EOMC_AT2(W + 132) + W[346] * EOMC_AT2(W + 89)
+            + W[389] * EOMC_AT2(W + 46) + W[432] * EOMC_AT2(W + 3);
 #else
-    W[450] = W[18] * X[21] + W[61] * X[19] + W[104] * X[17] + W[147] * X[15] + W[190] * X[13]
-            + W[233] * X[11] + W[276] * X[9] + W[319] * X[7] + W[362] * X[5] + W[405] * X[3] + W[448] * X[1];
-    W[451] = W[19] * X[21] + W[62] * X[19] + W[105] * X[17] + W[148] * X[15] + W[191] * X[13]
-            + W[234] * X[11] + W[277] * X[9] + W[320] * X[7] + W[363] * X[5] + W[406] * X[3] + W[449] * X[1];
+    W[436] = W[3] * W[462] + W[46] * W[419] + W[89] * W[376] + W[132] * W[333] + W[175] * W[290]
+            + W[218] * W[247] + W[261] * W[204] + W[304] * W[161] + W[347] * W[118] + W[390] * W[75]
+            + W[433] * W[32];
+    W[437] = W[4] * W[462] + W[47] * W[419] + W[90] * W[376] + W[133] * W[333] + W[176] * W[290]
+            + W[219] * W[247] + W[262] * W[204] + W[305] * W[161] + W[348] * W[118] + W[391] * W[75]
+            + W[434] * W[32];
+    W[438] = W[2] * W[433] + W[45] * W[390] + W[88] * W[347] + W[131] * W[304] + W[174] * W[261]
+            + W[217] * W[218] + W[260] * W[175] + W[303] * W[132] + W[346] * W[89] + W[389] * W[46]
+            + W[432] * W[3];
+    W[439] = W[2] * W[434] + W[45] * W[391] + W[88] * W[348] + W[131] * W[305] + W[174] * W[262]
+            + W[217] * W[219] + W[260] * W[176] + W[303] * W[133] + W[346] * W[90] + W[389] * W[47]
+            + W[432] * W[4];
 #endif
-    W[452] = W[25] * X[21] + W[68] * X[19] + W[111] * X[17] + W[154] * X[15] + W[197] * X[13]
-            + W[240] * X[11] + W[283] * X[9] + W[326] * X[7] + W[369] * X[5] + W[412] * X[3] + W[455] * X[1];
-    W[453] = W[29] * X[21] + W[72] * X[19] + W[115] * X[17] + W[158] * X[15] + W[201] * X[13]
-            + W[244] * X[11] + W[287] * X[9] + W[330] * X[7] + W[373] * X[5] + W[416] * X[3] + W[459] * X[1];
-    W[460] = W[450] - W[440];
+    W[470] = W[5] * W[467] + W[48] * W[424] + W[91] * W[381] + W[134] * W[338] + W[177] * W[295]
+            + W[220] * W[252] + W[263] * W[209] + W[306] * W[166] + W[349] * W[123] + W[392] * W[80]
+            + W[435] * W[37];
+#ifdef EOMC_PACKS
+    EOMC_AT4(W + 440) = W[0] * EOMC_AT4(W + 436);
+    EOMC_AT4(W + 444) = EOMC_AT4(W + 6) * X[21] + EOMC_AT4(W + 49) * X[19] + EOMC_AT4(W + 92) * X[17]
+            + EOMC_AT4(W + 135) * X[15] + EOMC_AT4(W + 178) * X[13] + EOMC_AT4(W + 221) * X[11]
+            + EOMC_AT4(W + 264) * X[9] + EOMC_AT4(W + 307) * X[7] + EOMC_AT4(W + 350) * X[5] + EOMC_AT4(W + 393) * X[3]
+            + EOMC_AT4(W + 436) * X[1];
+#else
+    W[440] = W[0] * W[436];
+    W[441] = W[0] * W[437];
+    W[442] = W[0] * W[438];
+    W[443] = W[0] * W[439];
+    W[444] = W[6] * X[21] + W[49] * X[19] + W[92] * X[17] + W[135] * X[15] + W[178] * X[13] + W[221] * X[11]
+            + W[264] * X[9] + W[307] * X[7] + W[350] * X[5] + W[393] * X[3] + W[436] * X[1];
+    W[445] = W[7] * X[21] + W[50] * X[19] + W[93] * X[17] + W[136] * X[15] + W[179] * X[13] + W[222] * X[11]
+            + W[265] * X[9] + W[308] * X[7] + W[351] * X[5] + W[394] * X[3] + W[437] * X[1];
+    W[446] = W[8] * X[21] + W[51] * X[19] + W[94] * X[17] + W[137] * X[15] + W[180] * X[13] + W[223] * X[11]
+            + W[266] * X[9] + W[309] * X[7] + W[352] * X[5] + W[395] * X[3] + W[438] * X[1];
+    W[447] = W[9] * X[21] + W[52] * X[19] + W[95] * X[17] + W[138] * X[15] + W[181] * X[13] + W[224] * X[11]
+            + W[267] * X[9] + W[310] * X[7] + W[353] * X[5] + W[396] * X[3] + W[439] * X[1];
+#endif
+    W[448] = W[444] - W[443];
+    W[466] = W[440] - W[447];
+    W[464] = W[445] + W[442];
+    W[465] = W[441] + W[446];
+    W[450] = W[0] * W[464];
+    W[451] = W[0] * W[448];
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 453) = X[1] * EOMC_AT2(W + 465) + X[3] * EOMC_AT2(W + 422) + X[5] * EOMC_AT2(W + 379)
+            + X[7] * EOMC_AT2(W + 336) + X[9] * EOMC_AT2(W + 293) + X[11] * EOMC_AT2(W + 250)
+            + X[13] * EOMC_AT2(W + 207) + X[15] * EOMC_AT2(W + 164) + X[17] * EOMC_AT2(W + 121)
+            + X[19] * EOMC_AT2(W + 78) + X[21] * EOMC_AT2(W + 35);
+    EOMC_AT2(W + 455) = EOMC_AT2(W + 453) + EOMC_AT2(W + 450);
+#else
+    W[453] = X[1] * W[465] + X[3] * W[422] + X[5] * W[379] + X[7] * W[336] + X[9] * W[293] + X[11] * W[250]
+            + X[13] * W[207] + X[15] * W[164] + X[17] * W[121] + X[19] * W[78] + X[21] * W[35];
+    W[454] = X[1] * W[466] + X[3] * W[423] + X[5] * W[380] + X[7] * W[337] + X[9] * W[294] + X[11] * W[251]
+            + X[13] * W[208] + X[15] * W[165] + X[17] * W[122] + X[19] * W[79] + X[21] * W[36];
+    W[455] = W[453] + W[450];
+    W[456] = W[454] + W[451];
+#endif
 }
 
-/* Lines 21 .. 37 of taylor_run's order 11, in the fourth unit. */
+/* Lines 30 .. 37 of taylor_run's order 11, in the fourth unit. */
+EOMC_PART EOMC_UNCHECKED void
+spinning_hoop_taylor_run_24(eomc_real *restrict W, eomc_real *restrict X)
+{
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 500) = EOMC_AT2(W + 6) * EOMC_AT2(W + 498) + EOMC_AT2(W + 49) * EOMC_AT2(W + 455)
+            + EOMC_AT2(W + 92) * EOMC_AT2(W + 412) + EOMC_AT2(W + 135) * EOMC_AT2(W + 369) + EOMC_AT2(W + 178) * EOMC_AT2(W + 326)
+            + EOMC_AT2(W + 221) * EOMC_AT2(W + 283) + EOMC_AT2(W + 264) * EOMC_AT2(W + 240) + EOMC_AT2(W + 307) * EOMC_AT2(W + 197)
+            + EOMC_AT2(W + 350) * EOMC_AT2(W + 154) + EOMC_AT2(W + 393) * EOMC_AT2(W + 111) + EOMC_AT2(W + 436) * EOMC_AT2(W + 68)
+            + EOMC_AT2(W + 479) * EOMC_AT2(W + 25);
+#else
+    W[500] = W[6] * W[498] + W[49] * W[455] + W[92] * W[412] + W[135] * W[369] + W[178] * W[326]
+            + W[221] * W[283] + W[264] * W[240] + W[307] * W[197] + W[350] * W[154] + W[393] * W[111]
+            + W[436] * W[68] + W[479] * W[25];
+    W[501] = W[7] * W[499] + W[50] * W[456] + W[93] * W[413] + W[136] * W[370] + W[179] * W[327]
+            + W[222] * W[284] + W[265] * W[241] + W[308] * W[198] + W[351] * W[155] + W[394] * W[112]
+            + W[437] * W[69] + W[480] * W[26];
+#endif
+    W[514] = W[513] + W[501];
+    W[492] = W[514] - W[500];
+    W[495] = W[1] * W[492];
+    W[515] = W[512] + W[495];
+    X[24] = X[23] / 12.0;
+    X[25] = -W[515] / W[1] / 12.0;
+}
+
+/* Lines 0 .. 29 of taylor_run's order 12, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED void
 spinning_hoop_taylor_run_25(eomc_real *restrict W, eomc_real *restrict X)
 {
-    W[504] = W[486] - W[496];
-    W[507] = W[494] + W[484];
-    W[511] = W[485] + W[495];
-    W[487] = W[0] * W[507];
-    W[488] = W[0] * W[503];
-    W[497] = X[1] * W[511] + X[3] * W[468] + X[5] * W[425] + X[7] * W[382] + X[9] * W[339] + X[11] * W[296]
-            + X[13] * W[253] + X[15] * W[210] + X[17] * W[167] + X[19] * W[124] + X[21] * W[81]
-            + X[23] * W[38];
-    W[499] = X[1] * W[504] + X[3] * W[461] + X[5] * W[418] + X[7] * W[375] + X[9] * W[332] + X[11] * W[289]
-            + X[13] * W[246] + X[15] * W[203] + X[17] * W[160] + X[19] * W[117] + X[21] * W[74]
-            + X[23] * W[31];
-    W[508] = W[497] + W[487];
-    W[509] = W[499] + W[488];
-    W[500] = W[19] * W[509] + W[62] * W[466] + W[105] * W[423] + W[148] * W[380] + W[191] * W[337]
-            + W[234] * W[294] + W[277] * W[251] + W[320] * W[208] + W[363] * W[165] + W[406] * W[122]
-            + W[449] * W[79] + W[492] * W[36];
-    W[501] = W[18] * W[508] + W[61] * W[465] + W[104] * W[422] + W[147] * W[379] + W[190] * W[336]
-            + W[233] * W[293] + W[276] * W[250] + W[319] * W[207] + W[362] * W[164] + W[405] * W[121]
-            + W[448] * W[78] + W[491] * W[35];
-    W[506] = W[490] + W[500];
-    W[505] = W[506] - W[501];
-    W[482] = W[2] * W[505];
-    W[510] = W[481] + W[482];
-    X[24] = X[23] / 12.0;
-    X[25] = -W[510] / W[2] / 12.0;
-}
-
-/* Lines 0 .. 20 of taylor_run's order 12, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED void
-spinning_hoop_taylor_run_26(eomc_real *restrict W, eomc_real *restrict X)
-{
-    W[519] = (X[2] * W[478] + 2.0 * X[4] * W[435] + 3.0 * X[6] * W[392] + 4.0 * X[8] * W[349]
-            + 5.0 * X[10] * W[306] + 6.0 * X[12] * W[263] + 7.0 * X[14] * W[220] + 8.0 * X[16] * W[177]
-            + 9.0 * X[18] * W[134] + 10.0 * X[20] * W[91] + 11.0 * X[22] * W[48] + 12.0 * X[24] * W[5]) / 12.0;
-    W[521] = -((X[2] * W[476] + 2.0 * X[4] * W[433] + 3.0 * X[6] * W[390] + 4.0 * X[8] * W[347]
-            + 5.0 * X[10] * W[304] + 6.0 * X[12] * W[261] + 7.0 * X[14] * W[218] + 8.0 * X[16] * W[175]
-            + 9.0 * X[18] * W[132] + 10.0 * X[20] * W[89] + 11.0 * X[22] * W[46] + 12.0 * X[24] * W[3])) / 12.0;
-    W[522] = (X[1] * X[25] + X[3] * X[23] + X[5] * X[21] + X[7] * X[19] + X[9] * X[17] + X[11] * X[15]) * 2.0
+    W[518] = (X[2] * W[505] + 2.0 * X[4] * W[462] + 3.0 * X[6] * W[419] + 4.0 * X[8] * W[376]
+            + 5.0 * X[10] * W[333] + 6.0 * X[12] * W[290] + 7.0 * X[14] * W[247] + 8.0 * X[16] * W[204]
+            + 9.0 * X[18] * W[161] + 10.0 * X[20] * W[118] + 11.0 * X[22] * W[75] + 12.0 * X[24] * W[32]) / 12.0;
+    W[548] = -((X[2] * W[475] + 2.0 * X[4] * W[432] + 3.0 * X[6] * W[389] + 4.0 * X[8] * W[346]
+            + 5.0 * X[10] * W[303] + 6.0 * X[12] * W[260] + 7.0 * X[14] * W[217] + 8.0 * X[16] * W[174]
+            + 9.0 * X[18] * W[131] + 10.0 * X[20] * W[88] + 11.0 * X[22] * W[45] + 12.0 * X[24] * W[2])) / 12.0;
+    W[553] = (X[1] * X[25] + X[3] * X[23] + X[5] * X[21] + X[7] * X[19] + X[9] * X[17] + X[11] * X[15]) * 2.0
             + X[13] * X[13];
-    W[524] = W[1] * W[519];
-    W[532] = W[3] * W[521] + W[46] * W[478] + W[89] * W[435] + W[132] * W[392] + W[175] * W[349]
-            + W[218] * W[306] + W[261] * W[263] + W[304] * W[220] + W[347] * W[177] + W[390] * W[134]
-            + W[433] * W[91] + W[476] * W[48] + W[519] * W[5];
-    W[520] = W[50] * W[514] / 12.0;
-    W[557] = -W[50] * W[477] / 12.0;
-    W[533] = W[16] * W[522] + W[59] * W[479] + W[102] * W[436] + W[145] * W[393] + W[188] * W[350]
-            + W[231] * W[307] + W[274] * W[264] + W[317] * W[221] + W[360] * W[178] + W[403] * W[135]
-            + W[446] * W[92] + W[489] * W[49] + W[532] * W[6];
-    W[534] = W[41] * W[521] + W[84] * W[478] + W[127] * W[435] + W[170] * W[392] + W[213] * W[349]
-            + W[256] * W[306] + W[299] * W[263] + W[342] * W[220] + W[385] * W[177] + W[428] * W[134]
-            + W[471] * W[91] + W[514] * W[48] + W[557] * W[5];
-    W[535] = W[4] * W[521] + W[47] * W[478] + W[90] * W[435] + W[133] * W[392] + W[176] * W[349]
-            + W[219] * W[306] + W[262] * W[263] + W[305] * W[220] + W[348] * W[177] + W[391] * W[134]
-            + W[434] * W[91] + W[477] * W[48] + W[520] * W[5];
-    W[541] = W[3] * W[557] + W[46] * W[514] + W[89] * W[471] + W[132] * W[428] + W[175] * W[385]
-            + W[218] * W[342] + W[261] * W[299] + W[304] * W[256] + W[347] * W[213] + W[390] * W[170]
-            + W[433] * W[127] + W[476] * W[84] + W[519] * W[41];
-    W[545] = W[3] * W[520] + W[46] * W[477] + W[89] * W[434] + W[132] * W[391] + W[175] * W[348]
-            + W[218] * W[305] + W[261] * W[262] + W[304] * W[219] + W[347] * W[176] + W[390] * W[133]
-            + W[433] * W[90] + W[476] * W[47] + W[519] * W[4];
-    W[526] = W[0] * W[545];
-    W[527] = W[0] * W[541];
-    W[528] = W[0] * W[535];
-    W[529] = W[0] * W[534];
+    W[555] = W[38] * W[518];
+    W[521] = W[2] * W[548] + W[45] * W[505] + W[88] * W[462] + W[131] * W[419] + W[174] * W[376]
+            + W[217] * W[333] + W[260] * W[290] + W[303] * W[247] + W[346] * W[204] + W[389] * W[161]
+            + W[432] * W[118] + W[475] * W[75] + W[518] * W[32];
+    W[520] = W[73] * W[476] / 12.0;
+    W[519] = -W[73] * W[477] / 12.0;
 #ifdef EOMC_PACKS
-    EOMC_AT2(W + 536) = EOMC_AT2(W + 18) * X[25] + EOMC_AT2(W + 61) * X[23] + EOMC_AT2(W + 104) * X[21]
-            + EOMC_AT2(W + 147) * X[19] + EOMC_AT2(W + 190) * X[17] + EOMC_AT2(W + 233) * X[15]
-            + EOMC_AT2(W + 276) * X[13] + EOMC_AT2(W + 319) * X[11] + EOMC_AT2(W + 362) * X[9]
-            + EOMC_AT2(W + 405) * X[7] + EOMC_AT2(W + 448) * X[5] + EOMC_AT2(W + 491) * X[3] + EOMC_AT2(W + 534) * X[1];
+    EOMC_AT2(W + 522) = EOMC_AT2(W + 3) * W[548] + EOMC_AT2(W + 46) * W[505] + EOMC_AT2(W + 89) * W[462]
+            + EOMC_AT2(W + 132) * W[419] + EOMC_AT2(W + 175) * W[376] + EOMC_AT2(W + 218) * W[333]
+            + EOMC_AT2(W + 261) * W[290] + EOMC_AT2(W + 304) * W[247] + EOMC_AT2(W + 347) * W[204]
+            + EOMC_AT2(W + 390) * W[161] + EOMC_AT2(W + 433) * W[118] + EOMC_AT2(W + 476) * W[75]
+            + EOMC_AT2(W + 519) * W[32];
+    EOMC_AT2(W + 524) = W[2] * EOMC_AT2(W + 519) + W[45] * EOMC_AT2(W + 476) + W[88] * EOMC_AT2(W + 433)
+            + W[131] * EOMC_AT2(W + 390) + W[174] * EOMC_AT2(W + 347) + W[217] * EOMC_AT2(W + 304)
+            + W[260] * EOMC_AT2(W + 261) + W[303] * EOMC_AT2(W + 218) + W[346] * EOMC_AT2(W + 175)
+            + W[389] * EOMC_AT2(W + 132) + W[432] * EOMC_AT2(W + 89) + W[475] * EOMC_AT2(W + 46)
+            + W[518] * EOMC_AT2(W + 3);
 #else
-    W[536] = W[18] * X[25] + W[61] * X[23] + W[104] * X[21] + W[147] * X[19] + W[190] * X[17]
-            + W[233] * X[15] + W[276] * X[13] + W[319] * X[11] + W[362] * X[9] + W[405] * X[7]
-            + W[448] * X[5] + W[491] * X[3] + W[534] * X[1];
-    W[537] = W[19] * X[25] + W[62] * X[23] + W[105] * X[21] + W[148] * X[19] + W[191] * X[17]
-            + W[234] * X[15] + W[277] * X[13] + W[320] * X[11] + W[363] * X[9] + W[406] * X[7]
-            + W[449] * X[5] + W[492] * X[3] + W[535] * X[1];
+    W[522] = W[3] * W[548] + W[46] * W[505] + W[89] * W[462] + W[132] * W[419] + W[175] * W[376]
+            + W[218] * W[333] + W[261] * W[290] + W[304] * W[247] + W[347] * W[204] + W[390] * W[161]
+            + W[433] * W[118] + W[476] * W[75] + W[519] * W[32];
+    W[523] = W[4] * W[548] + W[47] * W[505] + W[90] * W[462] + W[133] * W[419] + W[176] * W[376]
+            + W[219] * W[333] + W[262] * W[290] + W[305] * W[247] + W[348] * W[204] + W[391] * W[161]
+            + W[434] * W[118] + W[477] * W[75] + W[520] * W[32];
+    W[524] = W[2] * W[519] + W[45] * W[476] + W[88] * W[433] + W[131] * W[390] + W[174] * W[347]
+            + W[217] * W[304] + W[260] * W[261] + W[303] * W[218] + W[346] * W[175] + W[389] * W[132]
+            + W[432] * W[89] + W[475] * W[46] + W[518] * W[3];
+    W[525] = W[2] * W[520] + W[45] * W[477] + W[88] * W[434] + W[131] * W[391] + W[174] * W[348]
+            + W[217] * W[305] + W[260] * W[262] + W[303] * W[219] + W[346] * W[176] + W[389] * W[133]
+            + W[432] * W[90] + W[475] * W[47] + W[518] * W[4];
 #endif
-    W[538] = W[25] * X[25] + W[68] * X[23] + W[111] * X[21] + W[154] * X[19] + W[197] * X[17]
-            + W[240] * X[15] + W[283] * X[13] + W[326] * X[11] + W[369] * X[9] + W[412] * X[7]
-            + W[455] * X[5] + W[498] * X[3] + W[541] * X[1];
-    W[539] = W[29] * X[25] + W[72] * X[23] + W[115] * X[21] + W[158] * X[19] + W[201] * X[17]
-            + W[244] * X[15] + W[287] * X[13] + W[330] * X[11] + W[373] * X[9] + W[416] * X[7]
-            + W[459] * X[5] + W[502] * X[3] + W[545] * X[1];
-    W[546] = W[536] - W[526];
+    W[556] = W[5] * W[553] + W[48] * W[510] + W[91] * W[467] + W[134] * W[424] + W[177] * W[381]
+            + W[220] * W[338] + W[263] * W[295] + W[306] * W[252] + W[349] * W[209] + W[392] * W[166]
+            + W[435] * W[123] + W[478] * W[80] + W[521] * W[37];
+#ifdef EOMC_PACKS
+    EOMC_AT4(W + 526) = W[0] * EOMC_AT4(W + 522);
+    EOMC_AT4(W + 530) = EOMC_AT4(W + 6) * X[25] + EOMC_AT4(W + 49) * X[23] + EOMC_AT4(W + 92) * X[21]
+            + EOMC_AT4(W + 135) * X[19] + EOMC_AT4(W + 178) * X[17] + EOMC_AT4(W + 221) * X[15]
+            + EOMC_AT4(W + 264) * X[13] + EOMC_AT4(W + 307) * X[11] + EOMC_AT4(W + 350) * X[9]
+            + EOMC_AT4(W + 393) * X[7] + EOMC_AT4(W + 436) * X[5] + EOMC_AT4(W + 479) * X[3] + EOMC_AT4(W + 522) * X[1];
+#else
+    W[526] = W[0] * W[522];
+    W[527] = W[0] * W[523];
+    W[528] = W[0] * W[524];
+    W[529] = W[0] * W[525];
+    W[530] = W[6] * X[25] + W[49] * X[23] + W[92] * X[21] + W[135] * X[19] + W[178] * X[17] + W[221] * X[15]
+            + W[264] * X[13] + W[307] * X[11] + W[350] * X[9] + W[393] * X[7] + W[436] * X[5]
+            + W[479] * X[3] + W[522] * X[1];
+    W[531] = W[7] * X[25] + W[50] * X[23] + W[93] * X[21] + W[136] * X[19] + W[179] * X[17] + W[222] * X[15]
+            + W[265] * X[13] + W[308] * X[11] + W[351] * X[9] + W[394] * X[7] + W[437] * X[5]
+            + W[480] * X[3] + W[523] * X[1];
+    W[532] = W[8] * X[25] + W[51] * X[23] + W[94] * X[21] + W[137] * X[19] + W[180] * X[17] + W[223] * X[15]
+            + W[266] * X[13] + W[309] * X[11] + W[352] * X[9] + W[395] * X[7] + W[438] * X[5]
+            + W[481] * X[3] + W[524] * X[1];
+    W[533] = W[9] * X[25] + W[52] * X[23] + W[95] * X[21] + W[138] * X[19] + W[181] * X[17] + W[224] * X[15]
+            + W[267] * X[13] + W[310] * X[11] + W[353] * X[9] + W[396] * X[7] + W[439] * X[5]
+            + W[482] * X[3] + W[525] * X[1];
+#endif
+    W[534] = W[530] - W[529];
+    W[552] = W[526] - W[533];
+    W[550] = W[531] + W[528];
+    W[551] = W[527] + W[532];
+    W[536] = W[0] * W[550];
+    W[537] = W[0] * W[534];
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 539) = X[1] * EOMC_AT2(W + 551) + X[3] * EOMC_AT2(W + 508) + X[5] * EOMC_AT2(W + 465)
+            + X[7] * EOMC_AT2(W + 422) + X[9] * EOMC_AT2(W + 379) + X[11] * EOMC_AT2(W + 336)
+            + X[13] * EOMC_AT2(W + 293) + X[15] * EOMC_AT2(W + 250) + X[17] * EOMC_AT2(W + 207)
+            + X[19] * EOMC_AT2(W + 164) + X[21] * EOMC_AT2(W + 121) + X[23] * EOMC_AT2(W + 78)
+            + X[25] * EOMC_AT2(W + 35);
+    EOMC_AT2(W + 541) = EOMC_AT2(W + 539) + EOMC_AT2(W + 536);
+#else
+    W[539] = X[1] * W[551] + X[3] * W[508] + X[5] * W[465] + X[7] * W[422] + X[9] * W[379] + X[11] * W[336]
+            + X[13] * W[293] + X[15] * W[250] + X[17] * W[207] + X[19] * W[164] + X[21] * W[121]
+            + X[23] * W[78] + X[25] * W[35];
+    W[540] = X[1] * W[552] + X[3] * W[509] + X[5] * W[466] + X[7] * W[423] + X[9] * W[380] + X[11] * W[337]
+            + X[13] * W[294] + X[15] * W[251] + X[17] * W[208] + X[19] * W[165] + X[21] * W[122]
+            + X[23] * W[79] + X[25] * W[36];
+    W[541] = W[539] + W[536];
+    W[542] = W[540] + W[537];
+#endif
 }
 
-/* Lines 21 .. 37 of taylor_run's order 13, in the fourth unit. */
+/* Lines 30 .. 37 of taylor_run's order 13, in the fourth unit. */
+EOMC_PART EOMC_UNCHECKED void
+spinning_hoop_taylor_run_28(eomc_real *restrict W, eomc_real *restrict X)
+{
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 586) = EOMC_AT2(W + 6) * EOMC_AT2(W + 584) + EOMC_AT2(W + 49) * EOMC_AT2(W + 541)
+            + EOMC_AT2(W + 92) * EOMC_AT2(W + 498) + EOMC_AT2(W + 135) * EOMC_AT2(W + 455) + EOMC_AT2(W + 178) * EOMC_AT2(W + 412)
+            + EOMC_AT2(W + 221) * EOMC_AT2(W + 369) + EOMC_AT2(W + 264) * EOMC_AT2(W + 326) + EOMC_AT2(W + 307) * EOMC_AT2(W + 283)
+            + EOMC_AT2(W + 350) * EOMC_AT2(W + 240) + EOMC_AT2(W + 393) * EOMC_AT2(W + 197) + EOMC_AT2(W + 436) * EOMC_AT2(W + 154)
+            + EOMC_AT2(W + 479) * EOMC_AT2(W + 111) + EOMC_AT2(W + 522) * EOMC_AT2(W + 68) + EOMC_AT2(W + 565) * EOMC_AT2(W + 25);
+#else
+    W[586] = W[6] * W[584] + W[49] * W[541] + W[92] * W[498] + W[135] * W[455] + W[178] * W[412]
+            + W[221] * W[369] + W[264] * W[326] + W[307] * W[283] + W[350] * W[240] + W[393] * W[197]
+            + W[436] * W[154] + W[479] * W[111] + W[522] * W[68] + W[565] * W[25];
+    W[587] = W[7] * W[585] + W[50] * W[542] + W[93] * W[499] + W[136] * W[456] + W[179] * W[413]
+            + W[222] * W[370] + W[265] * W[327] + W[308] * W[284] + W[351] * W[241] + W[394] * W[198]
+            + W[437] * W[155] + W[480] * W[112] + W[523] * W[69] + W[566] * W[26];
+#endif
+    W[600] = W[599] + W[587];
+    W[578] = W[600] - W[586];
+    W[581] = W[1] * W[578];
+    W[601] = W[598] + W[581];
+    X[28] = X[27] / 14.0;
+    X[29] = -W[601] / W[1] / 14.0;
+}
+
+/* Lines 0 .. 29 of taylor_run's order 14, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED void
 spinning_hoop_taylor_run_29(eomc_real *restrict W, eomc_real *restrict X)
 {
-    W[590] = W[572] - W[582];
-    W[593] = W[580] + W[570];
-    W[597] = W[571] + W[581];
-    W[573] = W[0] * W[593];
-    W[574] = W[0] * W[589];
-    W[583] = X[1] * W[597] + X[3] * W[554] + X[5] * W[511] + X[7] * W[468] + X[9] * W[425] + X[11] * W[382]
-            + X[13] * W[339] + X[15] * W[296] + X[17] * W[253] + X[19] * W[210] + X[21] * W[167]
-            + X[23] * W[124] + X[25] * W[81] + X[27] * W[38];
-    W[585] = X[1] * W[590] + X[3] * W[547] + X[5] * W[504] + X[7] * W[461] + X[9] * W[418] + X[11] * W[375]
-            + X[13] * W[332] + X[15] * W[289] + X[17] * W[246] + X[19] * W[203] + X[21] * W[160]
-            + X[23] * W[117] + X[25] * W[74] + X[27] * W[31];
-    W[594] = W[583] + W[573];
-    W[595] = W[585] + W[574];
-    W[586] = W[19] * W[595] + W[62] * W[552] + W[105] * W[509] + W[148] * W[466] + W[191] * W[423]
-            + W[234] * W[380] + W[277] * W[337] + W[320] * W[294] + W[363] * W[251] + W[406] * W[208]
-            + W[449] * W[165] + W[492] * W[122] + W[535] * W[79] + W[578] * W[36];
-    W[587] = W[18] * W[594] + W[61] * W[551] + W[104] * W[508] + W[147] * W[465] + W[190] * W[422]
-            + W[233] * W[379] + W[276] * W[336] + W[319] * W[293] + W[362] * W[250] + W[405] * W[207]
-            + W[448] * W[164] + W[491] * W[121] + W[534] * W[78] + W[577] * W[35];
-    W[592] = W[576] + W[586];
-    W[591] = W[592] - W[587];
-    W[568] = W[2] * W[591];
-    W[596] = W[567] + W[568];
-    X[28] = X[27] / 14.0;
-    X[29] = -W[596] / W[2] / 14.0;
-}
-
-/* Lines 0 .. 20 of taylor_run's order 14, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED void
-spinning_hoop_taylor_run_30(eomc_real *restrict W, eomc_real *restrict X)
-{
-    W[605] = (X[2] * W[564] + 2.0 * X[4] * W[521] + 3.0 * X[6] * W[478] + 4.0 * X[8] * W[435]
-            + 5.0 * X[10] * W[392] + 6.0 * X[12] * W[349] + 7.0 * X[14] * W[306] + 8.0 * X[16] * W[263]
-            + 9.0 * X[18] * W[220] + 10.0 * X[20] * W[177] + 11.0 * X[22] * W[134] + 12.0 * X[24] * W[91]
-            + 13.0 * X[26] * W[48] + 14.0 * X[28] * W[5]) / 14.0;
-    W[607] = -((X[2] * W[562] + 2.0 * X[4] * W[519] + 3.0 * X[6] * W[476] + 4.0 * X[8] * W[433]
-            + 5.0 * X[10] * W[390] + 6.0 * X[12] * W[347] + 7.0 * X[14] * W[304] + 8.0 * X[16] * W[261]
-            + 9.0 * X[18] * W[218] + 10.0 * X[20] * W[175] + 11.0 * X[22] * W[132] + 12.0 * X[24] * W[89]
-            + 13.0 * X[26] * W[46] + 14.0 * X[28] * W[3])) / 14.0;
-    W[608] = (X[1] * X[29] + X[3] * X[27] + X[5] * X[25] + X[7] * X[23] + X[9] * X[21] + X[11] * X[19]
+    W[604] = (X[2] * W[591] + 2.0 * X[4] * W[548] + 3.0 * X[6] * W[505] + 4.0 * X[8] * W[462]
+            + 5.0 * X[10] * W[419] + 6.0 * X[12] * W[376] + 7.0 * X[14] * W[333] + 8.0 * X[16] * W[290]
+            + 9.0 * X[18] * W[247] + 10.0 * X[20] * W[204] + 11.0 * X[22] * W[161] + 12.0 * X[24] * W[118]
+            + 13.0 * X[26] * W[75] + 14.0 * X[28] * W[32]) / 14.0;
+    W[634] = -((X[2] * W[561] + 2.0 * X[4] * W[518] + 3.0 * X[6] * W[475] + 4.0 * X[8] * W[432]
+            + 5.0 * X[10] * W[389] + 6.0 * X[12] * W[346] + 7.0 * X[14] * W[303] + 8.0 * X[16] * W[260]
+            + 9.0 * X[18] * W[217] + 10.0 * X[20] * W[174] + 11.0 * X[22] * W[131] + 12.0 * X[24] * W[88]
+            + 13.0 * X[26] * W[45] + 14.0 * X[28] * W[2])) / 14.0;
+    W[639] = (X[1] * X[29] + X[3] * X[27] + X[5] * X[25] + X[7] * X[23] + X[9] * X[21] + X[11] * X[19]
             + X[13] * X[17]) * 2.0 + X[15] * X[15];
-    W[610] = W[1] * W[605];
-    W[618] = W[3] * W[607] + W[46] * W[564] + W[89] * W[521] + W[132] * W[478] + W[175] * W[435]
-            + W[218] * W[392] + W[261] * W[349] + W[304] * W[306] + W[347] * W[263] + W[390] * W[220]
-            + W[433] * W[177] + W[476] * W[134] + W[519] * W[91] + W[562] * W[48] + W[605] * W[5];
-    W[606] = W[50] * W[600] / 14.0;
-    W[643] = -W[50] * W[563] / 14.0;
-    W[619] = W[16] * W[608] + W[59] * W[565] + W[102] * W[522] + W[145] * W[479] + W[188] * W[436]
-            + W[231] * W[393] + W[274] * W[350] + W[317] * W[307] + W[360] * W[264] + W[403] * W[221]
-            + W[446] * W[178] + W[489] * W[135] + W[532] * W[92] + W[575] * W[49] + W[618] * W[6];
-    W[620] = W[41] * W[607] + W[84] * W[564] + W[127] * W[521] + W[170] * W[478] + W[213] * W[435]
-            + W[256] * W[392] + W[299] * W[349] + W[342] * W[306] + W[385] * W[263] + W[428] * W[220]
-            + W[471] * W[177] + W[514] * W[134] + W[557] * W[91] + W[600] * W[48] + W[643] * W[5];
-    W[621] = W[4] * W[607] + W[47] * W[564] + W[90] * W[521] + W[133] * W[478] + W[176] * W[435]
-            + W[219] * W[392] + W[262] * W[349] + W[305] * W[306] + W[348] * W[263] + W[391] * W[220]
-            + W[434] * W[177] + W[477] * W[134] + W[520] * W[91] + W[563] * W[48] + W[606] * W[5];
-    W[627] = W[3] * W[643] + W[46] * W[600] + W[89] * W[557] + W[132] * W[514] + W[175] * W[471]
-            + W[218] * W[428] + W[261] * W[385] + W[304] * W[342] + W[347] * W[299] + W[390] * W[256]
-            + W[433] * W[213] + W[476] * W[170] + W[519] * W[127] + W[562] * W[84] + W[605] * W[41];
-    W[631] = W[3] * W[606] + W[46] * W[563] + W[89] * W[520] + W[132] * W[477] + W[175] * W[434]
-            + W[218] * W[391] + W[261] * W[348] + W[304] * W[305] + W[347] * W[262] + W[390] * W[219]
-            + W[433] * W[176] + W[476] * W[133] + W[519] * W[90] + W[562] * W[47] + W[605] * W[4];
-    W[612] = W[0] * W[631];
-    W[613] = W[0] * W[627];
-    W[614] = W[0] * W[621];
-    W[615] = W[0] * W[620];
+    W[641] = W[38] * W[604];
+    W[607] = W[2] * W[634] + W[45] * W[591] + W[88] * W[548] + W[131] * W[505] + W[174] * W[462]
+            + W[217] * W[419] + W[260] * W[376] + W[303] * W[333] + W[346] * W[290] + W[389] * W[247]
+            + W[432] * W[204] + W[475] * W[161] + W[518] * W[118] + W[561] * W[75] + W[604] * W[32];
+    W[606] = W[73] * W[562] / 14.0;
+    W[605] = -W[73] * W[563] / 14.0;
 #ifdef EOMC_PACKS
-    EOMC_AT2(W + 622) = EOMC_AT2(W + 18) * X[29] + EOMC_AT2(W + 61) * X[27] + EOMC_AT2(W + 104) * X[25]
-            + EOMC_AT2(W + 147) * X[23] + EOMC_AT2(W + 190) * X[21] + EOMC_AT2(W + 233) * X[19]
-            + EOMC_AT2(W + 276) * X[17] + EOMC_AT2(W + 319) * X[15] + EOMC_AT2(W + 362) * X[13]
-            + EOMC_AT2(W + 405) * X[11] + EOMC_AT2(W + 448) * X[9] + EOMC_AT2(W + 491) * X[7]
-            + EOMC_AT2(W + 534) * X[5] + EOMC_AT2(W + 577) * X[3] + EOMC_AT2(W + 620) * X[1];
+    EOMC_AT2(W + 608) = EOMC_AT2(W + 3) * W[634] + EOMC_AT2(W + 46) * W[591] + EOMC_AT2(W + 89) * W[548]
+            + EOMC_AT2(W + 132) * W[505] + EOMC_AT2(W + 175) * W[462] + EOMC_AT2(W + 218) * W[419]
+            + EOMC_AT2(W + 261) * W[376] + EOMC_AT2(W + 304) * W[333] + EOMC_AT2(W + 347) * W[290]
+            + EOMC_AT2(W + 390) * W[247] + EOMC_AT2(W + 433) * W[204] + EOMC_AT2(W + 476) * W[161]
+            + EOMC_AT2(W + 519) * W[118] + EOMC_AT2(W + 562) * W[75] + EOMC_AT2(W + 605) * W[32];
+    EOMC_AT2(W + 610) = W[2] * EOMC_AT2(W + 605) + W[45] * EOMC_AT2(W + 562) + W[88] * EOMC_AT2(W + 519)
+            + W[131] * EOMC_AT2(W + 476) + W[174] * EOMC_AT2(W + 433) + W[217] * EOMC_AT2(W + 390)
+            + W[260] * EOMC_AT2(W + 347) + W[303] * EOMC_AT2(W + 304) + W[346] * EOMC_AT2(W + 261)
+            + W[389] * EOMC_AT2(W + 218) + W[432] * EOMC_AT2(W + 175) + W[475] * EOMC_AT2(W + 132)
+            + W[518] * EOMC_AT2(W + 89) + W[561] * EOMC_AT2(W + 46) + W[604] * EOMC_AT2(W + 3);
 #else
-    W[622] = W[18] * X[29] + W[61] * X[27] + W[104] * X[25] + W[147] * X[23] + W[190] * X[21]
-            + W[233] * X[19] + W[276] * X[17] + W[319] * X[15] + W[362] * X[13] + W[405] * X[11]
-            + W[448] * X[9] + W[491] * X[7] + W[534] * X[5] + W[577] * X[3] + W[620] * X[1];
-    W[623] = W[19] * X[29] + W[62] * X[27] + W[105] * X[25] + W[148] * X[23] + W[191] * X[21]
-            + W[234] * X[19] + W[277] * X[17] + W[320] * X[15] + W[363] * X[13] + W[406] * X[11]
-            + W[449] * X[9] + W[492] * X[7] + W[535] * X[5] + W[578] * X[3] + W[621] * X[1];
+    W[608] = W[3] * W[634] + W[46] * W[591] + W[89] * W[548] + W[132] * W[505] + W[175] * W[462]
+            + W[218] * W[419] + W[261] * W[376] + W[304] * W[333] + W[347] * W[290] + W[390] * W[247]
+            + W[433] * W[204] + W[476] * W[161] + W[519] * W[118] + W[562] * W[75] + W[605] * W[32];
+    W[609] = W[4] * W[634] + W[47] * W[591] + W[90] * W[548] + W[133] * W[505] + W[176] * W[462]
+            + W[219] * W[419] + W[262] * W[376] + W[305] * W[333] + W[348] * W[290] + W[391] * W[247]
+            + W[434] * W[204] + W[477] * W[161] + W[520] * W[118] + W[563] * W[75] + W[606] * W[32];
+    W[610] = W[2] * W[605] + W[45] * W[562] + W[88] * W[519] + W[131] * W[476] + W[174] * W[433]
+            + W[217] * W[390] + W[260] * W[347] + W[303] * W[304] + W[346] * W[261] + W[389] * W[218]
+            + W[432] * W[175] + W[475] * W[132] + W[518] * W[89] + W[561] * W[46] + W[604] * W[3];
+    W[611] = W[2] * W[606] + W[45] * W[563] + W[88] * W[520] + W[131] * W[477] + W[174] * W[434]
+            + W[217] * W[391] + W[260] * W[348] + W[303] * W[305] + W[346] * W[262] + W[389] * W[219]
+            + W[432] * W[176] + W[475] * W[133] + W[518] * W[90] + W[561] * W[47] + W[604] * W[4];
 #endif
-    W[624] = W[25] * X[29] + W[68] * X[27] + W[111] * X[25] + W[154] * X[23] + W[197] * X[21]
-            + W[240] * X[19] + W[283] * X[17] + W[326] * X[15] + W[369] * X[13] + W[412] * X[11]
-            + W[455] * X[9] + W[498] * X[7] + W[541] * X[5] + W[584] * X[3] + W[627] * X[1];
-    W[625] = W[29] * X[29] + W[72] * X[27] + W[115] * X[25] + W[158] * X[23] + W[201] * X[21]
-            + W[244] * X[19] + W[287] * X[17] + W[330] * X[15] + W[373] * X[13] + W[416] * X[11]
-            + W[459] * X[9] + W[502] * X[7] + W[545] * X[5] + W[588] * X[3] + W[631] * X[1];
-    W[632] = W[622] - W[612];
+    W[642] = W[5] * W[639] + W[48] * W[596] + W[91] * W[553] + W[134] * W[510] + W[177] * W[467]
+            + W[220] * W[424] + W[263] * W[381] + W[306] * W[338] + W[349] * W[295] + W[392] * W[252]
+            + W[435] * W[209] + W[478] * W[166] + W[521] * W[123] + W[564] * W[80] + W[607] * W[37];
+#ifdef EOMC_PACKS
+    EOMC_AT4(W + 612) = W[0] * EOMC_AT4(W + 608);
+    EOMC_AT4(W + 616) = EOMC_AT4(W + 6) * X[29] + EOMC_AT4(W + 49) * X[27] + EOMC_AT4(W + 92) * X[25]
+            + EOMC_AT4(W + 135) * X[23] + EOMC_AT4(W + 178) * X[21] + EOMC_AT4(W + 221) * X[19]
+            + EOMC_AT4(W + 264) * X[17] + EOMC_AT4(W + 307) * X[15] + EOMC_AT4(W + 350) * X[13]
+            + EOMC_AT4(W + 393) * X[11] + EOMC_AT4(W + 436) * X[9] + EOMC_AT4(W + 479) * X[7]
+            + EOMC_AT4(W + 522) * X[5] + EOMC_AT4(W + 565) * X[3] + EOMC_AT4(W + 608) * X[1];
+#else
+    W[612] = W[0] * W[608];
+    W[613] = W[0] * W[609];
+    W[614] = W[0] * W[610];
+    W[615] = W[0] * W[611];
+    W[616] = W[6] * X[29] + W[49] * X[27] + W[92] * X[25] + W[135] * X[23] + W[178] * X[21] + W[221] * X[19]
+            + W[264] * X[17] + W[307] * X[15] + W[350] * X[13] + W[393] * X[11] + W[436] * X[9]
+            + W[479] * X[7] + W[522] * X[5] + W[565] * X[3] + W[608] * X[1];
+    W[617] = W[7] * X[29] + W[50] * X[27] + W[93] * X[25] + W[136] * X[23] + W[179] * X[21] + W[222] * X[19]
+            + W[265] * X[17] + W[308] * X[15] + W[351] * X[13] + W[394] * X[11] + W[437] * X[9]
+            + W[480] * X[7] + W[523] * X[5] + W[566] * X[3] + W[609] * X[1];
+    W[618] = W[8] * X[29] + W[51] * X[27] + W[94] * X[25] + W[137] * X[23] + W[180] * X[21] + W[223] * X[19]
+            + W[266] * X[17] + W[309] * X[15] + W[352] * X[13] + W[395] * X[11] + W[438] * X[9]
+            + W[481] * X[7] + W[524] * X[5] + W[567] * X[3] + W[610] * X[1];
+    W[619] = W[9] * X[29] + W[52] * X[27] + W[95] * X[25] + W[138] * X[23] + W[181] * X[21] + W[224] * X[19]
+            + W[267] * X[17] + W[310] * X[15] + W[353] * X[13] + W[396] * X[11] + W[439] * X[9]
+            + W[482] * X[7] + W[525] * X[5] + W[568] * X[3] + W[611] * X[1];
+#endif
+    W[620] = W[616] - W[615];
+    W[638] = W[612] - W[619];
+    W[636] = W[617] + W[614];
+    W[637] = W[613] + W[618];
+    W[622] = W[0] * W[636];
+    W[623] = W[0] * W[620];
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 625) = X[1] * EOMC_AT2(W + 637) + X[3] * EOMC_AT2(W + 594) + X[5] * EOMC_AT2(W + 551)
+            + X[7] * EOMC_AT2(W + 508) + X[9] * EOMC_AT2(W + 465) + X[11] * EOMC_AT2(W + 422)
+            + X[13] * EOMC_AT2(W + 379) + X[15] * EOMC_AT2(W + 336) + X[17] * EOMC_AT2(W + 293)
+            + X[19] * EOMC_AT2(W + 250) + X[21] * EOMC_AT2(W + 207) + X[23] * EOMC_AT2(W + 164)
+            + X[25] * EOMC_AT2(W + 121) + X[27] * EOMC_AT2(W + 78) + X[29] * EOMC_AT2(W + 35);
+    EOMC_AT2(W + 627) = EOMC_AT2(W + 625) + EOMC_AT2(W + 622);
+#else
+    W[625] = X[1] * W[637] + X[3] * W[594] + X[5] * W[551] + X[7] * W[508] + X[9] * W[465] + X[11] * W[422]
+            + X[13] * W[379] + X[15] * W[336] + X[17] * W[293] + X[19] * W[250] + X[21] * W[207]
+            + X[23] * W[164] + X[25] * W[121] + X[27] * W[78] + X[29] * W[35];
+    W[626] = X[1] * W[638] + X[3] * W[595] + X[5] * W[552] + X[7] * W[509] + X[9] * W[466] + X[11] * W[423]
+            + X[13] * W[380] + X[15] * W[337] + X[17] * W[294] + X[19] * W[251] + X[21] * W[208]
+            + X[23] * W[165] + X[25] * W[122] + X[27] * W[79] + X[29] * W[36];
+    W[627] = W[625] + W[622];
+    W[628] = W[626] + W[623];
+#endif
 }
 
-/* Lines 21 .. 37 of taylor_run's order 15, in the fourth unit. */
+/* Lines 30 .. 37 of taylor_run's order 15, in the fourth unit. */
+EOMC_PART EOMC_UNCHECKED void
+spinning_hoop_taylor_run_32(eomc_real *restrict W, eomc_real *restrict X)
+{
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 672) = EOMC_AT2(W + 6) * EOMC_AT2(W + 670) + EOMC_AT2(W + 49) * EOMC_AT2(W + 627)
+            + EOMC_AT2(W + 92) * EOMC_AT2(W + 584) + EOMC_AT2(W + 135) * EOMC_AT2(W + 541) + EOMC_AT2(W + 178) * EOMC_AT2(W + 498)
+            + EOMC_AT2(W + 221) * EOMC_AT2(W + 455) + EOMC_AT2(W + 264) * EOMC_AT2(W + 412) + EOMC_AT2(W + 307) * EOMC_AT2(W + 369)
+            + EOMC_AT2(W + 350) * EOMC_AT2(W + 326) + EOMC_AT2(W + 393) * EOMC_AT2(W + 283) + EOMC_AT2(W + 436) * EOMC_AT2(W + 240)
+            + EOMC_AT2(W + 479) * EOMC_AT2(W + 197) + EOMC_AT2(W + 522) * EOMC_AT2(W + 154) + EOMC_AT2(W + 565) * EOMC_AT2(W + 111)
+            + EOMC_AT2(W + 608) * EOMC_AT2(W + 68) + EOMC_AT2(W + 651) * EOMC_AT2(W + 25);
+#else
+    W[672] = W[6] * W[670] + W[49] * W[627] + W[92] * W[584] + W[135] * W[541] + W[178] * W[498]
+            + W[221] * W[455] + W[264] * W[412] + W[307] * W[369] + W[350] * W[326] + W[393] * W[283]
+            + W[436] * W[240] + W[479] * W[197] + W[522] * W[154] + W[565] * W[111] + W[608] * W[68]
+            + W[651] * W[25];
+    W[673] = W[7] * W[671] + W[50] * W[628] + W[93] * W[585] + W[136] * W[542] + W[179] * W[499]
+            + W[222] * W[456] + W[265] * W[413] + W[308] * W[370] + W[351] * W[327] + W[394] * W[284]
+            + W[437] * W[241] + W[480] * W[198] + W[523] * W[155] + W[566] * W[112] + W[609] * W[69]
+            + W[652] * W[26];
+#endif
+    W[686] = W[685] + W[673];
+    W[664] = W[686] - W[672];
+    W[667] = W[1] * W[664];
+    W[687] = W[684] + W[667];
+    X[32] = X[31] / 16.0;
+    X[33] = -W[687] / W[1] / 16.0;
+}
+
+/* Lines 0 .. 29 of taylor_run's order 16, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED void
 spinning_hoop_taylor_run_33(eomc_real *restrict W, eomc_real *restrict X)
 {
-    W[676] = W[658] - W[668];
-    W[679] = W[666] + W[656];
-    W[683] = W[657] + W[667];
-    W[659] = W[0] * W[679];
-    W[660] = W[0] * W[675];
-    W[669] = X[1] * W[683] + X[3] * W[640] + X[5] * W[597] + X[7] * W[554] + X[9] * W[511] + X[11] * W[468]
-            + X[13] * W[425] + X[15] * W[382] + X[17] * W[339] + X[19] * W[296] + X[21] * W[253]
-            + X[23] * W[210] + X[25] * W[167] + X[27] * W[124] + X[29] * W[81] + X[31] * W[38];
-    W[671] = X[1] * W[676] + X[3] * W[633] + X[5] * W[590] + X[7] * W[547] + X[9] * W[504] + X[11] * W[461]
-            + X[13] * W[418] + X[15] * W[375] + X[17] * W[332] + X[19] * W[289] + X[21] * W[246]
-            + X[23] * W[203] + X[25] * W[160] + X[27] * W[117] + X[29] * W[74] + X[31] * W[31];
-    W[680] = W[669] + W[659];
-    W[681] = W[671] + W[660];
-    W[672] = W[19] * W[681] + W[62] * W[638] + W[105] * W[595] + W[148] * W[552] + W[191] * W[509]
-            + W[234] * W[466] + W[277] * W[423] + W[320] * W[380] + W[363] * W[337] + W[406] * W[294]
-            + W[449] * W[251] + W[492] * W[208] + W[535] * W[165] + W[578] * W[122] + W[621] * W[79]
-            + W[664] * W[36];
-    W[673] = W[18] * W[680] + W[61] * W[637] + W[104] * W[594] + W[147] * W[551] + W[190] * W[508]
-            + W[233] * W[465] + W[276] * W[422] + W[319] * W[379] + W[362] * W[336] + W[405] * W[293]
-            + W[448] * W[250] + W[491] * W[207] + W[534] * W[164] + W[577] * W[121] + W[620] * W[78]
-            + W[663] * W[35];
-    W[678] = W[662] + W[672];
-    W[677] = W[678] - W[673];
-    W[654] = W[2] * W[677];
-    W[682] = W[653] + W[654];
-    X[32] = X[31] / 16.0;
-    X[33] = -W[682] / W[2] / 16.0;
-}
-
-/* Lines 0 .. 20 of taylor_run's order 16, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED void
-spinning_hoop_taylor_run_34(eomc_real *restrict W, eomc_real *restrict X)
-{
-    W[691] = (X[2] * W[650] + 2.0 * X[4] * W[607] + 3.0 * X[6] * W[564] + 4.0 * X[8] * W[521]
-            + 5.0 * X[10] * W[478] + 6.0 * X[12] * W[435] + 7.0 * X[14] * W[392] + 8.0 * X[16] * W[349]
-            + 9.0 * X[18] * W[306] + 10.0 * X[20] * W[263] + 11.0 * X[22] * W[220] + 12.0 * X[24] * W[177]
-            + 13.0 * X[26] * W[134] + 14.0 * X[28] * W[91] + 15.0 * X[30] * W[48] + 16.0 * X[32] * W[5]) / 16.0;
-    W[693] = -((X[2] * W[648] + 2.0 * X[4] * W[605] + 3.0 * X[6] * W[562] + 4.0 * X[8] * W[519]
-            + 5.0 * X[10] * W[476] + 6.0 * X[12] * W[433] + 7.0 * X[14] * W[390] + 8.0 * X[16] * W[347]
-            + 9.0 * X[18] * W[304] + 10.0 * X[20] * W[261] + 11.0 * X[22] * W[218] + 12.0 * X[24] * W[175]
-            + 13.0 * X[26] * W[132] + 14.0 * X[28] * W[89] + 15.0 * X[30] * W[46] + 16.0 * X[32] * W[3])) / 16.0;
-    W[694] = (X[1] * X[33] + X[3] * X[31] + X[5] * X[29] + X[7] * X[27] + X[9] * X[25] + X[11] * X[23]
+    W[690] = (X[2] * W[677] + 2.0 * X[4] * W[634] + 3.0 * X[6] * W[591] + 4.0 * X[8] * W[548]
+            + 5.0 * X[10] * W[505] + 6.0 * X[12] * W[462] + 7.0 * X[14] * W[419] + 8.0 * X[16] * W[376]
+            + 9.0 * X[18] * W[333] + 10.0 * X[20] * W[290] + 11.0 * X[22] * W[247] + 12.0 * X[24] * W[204]
+            + 13.0 * X[26] * W[161] + 14.0 * X[28] * W[118] + 15.0 * X[30] * W[75] + 16.0 * X[32] * W[32]) / 16.0;
+    W[720] = -((X[2] * W[647] + 2.0 * X[4] * W[604] + 3.0 * X[6] * W[561] + 4.0 * X[8] * W[518]
+            + 5.0 * X[10] * W[475] + 6.0 * X[12] * W[432] + 7.0 * X[14] * W[389] + 8.0 * X[16] * W[346]
+            + 9.0 * X[18] * W[303] + 10.0 * X[20] * W[260] + 11.0 * X[22] * W[217] + 12.0 * X[24] * W[174]
+            + 13.0 * X[26] * W[131] + 14.0 * X[28] * W[88] + 15.0 * X[30] * W[45] + 16.0 * X[32] * W[2])) / 16.0;
+    W[725] = (X[1] * X[33] + X[3] * X[31] + X[5] * X[29] + X[7] * X[27] + X[9] * X[25] + X[11] * X[23]
             + X[13] * X[21] + X[15] * X[19]) * 2.0 + X[17] * X[17];
-    W[696] = W[1] * W[691];
-    W[704] = W[3] * W[693] + W[46] * W[650] + W[89] * W[607] + W[132] * W[564] + W[175] * W[521]
-            + W[218] * W[478] + W[261] * W[435] + W[304] * W[392] + W[347] * W[349] + W[390] * W[306]
-            + W[433] * W[263] + W[476] * W[220] + W[519] * W[177] + W[562] * W[134] + W[605] * W[91]
-            + W[648] * W[48] + W[691] * W[5];
-    W[692] = W[50] * W[686] / 16.0;
-    W[729] = -W[50] * W[649] / 16.0;
-    W[705] = W[16] * W[694] + W[59] * W[651] + W[102] * W[608] + W[145] * W[565] + W[188] * W[522]
-            + W[231] * W[479] + W[274] * W[436] + W[317] * W[393] + W[360] * W[350] + W[403] * W[307]
-            + W[446] * W[264] + W[489] * W[221] + W[532] * W[178] + W[575] * W[135] + W[618] * W[92]
-            + W[661] * W[49] + W[704] * W[6];
-    W[706] = W[41] * W[693] + W[84] * W[650] + W[127] * W[607] + W[170] * W[564] + W[213] * W[521]
-            + W[256] * W[478] + W[299] * W[435] + W[342] * W[392] + W[385] * W[349] + W[428] * W[306]
-            + W[471] * W[263] + W[514] * W[220] + W[557] * W[177] + W[600] * W[134] + W[643] * W[91]
-            + W[686] * W[48] + W[729] * W[5];
-    W[707] = W[4] * W[693] + W[47] * W[650] + W[90] * W[607] + W[133] * W[564] + W[176] * W[521]
-            + W[219] * W[478] + W[262] * W[435] + W[305] * W[392] + W[348] * W[349] + W[391] * W[306]
-            + W[434] * W[263] + W[477] * W[220] + W[520] * W[177] + W[563] * W[134] + W[606] * W[91]
-            + W[649] * W[48] + W[692] * W[5];
-    W[713] = W[3] * W[729] + W[46] * W[686] + W[89] * W[643] + W[132] * W[600] + W[175] * W[557]
-            + W[218] * W[514] + W[261] * W[471] + W[304] * W[428] + W[347] * W[385] + W[390] * W[342]
-            + W[433] * W[299] + W[476] * W[256] + W[519] * W[213] + W[562] * W[170] + W[605] * W[127]
-            + W[648] * W[84] + W[691] * W[41];
-    W[717] = W[3] * W[692] + W[46] * W[649] + W[89] * W[606] + W[132] * W[563] + W[175] * W[520]
-            + W[218] * W[477] + W[261] * W[434] + W[304] * W[391] + W[347] * W[348] + W[390] * W[305]
-            + W[433] * W[262] + W[476] * W[219] + W[519] * W[176] + W[562] * W[133] + W[605] * W[90]
-            + W[648] * W[47] + W[691] * W[4];
-    W[698] = W[0] * W[717];
-    W[699] = W[0] * W[713];
-    W[700] = W[0] * W[707];
-    W[701] = W[0] * W[706];
+    W[727] = W[38] * W[690];
+    W[693] = W[2] * W[720] + W[45] * W[677] + W[88] * W[634] + W[131] * W[591] + W[174] * W[548]
+            + W[217] * W[505] + W[260] * W[462] + W[303] * W[419] + W[346] * W[376] + W[389] * W[333]
+            + W[432] * W[290] + W[475] * W[247] + W[518] * W[204] + W[561] * W[161] + W[604] * W[118]
+            + W[647] * W[75] + W[690] * W[32];
+    W[692] = W[73] * W[648] / 16.0;
+    W[691] = -W[73] * W[649] / 16.0;
 #ifdef EOMC_PACKS
-    EOMC_AT2(W + 708) = EOMC_AT2(W + 18) * X[33] + EOMC_AT2(W + 61) * X[31] + EOMC_AT2(W + 104) * X[29]
-            + EOMC_AT2(W + 147) * X[27] + EOMC_AT2(W + 190) * X[25] + EOMC_AT2(W + 233) * X[23]
-            + EOMC_AT2(W + 276) * X[21] + EOMC_AT2(W + 319) * X[19] + EOMC_AT2(W + 362) * X[17]
-            + EOMC_AT2(W + 405) * X[15] + EOMC_AT2(W + 448) * X[13] + EOMC_AT2(W + 491) * X[11]
-            + EOMC_AT2(W + 534) * X[9] + EOMC_AT2(W + 577) * X[7] + EOMC_AT2(W + 620) * X[5] + EOMC_AT2(W + 663) * X[3]
-            + EOMC_AT2(W + 706) * X[1];
+    EOMC_AT2(W + 694) = EOMC_AT2(W + 3) * W[720] + EOMC_AT2(W + 46) * W[677] + EOMC_AT2(W + 89) * W[634]
+            + EOMC_AT2(W + 132) * W[591] + EOMC_AT2(W + 175) * W[548] + EOMC_AT2(W + 218) * W[505]
+            + EOMC_AT2(W + 261) * W[462] + EOMC_AT2(W + 304) * W[419] + EOMC_AT2(W + 347) * W[376]
+            + EOMC_AT2(W + 390) * W[333] + EOMC_AT2(W + 433) * W[290] + EOMC_AT2(W + 476) * W[247]
+            + EOMC_AT2(W + 519) * W[204] + EOMC_AT2(W + 562) * W[161] + EOMC_AT2(W + 605) * W[118]
+            + EOMC_AT2(W + 648) * W[75] + EOMC_AT2(W + 691) * W[32];
+    EOMC_AT2(W + 696) = W[2] * EOMC_AT2(W + 691) + W[45] * EOMC_AT2(W + 648) + W[88] * EOMC_AT2(W + 605)
+            + W[131] * EOMC_AT2(W + 562) + W[174] * EOMC_AT2(W + 519) + W[217] * EOMC_AT2(W + 476)
+            + W[260] * EOMC_AT2(W + 433) + W[303] * EOMC_AT2(W + 390) + W[346] * EOMC_AT2(W + 347)
+            + W[389] * EOMC_AT2(W + 304) + W[432] * EOMC_AT2(W + 261) + W[475] * EOMC_AT2(W + 218)
+            + W[518] * EOMC_AT2(W + 175) + W[561] * EOMC_AT2(W + 132) + W[604] * EOMC_AT2(W + 89)
+            + W[647] * EOMC_AT2(W + 46) + W[690] * EOMC_AT2(W + 3);
 #else
-    W[708] = W[18] * X[33] + W[61] * X[31] + W[104] * X[29] + W[147] * X[27] + W[190] * X[25]
-            + W[233] * X[23] + W[276] * X[21] + W[319] * X[19] + W[362] * X[17] + W[405] * X[15]
-            + W[448] * X[13] + W[491] * X[11] + W[534] * X[9] + W[577] * X[7] + W[620] * X[5]
-            + W[663] * X[3] + W[706] * X[1];
-    W[709] = W[19] * X[33] + W[62] * X[31] + W[105] * X[29] + W[148] * X[27] + W[191] * X[25]
-            + W[234] * X[23] + W[277] * X[21] + W[320] * X[19] + W[363] * X[17] + W[406] * X[15]
-            + W[449] * X[13] + W[492] * X[11] + W[535] * X[9] + W[578] * X[7] + W[621] * X[5]
-            + W[664] * X[3] + W[707] * X[1];
+    W[694] = W[3] * W[720] + W[46] * W[677] + W[89] * W[634] + W[132] * W[591] + W[175] * W[548]
+            + W[218] * W[505] + W[261] * W[462] + W[304] * W[419] + W[347] * W[376] + W[390] * W[333]
+            + W[433] * W[290] + W[476] * W[247] + W[519] * W[204] + W[562] * W[161] + W[605] * W[118]
+            + W[648] * W[75] + W[691] * W[32];
+    W[695] = W[4] * W[720] + W[47] * W[677] + W[90] * W[634] + W[133] * W[591] + W[176] * W[548]
+            + W[219] * W[505] + W[262] * W[462] + W[305] * W[419] + W[348] * W[376] + W[391] * W[333]
+            + W[434] * W[290] + W[477] * W[247] + W[520] * W[204] + W[563] * W[161] + W[606] * W[118]
+            + W[649] * W[75] + W[692] * W[32];
+    W[696] = W[2] * W[691] + W[45] * W[648] + W[88] * W[605] + W[131] * W[562] + W[174] * W[519]
+            + W[217] * W[476] + W[260] * W[433] + W[303] * W[390] + W[346] * W[347] + W[389] * W[304]
+            + W[432] * W[261] + W[475] * W[218] + W[518] * W[175] + W[561] * W[132] + W[604] * W[89]
+            + W[647] * W[46] + W[690] * W[3];
+    W[697] = W[2] * W[692] + W[45] * W[649] + W[88] * W[606] + W[131] * W[563] + W[174] * W[520]
+            + W[217] * W[477] + W[260] * W[434] + W[303] * W[391] + W[346] * W[348] + W[389] * W[305]
+            + W[432] * W[262] + W[475] * W[219] + W[518] * W[176] + W[561] * W[133] + W[604] * W[90]
+            + W[647] * W[47] + W[690] * W[4];
 #endif
-    W[710] = W[25] * X[33] + W[68] * X[31] + W[111] * X[29] + W[154] * X[27] + W[197] * X[25]
-            + W[240] * X[23] + W[283] * X[21] + W[326] * X[19] + W[369] * X[17] + W[412] * X[15]
-            + W[455] * X[13] + W[498] * X[11] + W[541] * X[9] + W[584] * X[7] + W[627] * X[5]
-            + W[670] * X[3] + W[713] * X[1];
-    W[711] = W[29] * X[33] + W[72] * X[31] + W[115] * X[29] + W[158] * X[27] + W[201] * X[25]
-            + W[244] * X[23] + W[287] * X[21] + W[330] * X[19] + W[373] * X[17] + W[416] * X[15]
-            + W[459] * X[13] + W[502] * X[11] + W[545] * X[9] + W[588] * X[7] + W[631] * X[5]
-            + W[674] * X[3] + W[717] * X[1];
-    W[718] = W[708] - W[698];
+    W[728] = W[5] * W[725] + W[48] * W[682] + W[91] * W[639] + W[134] * W[596] + W[177] * W[553]
+            + W[220] * W[510] + W[263] * W[467] + W[306] * W[424] + W[349] * W[381] + W[392] * W[338]
+            + W[435] * W[295] + W[478] * W[252] + W[521] * W[209] + W[564] * W[166] + W[607] * W[123]
+            + W[650] * W[80] + W[693] * W[37];
+#ifdef EOMC_PACKS
+    EOMC_AT4(W + 698) = W[0] * EOMC_AT4(W + 694);
+    EOMC_AT4(W + 702) = EOMC_AT4(W + 6) * X[33] + EOMC_AT4(W + 49) * X[31] + EOMC_AT4(W + 92) * X[29]
+            + EOMC_AT4(W + 135) * X[27] + EOMC_AT4(W + 178) * X[25] + EOMC_AT4(W + 221) * X[23]
+            + EOMC_AT4(W + 264) * X[21] + EOMC_AT4(W + 307) * X[19] + EOMC_AT4(W + 350) * X[17]
+            + EOMC_AT4(W + 393) * X[15] + EOMC_AT4(W + 436) * X[13] + EOMC_AT4(W + 479) * X[11]
+            + EOMC_AT4(W + 522) * X[9] + EOMC_AT4(W + 565) * X[7] + EOMC_AT4(W + 608) * X[5] + EOMC_AT4(W + 651) * X[3]
+            + EOMC_AT4(W + 694) * X[1];
+#else
+    W[698] = W[0] * W[694];
+    W[699] = W[0] * W[695];
+    W[700] = W[0] * W[696];
+    W[701] = W[0] * W[697];
+    W[702] = W[6] * X[33] + W[49] * X[31] + W[92] * X[29] + W[135] * X[27] + W[178] * X[25] + W[221] * X[23]
+            + W[264] * X[21] + W[307] * X[19] + W[350] * X[17] + W[393] * X[15] + W[436] * X[13]
+            + W[479] * X[11] + W[522] * X[9] + W[565] * X[7] + W[608] * X[5] + W[651] * X[3] + W[694] * X[1];
+    W[703] = W[7] * X[33] + W[50] * X[31] + W[93] * X[29] + W[136] * X[27] + W[179] * X[25] + W[222] * X[23]
+            + W[265] * X[21] + W[308] * X[19] + W[351] * X[17] + W[394] * X[15] + W[437] * X[13]
+            + W[480] * X[11] + W[523] * X[9] + W[566] * X[7] + W[609] * X[5] + W[652] * X[3] + W[695] * X[1];
+    W[704] = W[8] * X[33] + W[51] * X[31] + W[94] * X[29] + W[137] * X[27] + W[180] * X[25] + W[223] * X[23]
+            + W[266] * X[21] + W[309] * X[19] + W[352] * X[17] + W[395] * X[15] + W[438] * X[13]
+            + W[481] * X[11] + W[524] * X[9] + W[567] * X[7] + W[610] * X[5] + W[653] * X[3] + W[696] * X[1];
+    W[705] = W[9] * X[33] + W[52] * X[31] + W[95] * X[29] + W[138] * X[27] + W[181] * X[25] + W[224] * X[23]
+            + W[267] * X[21] + W[310] * X[19] + W[353] * X[17] + W[396] * X[15] + W[439] * X[13]
+            + W[482] * X[11] + W[525] * X[9] + W[568] * X[7] + W[611] * X[5] + W[654] * X[3] + W[697] * X[1];
+#endif
+    W[706] = W[702] - W[701];
+    W[724] = W[698] - W[705];
+    W[722] = W[703] + W[700];
+    W[723] = W[699] + W[704];
+    W[708] = W[0] * W[722];
+    W[709] = W[0] * W[706];
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 711) = X[1] * EOMC_AT2(W + 723) + X[3] * EOMC_AT2(W + 680) + X[5] * EOMC_AT2(W + 637)
+            + X[7] * EOMC_AT2(W + 594) + X[9] * EOMC_AT2(W + 551) + X[11] * EOMC_AT2(W + 508)
+            + X[13] * EOMC_AT2(W + 465) + X[15] * EOMC_AT2(W + 422) + X[17] * EOMC_AT2(W + 379)
+            + X[19] * EOMC_AT2(W + 336) + X[21] * EOMC_AT2(W + 293) + X[23] * EOMC_AT2(W + 250)
+            + X[25] * EOMC_AT2(W + 207) + X[27] * EOMC_AT2(W + 164) + X[29] * EOMC_AT2(W + 121)
+            + X[31] * EOMC_AT2(W + 78) + X[33] * EOMC_AT2(W + 35);
+    EOMC_AT2(W + 713) = EOMC_AT2(W + 711) + EOMC_AT2(W + 708);
+#else
+    W[711] = X[1] * W[723] + X[3] * W[680] + X[5] * W[637] + X[7] * W[594] + X[9] * W[551] + X[11] * W[508]
+            + X[13] * W[465] + X[15] * W[422] + X[17] * W[379] + X[19] * W[336] + X[21] * W[293]
+            + X[23] * W[250] + X[25] * W[207] + X[27] * W[164] + X[29] * W[121] + X[31] * W[78]
+            + X[33] * W[35];
+    W[712] = X[1] * W[724] + X[3] * W[681] + X[5] * W[638] + X[7] * W[595] + X[9] * W[552] + X[11] * W[509]
+            + X[13] * W[466] + X[15] * W[423] + X[17] * W[380] + X[19] * W[337] + X[21] * W[294]
+            + X[23] * W[251] + X[25] * W[208] + X[27] * W[165] + X[29] * W[122] + X[31] * W[79]
+            + X[33] * W[36];
+    W[713] = W[711] + W[708];
+    W[714] = W[712] + W[709];
+#endif
 }
 
-/* Lines 21 .. 37 of taylor_run's order 17, in the fourth unit. */
+/* Lines 30 .. 37 of taylor_run's order 17, in the fourth unit. */
+EOMC_PART EOMC_UNCHECKED void
+spinning_hoop_taylor_run_36(eomc_real *restrict W, eomc_real *restrict X)
+{
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 758) = EOMC_AT2(W + 6) * EOMC_AT2(W + 756) + EOMC_AT2(W + 49) * EOMC_AT2(W + 713)
+            + EOMC_AT2(W + 92) * EOMC_AT2(W + 670) + EOMC_AT2(W + 135) * EOMC_AT2(W + 627) + EOMC_AT2(W + 178) * EOMC_AT2(W + 584)
+            + EOMC_AT2(W + 221) * EOMC_AT2(W + 541) + EOMC_AT2(W + 264) * EOMC_AT2(W + 498) + EOMC_AT2(W + 307) * EOMC_AT2(W + 455)
+            + EOMC_AT2(W + 350) * EOMC_AT2(W + 412) + EOMC_AT2(W + 393) * EOMC_AT2(W + 369) + EOMC_AT2(W + 436) * EOMC_AT2(W + 326)
+            + EOMC_AT2(W + 479) * EOMC_AT2(W + 283) + EOMC_AT2(W + 522) * EOMC_AT2(W + 240) + EOMC_AT2(W + 565) * EOMC_AT2(W + 197)
+            + EOMC_AT2(W + 608) * EOMC_AT2(W + 154) + EOMC_AT2(W + 651) * EOMC_AT2(W + 111) + EOMC_AT2(W + 694) * EOMC_AT2(W + 68)
+            + EOMC_AT2(W + 737) * EOMC_AT2(W + 25);
+#else
+    W[758] = W[6] * W[756] + W[49] * W[713] + W[92] * W[670] + W[135] * W[627] + W[178] * W[584]
+            + W[221] * W[541] + W[264] * W[498] + W[307] * W[455] + W[350] * W[412] + W[393] * W[369]
+            + W[436] * W[326] + W[479] * W[283] + W[522] * W[240] + W[565] * W[197] + W[608] * W[154]
+            + W[651] * W[111] + W[694] * W[68] + W[737] * W[25];
+    W[759] = W[7] * W[757] + W[50] * W[714] + W[93] * W[671] + W[136] * W[628] + W[179] * W[585]
+            + W[222] * W[542] + W[265] * W[499] + W[308] * W[456] + W[351] * W[413] + W[394] * W[370]
+            + W[437] * W[327] + W[480] * W[284] + W[523] * W[241] + W[566] * W[198] + W[609] * W[155]
+            + W[652] * W[112] + W[695] * W[69] + W[738] * W[26];
+#endif
+    W[772] = W[771] + W[759];
+    W[750] = W[772] - W[758];
+    W[753] = W[1] * W[750];
+    W[773] = W[770] + W[753];
+    X[36] = X[35] / 18.0;
+    X[37] = -W[773] / W[1] / 18.0;
+}
+
+/* Lines 0 .. 29 of taylor_run's order 18, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED void
 spinning_hoop_taylor_run_37(eomc_real *restrict W, eomc_real *restrict X)
 {
-    W[762] = W[744] - W[754];
-    W[765] = W[752] + W[742];
-    W[769] = W[743] + W[753];
-    W[745] = W[0] * W[765];
-    W[746] = W[0] * W[761];
-    W[755] = X[1] * W[769] + X[3] * W[726] + X[5] * W[683] + X[7] * W[640] + X[9] * W[597] + X[11] * W[554]
-            + X[13] * W[511] + X[15] * W[468] + X[17] * W[425] + X[19] * W[382] + X[21] * W[339]
-            + X[23] * W[296] + X[25] * W[253] + X[27] * W[210] + X[29] * W[167] + X[31] * W[124]
-            + X[33] * W[81] + X[35] * W[38];
-    W[757] = X[1] * W[762] + X[3] * W[719] + X[5] * W[676] + X[7] * W[633] + X[9] * W[590] + X[11] * W[547]
-            + X[13] * W[504] + X[15] * W[461] + X[17] * W[418] + X[19] * W[375] + X[21] * W[332]
-            + X[23] * W[289] + X[25] * W[246] + X[27] * W[203] + X[29] * W[160] + X[31] * W[117]
-            + X[33] * W[74] + X[35] * W[31];
-    W[766] = W[755] + W[745];
-    W[767] = W[757] + W[746];
-    W[758] = W[19] * W[767] + W[62] * W[724] + W[105] * W[681] + W[148] * W[638] + W[191] * W[595]
-            + W[234] * W[552] + W[277] * W[509] + W[320] * W[466] + W[363] * W[423] + W[406] * W[380]
-            + W[449] * W[337] + W[492] * W[294] + W[535] * W[251] + W[578] * W[208] + W[621] * W[165]
-            + W[664] * W[122] + W[707] * W[79] + W[750] * W[36];
-    W[759] = W[18] * W[766] + W[61] * W[723] + W[104] * W[680] + W[147] * W[637] + W[190] * W[594]
-            + W[233] * W[551] + W[276] * W[508] + W[319] * W[465] + W[362] * W[422] + W[405] * W[379]
-            + W[448] * W[336] + W[491] * W[293] + W[534] * W[250] + W[577] * W[207] + W[620] * W[164]
-            + W[663] * W[121] + W[706] * W[78] + W[749] * W[35];
-    W[764] = W[748] + W[758];
-    W[763] = W[764] - W[759];
-    W[740] = W[2] * W[763];
-    W[768] = W[739] + W[740];
-    X[36] = X[35] / 18.0;
-    X[37] = -W[768] / W[2] / 18.0;
-}
-
-/* Lines 0 .. 20 of taylor_run's order 18, in the fourth unit. */
-EOMC_PART EOMC_UNCHECKED void
-spinning_hoop_taylor_run_38(eomc_real *restrict W, eomc_real *restrict X)
-{
-    W[777] = (X[2] * W[736] + 2.0 * X[4] * W[693] + 3.0 * X[6] * W[650] + 4.0 * X[8] * W[607]
-            + 5.0 * X[10] * W[564] + 6.0 * X[12] * W[521] + 7.0 * X[14] * W[478] + 8.0 * X[16] * W[435]
-            + 9.0 * X[18] * W[392] + 10.0 * X[20] * W[349] + 11.0 * X[22] * W[306] + 12.0 * X[24] * W[263]
-            + 13.0 * X[26] * W[220] + 14.0 * X[28] * W[177] + 15.0 * X[30] * W[134] + 16.0 * X[32] * W[91]
-            + 17.0 * X[34] * W[48] + 18.0 * X[36] * W[5]) / 18.0;
-    W[779] = -((X[2] * W[734] + 2.0 * X[4] * W[691] + 3.0 * X[6] * W[648] + 4.0 * X[8] * W[605]
-            + 5.0 * X[10] * W[562] + 6.0 * X[12] * W[519] + 7.0 * X[14] * W[476] + 8.0 * X[16] * W[433]
-            + 9.0 * X[18] * W[390] + 10.0 * X[20] * W[347] + 11.0 * X[22] * W[304] + 12.0 * X[24] * W[261]
-            + 13.0 * X[26] * W[218] + 14.0 * X[28] * W[175] + 15.0 * X[30] * W[132] + 16.0 * X[32] * W[89]
-            + 17.0 * X[34] * W[46] + 18.0 * X[36] * W[3])) / 18.0;
-    W[780] = (X[1] * X[37] + X[3] * X[35] + X[5] * X[33] + X[7] * X[31] + X[9] * X[29] + X[11] * X[27]
+    W[776] = (X[2] * W[763] + 2.0 * X[4] * W[720] + 3.0 * X[6] * W[677] + 4.0 * X[8] * W[634]
+            + 5.0 * X[10] * W[591] + 6.0 * X[12] * W[548] + 7.0 * X[14] * W[505] + 8.0 * X[16] * W[462]
+            + 9.0 * X[18] * W[419] + 10.0 * X[20] * W[376] + 11.0 * X[22] * W[333] + 12.0 * X[24] * W[290]
+            + 13.0 * X[26] * W[247] + 14.0 * X[28] * W[204] + 15.0 * X[30] * W[161] + 16.0 * X[32] * W[118]
+            + 17.0 * X[34] * W[75] + 18.0 * X[36] * W[32]) / 18.0;
+    W[806] = -((X[2] * W[733] + 2.0 * X[4] * W[690] + 3.0 * X[6] * W[647] + 4.0 * X[8] * W[604]
+            + 5.0 * X[10] * W[561] + 6.0 * X[12] * W[518] + 7.0 * X[14] * W[475] + 8.0 * X[16] * W[432]
+            + 9.0 * X[18] * W[389] + 10.0 * X[20] * W[346] + 11.0 * X[22] * W[303] + 12.0 * X[24] * W[260]
+            + 13.0 * X[26] * W[217] + 14.0 * X[28] * W[174] + 15.0 * X[30] * W[131] + 16.0 * X[32] * W[88]
+            + 17.0 * X[34] * W[45] + 18.0 * X[36] * W[2])) / 18.0;
+    W[811] = (X[1] * X[37] + X[3] * X[35] + X[5] * X[33] + X[7] * X[31] + X[9] * X[29] + X[11] * X[27]
             + X[13] * X[25] + X[15] * X[23] + X[17] * X[21]) * 2.0 + X[19] * X[19];
-    W[782] = W[1] * W[777];
-    W[790] = W[3] * W[779] + W[46] * W[736] + W[89] * W[693] + W[132] * W[650] + W[175] * W[607]
-            + W[218] * W[564] + W[261] * W[521] + W[304] * W[478] + W[347] * W[435] + W[390] * W[392]
-            + W[433] * W[349] + W[476] * W[306] + W[519] * W[263] + W[562] * W[220] + W[605] * W[177]
-            + W[648] * W[134] + W[691] * W[91] + W[734] * W[48] + W[777] * W[5];
-    W[778] = W[50] * W[772] / 18.0;
-    W[815] = -W[50] * W[735] / 18.0;
-    W[791] = W[16] * W[780] + W[59] * W[737] + W[102] * W[694] + W[145] * W[651] + W[188] * W[608]
-            + W[231] * W[565] + W[274] * W[522] + W[317] * W[479] + W[360] * W[436] + W[403] * W[393]
-            + W[446] * W[350] + W[489] * W[307] + W[532] * W[264] + W[575] * W[221] + W[618] * W[178]
-            + W[661] * W[135] + W[704] * W[92] + W[747] * W[49] + W[790] * W[6];
-    W[792] = W[41] * W[779] + W[84] * W[736] + W[127] * W[693] + W[170] * W[650] + W[213] * W[607]
-            + W[256] * W[564] + W[299] * W[521] + W[342] * W[478] + W[385] * W[435] + W[428] * W[392]
-            + W[471] * W[349] + W[514] * W[306] + W[557] * W[263] + W[600] * W[220] + W[643] * W[177]
-            + W[686] * W[134] + W[729] * W[91] + W[772] * W[48] + W[815] * W[5];
-    W[793] = W[4] * W[779] + W[47] * W[736] + W[90] * W[693] + W[133] * W[650] + W[176] * W[607]
-            + W[219] * W[564] + W[262] * W[521] + W[305] * W[478] + W[348] * W[435] + W[391] * W[392]
-            + W[434] * W[349] + W[477] * W[306] + W[520] * W[263] + W[563] * W[220] + W[606] * W[177]
-            + W[649] * W[134] + W[692] * W[91] + W[735] * W[48] + W[778] * W[5];
-    W[799] = W[3] * W[815] + W[46] * W[772] + W[89] * W[729] + W[132] * W[686] + W[175] * W[643]
-            + W[218] * W[600] + W[261] * W[557] + W[304] * W[514] + W[347] * W[471] + W[390] * W[428]
-            + W[433] * W[385] + W[476] * W[342] + W[519] * W[299] + W[562] * W[256] + W[605] * W[213]
-            + W[648] * W[170] + W[691] * W[127] + W[734] * W[84] + W[777] * W[41];
-    W[803] = W[3] * W[778] + W[46] * W[735] + W[89] * W[692] + W[132] * W[649] + W[175] * W[606]
-            + W[218] * W[563] + W[261] * W[520] + W[304] * W[477] + W[347] * W[434] + W[390] * W[391]
-            + W[433] * W[348] + W[476] * W[305] + W[519] * W[262] + W[562] * W[219] + W[605] * W[176]
-            + W[648] * W[133] + W[691] * W[90] + W[734] * W[47] + W[777] * W[4];
-    W[784] = W[0] * W[803];
-    W[785] = W[0] * W[799];
-    W[786] = W[0] * W[793];
-    W[787] = W[0] * W[792];
+    W[813] = W[38] * W[776];
+    W[779] = W[2] * W[806] + W[45] * W[763] + W[88] * W[720] + W[131] * W[677] + W[174] * W[634]
+            + W[217] * W[591] + W[260] * W[548] + W[303] * W[505] + W[346] * W[462] + W[389] * W[419]
+            + W[432] * W[376] + W[475] * W[333] + W[518] * W[290] + W[561] * W[247] + W[604] * W[204]
+            + W[647] * W[161] + W[690] * W[118] + W[733] * W[75] + W[776] * W[32];
+    W[778] = W[73] * W[734] / 18.0;
+    W[777] = -W[73] * W[735] / 18.0;
 #ifdef EOMC_PACKS
-    EOMC_AT2(W + 794) = EOMC_AT2(W + 18) * X[37] + EOMC_AT2(W + 61) * X[35] + EOMC_AT2(W + 104) * X[33]
-            + EOMC_AT2(W + 147) * X[31] + EOMC_AT2(W + 190) * X[29] + EOMC_AT2(W + 233) * X[27]
-            + EOMC_AT2(W + 276) * X[25] + EOMC_AT2(W + 319) * X[23] + EOMC_AT2(W + 362) * X[21]
-            + EOMC_AT2(W + 405) * X[19] + EOMC_AT2(W + 448) * X[17] + EOMC_AT2(W + 491) * X[15]
-            + EOMC_AT2(W + 534) * X[13] + EOMC_AT2(W + 577) * X[11] + EOMC_AT2(W + 620) * X[9]
-            + EOMC_AT2(W + 663) * X[7] + EOMC_AT2(W + 706) * X[5] + EOMC_AT2(W + 749) * X[3] + EOMC_AT2(W + 792) * X[1];
+    EOMC_AT2(W + 780) = EOMC_AT2(W + 3) * W[806] + EOMC_AT2(W + 46) * W[763] + EOMC_AT2(W + 89) * W[720]
+            + EOMC_AT2(W + 132) * W[677] + EOMC_AT2(W + 175) * W[634] + EOMC_AT2(W + 218) * W[591]
+            + EOMC_AT2(W + 261) * W[548] + EOMC_AT2(W + 304) * W[505] + EOMC_AT2(W + 347) * W[462]
+            + EOMC_AT2(W + 390) * W[419] + EOMC_AT2(W + 433) * W[376] + EOMC_AT2(W + 476) * W[333]
+            + EOMC_AT2(W + 519) * W[290] + EOMC_AT2(W + 562) * W[247] + EOMC_AT2(W + 605) * W[204]
+            + EOMC_AT2(W + 648) * W[161] + EOMC_AT2(W + 691) * W[118] + EOMC_AT2(W + 734) * W[75]
+            + EOMC_AT2(W + 777) * W[32];
+    EOMC_AT2(W + 782) = W[2] * EOMC_AT2(W + 777) + W[45] * EOMC_AT2(W + 734) + W[88] * EOMC_AT2(W + 691)
+            + W[131] * EOMC_AT2(W + 648) + W[174] * EOMC_AT2(W + 605) + W[217] * EOMC_AT2(W + 562)
+            + W[260] * EOMC_AT2(W + 519) + W[303] * EOMC_AT2(W + 476) + W[346] * EOMC_AT2(W + 433)
+            + W[389] * EOMC_AT2(W + 390) + W[432] * EOMC_AT2(W + 347) + W[475] * EOMC_AT2(W + 304)
+            + W[518] * EOMC_AT2(W + 261) + W[561] * EOMC_AT2(W + 218) + W[604] * EOMC_AT2(W + 175)
+            + W[647] * EOMC_AT2(W + 132) + W[690] * EOMC_AT2(W + 89) + W[733] * EOMC_AT2(W + 46)
+            + W[776] * EOMC_AT2(W + 3);
 #else
-    W[794] = W[18] * X[37] + W[61] * X[35] + W[104] * X[33] + W[147] * X[31] + W[190] * X[29]
-            + W[233] * X[27] + W[276] * X[25] + W[319] * X[23] + W[362] * X[21] + W[405] * X[19]
-            + W[448] * X[17] + W[491] * X[15] + W[534] * X[13] + W[577] * X[11] + W[620] * X[9]
-            + W[663] * X[7] + W[706] * X[5] + W[749] * X[3] + W[792] * X[1];
-    W[795] = W[19] * X[37] + W[62] * X[35] + W[105] * X[33] + W[148] * X[31] + W[191] * X[29]
-            + W[234] * X[27] + W[277] * X[25] + W[320] * X[23] + W[363] * X[21] + W[406] * X[19]
-            + W[449] * X[17] + W[492] * X[15] + W[535] * X[13] + W[578] * X[11] + W[621] * X[9]
-            + W[664] * X[7] + W[707] * X[5] + W[750] * X[3] + W[793] * X[1];
+    W[780] = W[3] * W[806] + W[46] * W[763] + W[89] * W[720] + W[132] * W[677] + W[175] * W[634]
+            + W[218] * W[591] + W[261] * W[548] + W[304] * W[505] + W[347] * W[462] + W[390] * W[419]
+            + W[433] * W[376] + W[476] * W[333] + W[519] * W[290] + W[562] * W[247] + W[605] * W[204]
+            + W[648] * W[161] + W[691] * W[118] + W[734] * W[75] + W[777] * W[32];
+    W[781] = W[4] * W[806] + W[47] * W[763] + W[90] * W[720] + W[133] * W[677] + W[176] * W[634]
+            + W[219] * W[591] + W[262] * W[548] + W[305] * W[505] + W[348] * W[462] + W[391] * W[419]
+            + W[434] * W[376] + W[477] * W[333] + W[520] * W[290] + W[563] * W[247] + W[606] * W[204]
+            + W[649] * W[161] + W[692] * W[118] + W[735] * W[75] + W[778] * W[32];
+    W[782] = W[2] * W[777] + W[45] * W[734] + W[88] * W[691] + W[131] * W[648] + W[174] * W[605]
+            + W[217] * W[562] + W[260] * W[519] + W[303] * W[476] + W[346] * W[433] + W[389] * W[390]
+            + W[432] * W[347] + W[475] * W[304] + W[518] * W[261] + W[561] * W[218] + W[604] * W[175]
+            + W[647] * W[132] + W[690] * W[89] + W[733] * W[46] + W[776] * W[3];
+    W[783] = W[2] * W[778] + W[45] * W[735] + W[88] * W[692] + W[131] * W[649] + W[174] * W[606]
+            + W[217] * W[563] + W[260] * W[520] + W[303] * W[477] + W[346] * W[434] + W[389] * W[391]
+            + W[432] * W[348] + W[475] * W[305] + W[518] * W[262] + W[561] * W[219] + W[604] * W[176]
+            + W[647] * W[133] + W[690] * W[90] + W[733] * W[47] + W[776] * W[4];
 #endif
-    W[796] = W[25] * X[37] + W[68] * X[35] + W[111] * X[33] + W[154] * X[31] + W[197] * X[29]
-            + W[240] * X[27] + W[283] * X[25] + W[326] * X[23] + W[369] * X[21] + W[412] * X[19]
-            + W[455] * X[17] + W[498] * X[15] + W[541] * X[13] + W[584] * X[11] + W[627] * X[9]
-            + W[670] * X[7] + W[713] * X[5] + W[756] * X[3] + W[799] * X[1];
-    W[797] = W[29] * X[37] + W[72] * X[35] + W[115] * X[33] + W[158] * X[31] + W[201] * X[29]
-            + W[244] * X[27] + W[287] * X[25] + W[330] * X[23] + W[373] * X[21] + W[416] * X[19]
-            + W[459] * X[17] + W[502] * X[15] + W[545] * X[13] + W[588] * X[11] + W[631] * X[9]
-            + W[674] * X[7] + W[717] * X[5] + W[760] * X[3] + W[803] * X[1];
-    W[804] = W[794] - W[784];
+    W[814] = W[5] * W[811] + W[48] * W[768] + W[91] * W[725] + W[134] * W[682] + W[177] * W[639]
+            + W[220] * W[596] + W[263] * W[553] + W[306] * W[510] + W[349] * W[467] + W[392] * W[424]
+            + W[435] * W[381] + W[478] * W[338] + W[521] * W[295] + W[564] * W[252] + W[607] * W[209]
+            + W[650] * W[166] + W[693] * W[123] + W[736] * W[80] + W[779] * W[37];
+#ifdef EOMC_PACKS
+    EOMC_AT4(W + 784) = W[0] * EOMC_AT4(W + 780);
+    EOMC_AT4(W + 788) = EOMC_AT4(W + 6) * X[37] + EOMC_AT4(W + 49) * X[35] + EOMC_AT4(W + 92) * X[33]
+            + EOMC_AT4(W + 135) * X[31] + EOMC_AT4(W + 178) * X[29] + EOMC_AT4(W + 221) * X[27]
+            + EOMC_AT4(W + 264) * X[25] + EOMC_AT4(W + 307) * X[23] + EOMC_AT4(W + 350) * X[21]
+            + EOMC_AT4(W + 393) * X[19] + EOMC_AT4(W + 436) * X[17] + EOMC_AT4(W + 479) * X[15]
+            + EOMC_AT4(W + 522) * X[13] + EOMC_AT4(W + 565) * X[11] + EOMC_AT4(W + 608) * X[9]
+            + EOMC_AT4(W + 651) * X[7] + EOMC_AT4(W + 694) * X[5] + EOMC_AT4(W + 737) * X[3] + EOMC_AT4(W + 780) * X[1];
+#else
+    W[784] = W[0] * W[780];
+    W[785] = W[0] * W[781];
+    W[786] = W[0] * W[782];
+    W[787] = W[0] * W[783];
+    W[788] = W[6] * X[37] + W[49] * X[35] + W[92] * X[33] + W[135] * X[31] + W[178] * X[29] + W[221] * X[27]
+            + W[264] * X[25] + W[307] * X[23] + W[350] * X[21] + W[393] * X[19] + W[436] * X[17]
+            + W[479] * X[15] + W[522] * X[13] + W[565] * X[11] + W[608] * X[9] + W[651] * X[7]
+            + W[694] * X[5] + W[737] * X[3] + W[780] * X[1];
+    W[789] = W[7] * X[37] + W[50] * X[35] + W[93] * X[33] + W[136] * X[31] + W[179] * X[29] + W[222] * X[27]
+            + W[265] * X[25] + W[308] * X[23] + W[351] * X[21] + W[394] * X[19] + W[437] * X[17]
+            + W[480] * X[15] + W[523] * X[13] + W[566] * X[11] + W[609] * X[9] + W[652] * X[7]
+            + W[695] * X[5] + W[738] * X[3] + W[781] * X[1];
+    W[790] = W[8] * X[37] + W[51] * X[35] + W[94] * X[33] + W[137] * X[31] + W[180] * X[29] + W[223] * X[27]
+            + W[266] * X[25] + W[309] * X[23] + W[352] * X[21] + W[395] * X[19] + W[438] * X[17]
+            + W[481] * X[15] + W[524] * X[13] + W[567] * X[11] + W[610] * X[9] + W[653] * X[7]
+            + W[696] * X[5] + W[739] * X[3] + W[782] * X[1];
+    W[791] = W[9] * X[37] + W[52] * X[35] + W[95] * X[33] + W[138] * X[31] + W[181] * X[29] + W[224] * X[27]
+            + W[267] * X[25] + W[310] * X[23] + W[353] * X[21] + W[396] * X[19] + W[439] * X[17]
+            + W[482] * X[15] + W[525] * X[13] + W[568] * X[11] + W[611] * X[9] + W[654] * X[7]
+            + W[697] * X[5] + W[740] * X[3] + W[783] * X[1];
+#endif
+    W[792] = W[788] - W[787];
+    W[810] = W[784] - W[791];
+    W[808] = W[789] + W[786];
+    W[809] = W[785] + W[790];
+    W[794] = W[0] * W[808];
+    W[795] = W[0] * W[792];
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 797) = X[1] * EOMC_AT2(W + 809) + X[3] * EOMC_AT2(W + 766) + X[5] * EOMC_AT2(W + 723)
+            + X[7] * EOMC_AT2(W + 680) + X[9] * EOMC_AT2(W + 637) + X[11] * EOMC_AT2(W + 594)
+            + X[13] * EOMC_AT2(W + 551) + X[15] * EOMC_AT2(W + 508) + X[17] * EOMC_AT2(W + 465)
+            + X[19] * EOMC_AT2(W + 422) + X[21] * EOMC_AT2(W + 379) + X[23] * EOMC_AT2(W + 336)
+            + X[25] * EOMC_AT2(W + 293) + X[27] * EOMC_AT2(W + 250) + X[29] * EOMC_AT2(W + 207)
+            + X[31] * EOMC_AT2(W + 164) + X[33] * EOMC_AT2(W + 121) + X[35] * EOMC_AT2(W + 78)
+            + X[37] * EOMC_AT2(W + 35);
+    EOMC_AT2(W + 799) = EOMC_AT2(W + 797) + EOMC_AT2(W + 794);
+#else
+    W[797] = X[1] * W[809] + X[3] * W[766] + X[5] * W[723] + X[7] * W[680] + X[9] * W[637] + X[11] * W[594]
+            + X[13] * W[551] + X[15] * W[508] + X[17] * W[465] + X[19] * W[422] + X[21] * W[379]
+            + X[23] * W[336] + X[25] * W[293] + X[27] * W[250] + X[29] * W[207] + X[31] * W[164]
+            + X[33] * W[121] + X[35] * W[78] + X[37] * W[35];
+    W[798] = X[1] * W[810] + X[3] * W[767] + X[5] * W[724] + X[7] * W[681] + X[9] * W[638] + X[11] * W[595]
+            + X[13] * W[552] + X[15] * W[509] + X[17] * W[466] + X[19] * W[423] + X[21] * W[380]
+            + X[23] * W[337] + X[25] * W[294] + X[27] * W[251] + X[29] * W[208] + X[31] * W[165]
+            + X[33] * W[122] + X[35] * W[79] + X[37] * W[36];
+    W[799] = W[797] + W[794];
+    W[800] = W[798] + W[795];
+#endif
 }
 
-/* Lines 21 .. 37 of taylor_run's order 19, in the fourth unit. */
+/* Lines 30 .. 37 of taylor_run's order 19, in the fourth unit. */
 EOMC_PART EOMC_UNCHECKED void
-spinning_hoop_taylor_run_41(eomc_real *restrict W, eomc_real *restrict X)
+spinning_hoop_taylor_run_40(eomc_real *restrict W, eomc_real *restrict X)
 {
-    W[848] = W[830] - W[840];
-    W[851] = W[838] + W[828];
-    W[855] = W[829] + W[839];
-    W[831] = W[0] * W[851];
-    W[832] = W[0] * W[847];
-    W[841] = X[1] * W[855] + X[3] * W[812] + X[5] * W[769] + X[7] * W[726] + X[9] * W[683] + X[11] * W[640]
-            + X[13] * W[597] + X[15] * W[554] + X[17] * W[511] + X[19] * W[468] + X[21] * W[425]
-            + X[23] * W[382] + X[25] * W[339] + X[27] * W[296] + X[29] * W[253] + X[31] * W[210]
-            + X[33] * W[167] + X[35] * W[124] + X[37] * W[81] + X[39] * W[38];
-    W[843] = X[1] * W[848] + X[3] * W[805] + X[5] * W[762] + X[7] * W[719] + X[9] * W[676] + X[11] * W[633]
-            + X[13] * W[590] + X[15] * W[547] + X[17] * W[504] + X[19] * W[461] + X[21] * W[418]
-            + X[23] * W[375] + X[25] * W[332] + X[27] * W[289] + X[29] * W[246] + X[31] * W[203]
-            + X[33] * W[160] + X[35] * W[117] + X[37] * W[74] + X[39] * W[31];
-    W[852] = W[841] + W[831];
-    W[853] = W[843] + W[832];
-    W[844] = W[19] * W[853] + W[62] * W[810] + W[105] * W[767] + W[148] * W[724] + W[191] * W[681]
-            + W[234] * W[638] + W[277] * W[595] + W[320] * W[552] + W[363] * W[509] + W[406] * W[466]
-            + W[449] * W[423] + W[492] * W[380] + W[535] * W[337] + W[578] * W[294] + W[621] * W[251]
-            + W[664] * W[208] + W[707] * W[165] + W[750] * W[122] + W[793] * W[79] + W[836] * W[36];
-    W[845] = W[18] * W[852] + W[61] * W[809] + W[104] * W[766] + W[147] * W[723] + W[190] * W[680]
-            + W[233] * W[637] + W[276] * W[594] + W[319] * W[551] + W[362] * W[508] + W[405] * W[465]
-            + W[448] * W[422] + W[491] * W[379] + W[534] * W[336] + W[577] * W[293] + W[620] * W[250]
-            + W[663] * W[207] + W[706] * W[164] + W[749] * W[121] + W[792] * W[78] + W[835] * W[35];
-    W[850] = W[834] + W[844];
-    W[849] = W[850] - W[845];
-    W[826] = W[2] * W[849];
-    W[854] = W[825] + W[826];
+#ifdef EOMC_PACKS
+    EOMC_AT2(W + 844) = EOMC_AT2(W + 6) * EOMC_AT2(W + 842) + EOMC_AT2(W + 49) * EOMC_AT2(W + 799)
+            + EOMC_AT2(W + 92) * EOMC_AT2(W + 756) + EOMC_AT2(W + 135) * EOMC_AT2(W + 713) + EOMC_AT2(W + 178) * EOMC_AT2(W + 670)
+            + EOMC_AT2(W + 221) * EOMC_AT2(W + 627) + EOMC_AT2(W + 264) * EOMC_AT2(W + 584) + EOMC_AT2(W + 307) * EOMC_AT2(W + 541)
+            + EOMC_AT2(W + 350) * EOMC_AT2(W + 498) + EOMC_AT2(W + 393) * EOMC_AT2(W + 455) + EOMC_AT2(W + 436) * EOMC_AT2(W + 412)
+            + EOMC_AT2(W + 479) * EOMC_AT2(W + 369) + EOMC_AT2(W + 522) * EOMC_AT2(W + 326) + EOMC_AT2(W + 565) * EOMC_AT2(W + 283)
+            + EOMC_AT2(W + 608) * EOMC_AT2(W + 240) + EOMC_AT2(W + 651) * EOMC_AT2(W + 197) + EOMC_AT2(W + 694) * EOMC_AT2(W + 154)
+            + EOMC_AT2(W + 737) * EOMC_AT2(W + 111) + EOMC_AT2(W + 780) * EOMC_AT2(W + 68) + EOMC_AT2(W + 823) * EOMC_AT2(W + 25);
+#else
+    W[844] = W[6] * W[842] + W[49] * W[799] + W[92] * W[756] + W[135] * W[713] + W[178] * W[670]
+            + W[221] * W[627] + W[264] * W[584] + W[307] * W[541] + W[350] * W[498] + W[393] * W[455]
+            + W[436] * W[412] + W[479] * W[369] + W[522] * W[326] + W[565] * W[283] + W[608] * W[240]
+            + W[651] * W[197] + W[694] * W[154] + W[737] * W[111] + W[780] * W[68] + W[823] * W[25];
+    W[845] = W[7] * W[843] + W[50] * W[800] + W[93] * W[757] + W[136] * W[714] + W[179] * W[671]
+            + W[222] * W[628] + W[265] * W[585] + W[308] * W[542] + W[351] * W[499] + W[394] * W[456]
+            + W[437] * W[413] + W[480] * W[370] + W[523] * W[327] + W[566] * W[284] + W[609] * W[241]
+            + W[652] * W[198] + W[695] * W[155] + W[738] * W[112] + W[781] * W[69] + W[824] * W[26];
+#endif
+    W[858] = W[857] + W[845];
+    W[836] = W[858] - W[844];
+    W[839] = W[1] * W[836];
+    W[859] = W[856] + W[839];
     X[40] = X[39] / 20.0;
-    X[41] = -W[854] / W[2] / 20.0;
+    X[41] = -W[859] / W[1] / 20.0;
 }
 
 #endif /* EOMC_EXTENDED */

@@ -9,7 +9,9 @@
  * bits.  Two things make them consecutive:
  *
  *  - the slots' columns (pack_columns).  A group is the program's results
- *    of one call with the same constants; each, costliest first, orders
+ *    of one call with the same constants and the same calls making its
+ *    operands (r^2 = dx^2 + dy^2 apart from the forces' sums, which chain
+ *    their slots in another order); each, costliest first, orders
  *    its members and asks that their results, and each operand's slots,
  *    lie side by side in that order.  Slots side by side form a chain,
  *    each slot at a position; two chains that must meet are joined at a
@@ -45,7 +47,7 @@ typedef struct Node {
     int group;       /* its shape's index in the sort */
     int nop;
     int op[PACK_OPS];
-    char key[64];    /* the call and its constants */
+    char key[96];    /* the call, its constants and its operands' calls */
 } Node;
 
 /* Chains of slots: chain[s] (-1: none) and pos[s], each chain's slots in
@@ -163,6 +165,14 @@ nodes_of(const LowTaylor *ty, const unsigned char *free_slot, int *n)
                                          "mul4", "sqr", "div", "inv",   "sqrt", "exp",
                                          "powc", "sincos", "sinhcosh"};
     Node *nd = xmalloc(((size_t)ty->nstep * 4 + 1) * sizeof *nd);
+    /* each slot's producer, for the key: "state" or a call's name */
+    const char **made = xmalloc(((size_t)ty->nslot + 1) * sizeof *made);
+    for (int s = 0; s < ty->nslot; s++)
+        made[s] = free_slot[s] ? "none" : "state";
+    for (int i = 0; i < ty->nstep; i++)
+        for (int r = 0; r < ty->step[i].nres; r++)
+            if (free_slot[ty->step[i].slot[r]])
+                made[ty->step[i].slot[r]] = ty->step[i].call;
     int k = 0;
     double exponent = 0;
     for (int i = 0; i < ty->nstep; i++) {
@@ -194,12 +204,18 @@ nodes_of(const LowTaylor *ty, const unsigned char *free_slot, int *n)
                 for (int j = 0; j < d->nop; j++)
                     d->op[j] = st->slot[st->nres + j];
             }
-            /* (mul2's and mul4's results are alike; sincos' are not) */
-            snprintf(d->key, sizeof d->key, "%s %d %a", multi ? "mul" : st->call, multi ? 0 : r,
-                     !strcmp(st->call, "powc") ? exponent : 0.0);
+            /* (mul2's and mul4's results are alike; sincos' are not) and
+             * what makes each operand: r^2 = dx^2 + dy^2 apart from the
+             * sums of the forces, which chain their slots another way */
+            int at = snprintf(d->key, sizeof d->key, "%s %d %a", multi ? "mul" : st->call,
+                              multi ? 0 : r, !strcmp(st->call, "powc") ? exponent : 0.0);
+            for (int j = 0; j < d->nop && at < (int)sizeof d->key; j++)
+                at += snprintf(d->key + at, sizeof d->key - (size_t)at, " %s",
+                               d->op[j] < 0 ? "-" : made[d->op[j]]);
             k++;
         }
     }
+    free(made);
     *n = k;
     return nd;
 }

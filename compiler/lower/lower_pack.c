@@ -44,7 +44,6 @@ enum { PACK_OPS = 2 };
 
 typedef struct Node {
     int slot, prog;  /* its result, and its place in the program */
-    int group;       /* its shape's index in the sort */
     int nop;
     int op[PACK_OPS];
     char key[96];    /* the call, its constants and its operands' calls */
@@ -157,7 +156,7 @@ demand(Chains *ch, const int *s, int n)
 
 /* The nodes of ty's program that could pack: one per result of the calls
  * whose lines have a shape of their own (sums of products), keyed by the
- * call and its constants.  *n: how many. */
+ * call, its constants and what makes its operands.  *n: how many. */
 static Node *
 nodes_of(const LowTaylor *ty, const unsigned char *free_slot, int *n)
 {

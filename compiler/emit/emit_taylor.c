@@ -156,7 +156,7 @@ enum { SERIES_WRAP = 92 };
  * place[c] >= 0) in the caller's X, X[j N + place[c]], so that its series
  * is written where the runtime reads it; every other in the local W. */
 typedef struct Cells {
-    int *place;       /* [nslot] by column: the state's index, or -1 */
+    const int *place; /* [nslot] by column: the state's index, or -1 (LowSeries') */
     int nslot, N;
     int lanes;        /* taylor_run4's: every value a vector of the lanes'
                        * (EOMC_V4), a number spread over them */
@@ -380,18 +380,11 @@ print_series_line(Printer *pr, const LowSeries *se, const LowSerLine *l, int w,
     fputs(";\n", pr->f);
 }
 
-/* The cells of ty's written-out series, into *cells (its place malloc'd:
- * the caller frees it). */
-static void
-series_cells(const LowTaylor *ty, int lanes, Cells *cells)
+/* The cells of ty's written-out series. */
+static Cells
+series_cells(const LowTaylor *ty, int lanes)
 {
-    int ns = ty->nstate, nslot = ty->nslot;
-    int *place = xmalloc(((size_t)nslot + 1) * sizeof *place);
-    for (int s = 0; s < nslot; s++)
-        place[s] = -1;
-    for (int i = 0; i < ns; i++)
-        place[ty->series->col[ty->state_slot[i]]] = i;
-    *cells = (Cells){place, nslot, ns, lanes};
+    return (Cells){ty->series->place, ty->nslot, ty->nstate, lanes};
 }
 
 /* Lines from .. to - 1 of the series: a run of packs (LowSerLine.pack)
@@ -518,8 +511,7 @@ static void
 print_series_parts(Printer *pr, const LowTaylor *ty, const int *first, int nparts)
 {
     const LowSeries *se = ty->series;
-    Cells cells;
-    series_cells(ty, 0, &cells);
+    Cells cells = series_cells(ty, 0);
     char *in4 = xmalloc((size_t)nparts + 1), fname[160], params[200];
     for (int part = 0, k = 0; part < nparts; part++) {
         int i = first[part], end = first[part + 1];
@@ -536,10 +528,11 @@ print_series_parts(Printer *pr, const LowTaylor *ty, const int *first, int npart
         part_values(params, sizeof params, reads, 1);
         emit_line(pr, "/* Lines %d .. %d of taylor_run's order %d%s. */", i - se->start[k],
                   end - 1 - se->start[k], k, second ? ", in the fourth unit" : "");
-        emit_head(pr, second ? (solves ? "EOMC_PART EOMC_UNCHECKED int" : "EOMC_PART EOMC_UNCHECKED void")
-                             : (solves ? "static EOMC_NOINLINE EOMC_UNCHECKED int"
-                                       : "static EOMC_NOINLINE EOMC_UNCHECKED void"),
-                  fname, params);
+        const char *type = second ? (solves ? "EOMC_PART EOMC_UNCHECKED int"
+                                            : "EOMC_PART EOMC_UNCHECKED void")
+                                  : (solves ? "static EOMC_NOINLINE EOMC_UNCHECKED int"
+                                            : "static EOMC_NOINLINE EOMC_UNCHECKED void");
+        emit_head(pr, type, fname, params);
         print_lines(pr, se, i, end, &cells);
         emit_line(pr, solves ? "    return 0;\n}\n" : "}\n");
         if (second)
@@ -556,7 +549,6 @@ print_series_parts(Printer *pr, const LowTaylor *ty, const int *first, int npart
                       fname, params, ";");
     }
     free(in4);
-    free(cells.place);
 }
 
 /* taylor_run written out (lower_series.c): orders 0 .. LOW_SERIES_ORDERS
@@ -567,9 +559,8 @@ print_series(Printer *pr, const LowTaylor *ty, int lanes, const int *first)
 {
     const LowSeries *se = ty->series;
     int ns = ty->nstate, nslot = ty->nslot, parted = first != NULL;
-    Cells cells;
-    series_cells(ty, lanes, &cells);
-    int *place = cells.place;
+    Cells cells = series_cells(ty, lanes);
+    const int *place = cells.place;
     const char *zero = lanes ? "EOMC_V4C(0.0)" : "0.0";
     emit_line(pr, "    %s W[%d]; /* a slot's coefficient j at W[j * %d + its column], but the",
               lanes ? "eomc_v4" : "eomc_real", se->ncell, nslot);
@@ -629,7 +620,6 @@ print_series(Printer *pr, const LowTaylor *ty, int lanes, const int *first)
             emit_line(pr, "    T[%d * S] = W[%d]; /* M's diagonal, entry %d */", m, se->col[m], j);
     }
     emit_line(pr, "    return 0;");
-    free(place);
 }
 
 /* taylor_run (eomc_model.h): each order of the program, then the state's

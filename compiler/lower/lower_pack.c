@@ -546,11 +546,13 @@ pack_lines(LowSerLine *line, int n, const LowSerTerm *term, const PackCells *pc,
     for (int i = 0; i < n; i++)
         if (2 * line[i].nterm + 3 > maxop)
             maxop = 2 * line[i].nterm + 3;
-    int *op = xmalloc((size_t)maxop * 2 * sizeof *op), *op1 = xmalloc((size_t)maxop * 2 * sizeof *op1);
+    int *op = xmalloc((size_t)maxop * 2 * sizeof *op);
+    int *op1 = xmalloc((size_t)maxop * 2 * sizeof *op1);
     for (int i = 0; i < n; i++)
         writer[line[i].dst] = i;
     /* each line's readers among these (CSR), and what it waits for */
-    int *ndep = xmalloc((size_t)n * sizeof *ndep), *nsucc = xmalloc(((size_t)n + 1) * sizeof *nsucc);
+    int *ndep = xmalloc((size_t)n * sizeof *ndep);
+    int *nsucc = xmalloc(((size_t)n + 1) * sizeof *nsucc);
     memset(ndep, 0, (size_t)n * sizeof *ndep);
     memset(nsucc, 0, ((size_t)n + 1) * sizeof *nsucc);
     for (int i = 0; i < n; i++) {
@@ -561,7 +563,8 @@ pack_lines(LowSerLine *line, int n, const LowSerTerm *term, const PackCells *pc,
     }
     for (int i = 0; i < n; i++)
         nsucc[i + 1] += nsucc[i];
-    int *succ = xmalloc(((size_t)nsucc[n] + 1) * sizeof *succ), *fill = xmalloc((size_t)n * sizeof *fill);
+    int *succ = xmalloc(((size_t)nsucc[n] + 1) * sizeof *succ);
+    int *fill = xmalloc((size_t)n * sizeof *fill);
     memcpy(fill, nsucc, (size_t)n * sizeof *fill);
     for (int i = 0; i < n; i++) {
         int m = operands(&line[i], term, op);
@@ -569,7 +572,8 @@ pack_lines(LowSerLine *line, int n, const LowSerTerm *term, const PackCells *pc,
             if (op[o] >= 0 && writer[op[o]] >= 0 && writer[op[o]] != i)
                 succ[fill[writer[op[o]]]++] = i;
     }
-    int *ready = xmalloc((size_t)n * sizeof *ready), nready = 0, *order = xmalloc((size_t)n * sizeof *order), nout = 0;
+    int *ready = xmalloc((size_t)n * sizeof *ready), nready = 0;
+    int *order = xmalloc((size_t)n * sizeof *order), nout = 0;
     Ready *take = xmalloc((size_t)n * sizeof *take);
     for (int i = 0; i < n; i++)
         if (!ndep[i])

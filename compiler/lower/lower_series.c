@@ -42,8 +42,8 @@ typedef struct Out {
 } Out;
 
 /* Slot s's coefficient j's cell: order by order, each order's slots side
- * by side in their columns (lowered.h), so that a step of a lower order than the most
- * touches only the first orders' cells (the Pleiades' 405 slots: 52 KB at
+ * by side in their columns (lowered.h), so that a step of a lower order
+ * than the most touches only the first orders' cells (the Pleiades' 405 slots: 52 KB at
  * order 15, where a slot's 21 cells side by side would spread over 68 KB
  * and miss the first-level cache). */
 static int
@@ -306,21 +306,14 @@ literals(Out *o)
 static void
 pack_orders(LowSeries *se, const LowTaylor *ty)
 {
-    int nslot = ty->nslot;
-    int *place = xmalloc(((size_t)nslot + 1) * sizeof *place);
     int *writer = xmalloc(((size_t)se->ncell + 1) * sizeof *writer);
-    for (int s = 0; s < nslot; s++)
-        place[s] = -1;
-    for (int i = 0; i < ty->nstate; i++)
-        place[se->col[ty->state_slot[i]]] = i;
     for (int c = 0; c < se->ncell; c++)
         writer[c] = -1;
-    PackCells pc = {place, nslot, ty->nstate, se->ncell};
+    PackCells pc = {se->place, ty->nslot, ty->nstate, se->ncell};
     for (int k = 0; k < LOW_SERIES_ORDERS; k++)
         pack_lines(se->line + se->start[k], se->start[k + 1] - se->start[k], se->term, &pc,
                    writer);
     free(writer);
-    free(place);
 }
 
 LowSeries *
@@ -355,8 +348,13 @@ lower_series(const LowTaylor *ty, Arena *A)
     LowSeries *se = NULL;
     if (!o.why && o.nterm <= LOW_SERIES_MAX_TERMS) {
         se = arena_alloc(A, sizeof *se);
-        *se = (LowSeries){.ncell = ncell, .col = col, .nline = o.nline, .start = start, .nterm = o.nterm,
-                          .parted = o.nterm > LOW_SERIES_OPTIMIZED_TERMS};
+        *se = (LowSeries){.ncell = ncell, .col = col, .nline = o.nline, .start = start,
+                          .nterm = o.nterm, .parted = o.nterm > LOW_SERIES_OPTIMIZED_TERMS};
+        se->place = arena_new_array(A, int, ty->nslot + 1);
+        for (int s = 0; s < ty->nslot; s++)
+            se->place[s] = -1;
+        for (int i = 0; i < ns; i++)
+            se->place[col[ty->state_slot[i]]] = i;
         /* four runs at once where M is constant and diagonal (no solve, whose
          * hook is one run's) and the series is one function */
         se->lanes = !ty->acc_slot && !se->parted;

@@ -276,6 +276,8 @@ typedef struct LowSeries {
     int ncell;
     int *col;       /* [nslot]: slot s's coefficient j is cell j nslot + col[s]
                      * (lower_pack.c lays the slots out for its packs) */
+    int *place;     /* [nslot] by column: the state's index (the cell is the
+                     * caller's X[j nstate + place]), or -1 (W's) */
     LowSerLine *line;
     int nline;
     int *start;     /* [LOW_SERIES_ORDERS + 1]: order k's lines from start[k] */

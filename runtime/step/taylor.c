@@ -71,6 +71,13 @@
 #include <math.h>
 #if defined(__SSE2__)
 #include <emmintrin.h>
+
+/* |p[0]|, |p[1]|: the sign bits cleared, as fabs does */
+static inline __m128d
+abs2(const double *p)
+{
+    return _mm_andnot_pd(_mm_set1_pd(-0.0), _mm_loadu_pd(p));
+}
 #endif
 #include <stdlib.h>
 #include <string.h>
@@ -333,10 +340,10 @@ radius(const Taylor *tp, const double *S)
          * where S and |c| are > 0 (the ratios are then numbers, > 0, so
          * the least is the same whichever way it is found): Kepler's
          * step 4 018 instructions to 4 001 */
-        const __m128d sign = _mm_set1_pd(-0.0), zero = _mm_setzero_pd();
+        const __m128d zero = _mm_setzero_pd();
         __m128d lv = _mm_set1_pd(INFINITY);
         for (; i + 2 <= N; i += 2) {
-            __m128d s = _mm_loadu_pd(S + i), a = _mm_andnot_pd(sign, _mm_loadu_pd(c + i));
+            __m128d s = _mm_loadu_pd(S + i), a = abs2(c + i);
             __m128d r = _mm_div_pd(s, a);
             __m128d keep = _mm_and_pd(_mm_and_pd(_mm_cmpgt_pd(s, zero), _mm_cmpgt_pd(a, zero)),
                                       _mm_cmplt_pd(r, lv));
@@ -408,16 +415,14 @@ scales_block(const double *X, int N, int p, double h, double absolute, double *S
 {
 #if defined(__SSE2__)
     if (w == TAYLOR_BLOCK) {
-        const __m128d sign = _mm_set1_pd(-0.0);
-        __m128d s0 = _mm_andnot_pd(sign, _mm_loadu_pd(X));
-        __m128d s1 = _mm_andnot_pd(sign, _mm_loadu_pd(X + 2));
+        __m128d s0 = abs2(X), s1 = abs2(X + 2);
         double hj = 1;
         for (int j = 1; j <= p; j++) {
             const double *c = X + (size_t)j * (size_t)N;
             hj *= h;
             __m128d hv = _mm_set1_pd(hj);
-            s0 = _mm_max_pd(_mm_mul_pd(_mm_andnot_pd(sign, _mm_loadu_pd(c)), hv), s0);
-            s1 = _mm_max_pd(_mm_mul_pd(_mm_andnot_pd(sign, _mm_loadu_pd(c + 2)), hv), s1);
+            s0 = _mm_max_pd(_mm_mul_pd(abs2(c), hv), s0);
+            s1 = _mm_max_pd(_mm_mul_pd(abs2(c + 2), hv), s1);
         }
         __m128d a = _mm_set1_pd(absolute);
         _mm_storeu_pd(S, _mm_add_pd(s0, a));
@@ -807,9 +812,9 @@ taylor_error(const Taylor *tp, double h, double *err)
     double hp = gsl_pow_int(fabs(h), tp->p); /* by squaring: 30 instructions, pow's 155 */
     int i = 0;
 #if defined(__SSE2__) /* (two a lane: fabs as the sign bit cleared) */
-    const __m128d sign = _mm_set1_pd(-0.0), hv = _mm_set1_pd(hp);
+    const __m128d hv = _mm_set1_pd(hp);
     for (; i + 2 <= tp->N; i += 2)
-        _mm_storeu_pd(err + i, _mm_mul_pd(_mm_andnot_pd(sign, _mm_loadu_pd(c + i)), hv));
+        _mm_storeu_pd(err + i, _mm_mul_pd(abs2(c + i), hv));
 #endif
     for (; i < tp->N; i++)
         err[i] = fabs(c[i]) * hp;

@@ -35,7 +35,7 @@
     X(swing) X(gear_link) X(bouncing_ball) X(falling_particle) X(sleeping_top_euler) \
     X(forced_hoop) X(taylor_ops) X(cartesian_pendulum) X(appell) X(precession)                \
     X(chaplygin_sleigh) X(central_constant_speed) X(car_axis) X(andrews) X(cubic)     \
-    X(pleiades) X(outer_solar_system)
+    X(pleiades) X(outer_solar_system) X(cartpole)
 #endif
 #define DECLARE(name) extern const eomc_model name##_model;
 MODELS(DECLARE)

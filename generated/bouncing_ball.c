@@ -409,7 +409,7 @@ bouncing_ball_taylor_run(int K, eomc_real t0, const eomc_real *p,
             T[state[i] * S] = X[i];
         for (int k = 0; k < K; k++) {
             bouncing_ball_taylor(k, K, t0, p, u, T);
-            eomc_tay_integ(T + 1 * S, T + 3 * S, k);
+            eomc_tay_integ2(T + 1 * S, T + 3 * S, T + 2 * S, T, k);
             eomc_tay_accel(T + 3 * S, T + 2 * S, T, k);
         }
         for (int j = 1; j <= K; j++)
@@ -501,7 +501,7 @@ bouncing_ball_taylor_run(int K, eomc_real t0, const eomc_real *p,
     if (K == 1)
         goto out;
     /* order 1 */
-    X[4] = X[3] / 2.0;
+    X[4] = -W[2] / (2.0 * W[0]);
     if (K == 2)
         goto out;
     /* order 2 */
@@ -663,7 +663,7 @@ bouncing_ball_taylor_run4(int K, const double *t0s, const double *ps,
     if (K == 1)
         goto out;
     /* order 1 */
-    X[4] = X[3] / 2.0;
+    X[4] = -W[2] / (2.0 * W[0]);
     if (K == 2)
         goto out;
     /* order 2 */

@@ -351,7 +351,7 @@ falling_particle_taylor_run(int K, eomc_real t0, const eomc_real *p,
             T[state[i] * S] = X[i];
         for (int k = 0; k < K; k++) {
             falling_particle_taylor(k, K, t0, p, u, T);
-            eomc_tay_integ(T + 2 * S, T + 3 * S, k);
+            eomc_tay_integ2(T + 2 * S, T + 3 * S, T + 1 * S, T, k);
             eomc_tay_accel(T + 3 * S, T + 1 * S, T, k);
         }
         for (int j = 1; j <= K; j++)
@@ -443,7 +443,7 @@ falling_particle_taylor_run(int K, eomc_real t0, const eomc_real *p,
     if (K == 1)
         goto out;
     /* order 1 */
-    X[4] = X[3] / 2.0;
+    X[4] = -W[1] / (2.0 * W[0]);
     if (K == 2)
         goto out;
     /* order 2 */
@@ -603,7 +603,7 @@ falling_particle_taylor_run4(int K, const double *t0s, const double *ps,
     if (K == 1)
         goto out;
     /* order 1 */
-    X[4] = X[3] / 2.0;
+    X[4] = -W[1] / (2.0 * W[0]);
     if (K == 2)
         goto out;
     /* order 2 */

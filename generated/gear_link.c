@@ -278,7 +278,7 @@ gear_link_taylor_run(int K, eomc_real t0, const eomc_real *p,
             T[state[i] * S] = X[i];
         for (int k = 0; k < K; k++) {
             gear_link_taylor(k, K, t0, p, u, T);
-            eomc_tay_integ(T + 1 * S, T + 10 * S, k);
+            eomc_tay_integ2(T + 1 * S, T + 10 * S, T + 9 * S, T + 5 * S, k);
             eomc_tay_accel(T + 10 * S, T + 9 * S, T + 5 * S, k);
         }
         for (int j = 1; j <= K; j++)
@@ -307,8 +307,8 @@ gear_link_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[18] = -X[2] * W[6];
     W[19] = W[2] * W[17];
     W[20] = W[19];
-    X[4] = X[3] / 2.0;
-    X[5] = -W[20] / W[5] / 2.0;
+    X[4] = -W[9] / (2.0 * W[5]);
+    X[5] = -W[20] / (2.0 * W[5]);
     if (K == 2)
         goto out;
     /* order 2 */
@@ -316,8 +316,8 @@ gear_link_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[29] = -((X[2] * W[17] + 2.0 * X[4] * W[6])) / 2.0;
     W[30] = W[2] * W[28];
     W[31] = W[30];
-    X[6] = X[5] / 3.0;
-    X[7] = -W[31] / W[5] / 3.0;
+    X[6] = -W[20] / (6.0 * W[5]);
+    X[7] = -W[31] / (3.0 * W[5]);
     if (K == 3)
         goto out;
     /* order 3 */
@@ -325,8 +325,8 @@ gear_link_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[40] = -((X[2] * W[28] + 2.0 * X[4] * W[17] + 3.0 * X[6] * W[6])) / 3.0;
     W[41] = W[2] * W[39];
     W[42] = W[41];
-    X[8] = X[7] / 4.0;
-    X[9] = -W[42] / W[5] / 4.0;
+    X[8] = -W[31] / (12.0 * W[5]);
+    X[9] = -W[42] / (4.0 * W[5]);
     if (K == 4)
         goto out;
     /* order 4 */
@@ -334,8 +334,8 @@ gear_link_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[51] = -((2.0 * X[4] * W[28] + X[2] * W[39] + 3.0 * X[6] * W[17] + 4.0 * X[8] * W[6])) / 4.0;
     W[52] = W[2] * W[50];
     W[53] = W[52];
-    X[10] = X[9] / 5.0;
-    X[11] = -W[53] / W[5] / 5.0;
+    X[10] = -W[42] / (20.0 * W[5]);
+    X[11] = -W[53] / (5.0 * W[5]);
     if (K == 5)
         goto out;
     /* order 5 */
@@ -343,8 +343,8 @@ gear_link_taylor_run(int K, eomc_real t0, const eomc_real *p,
     W[62] = -((2.0 * X[4] * W[39] + 3.0 * X[6] * W[28] + X[2] * W[50] + 4.0 * X[8] * W[17] + 5.0 * X[10] * W[6])) / 5.0;
     W[63] = W[2] * W[61];
     W[64] = W[63];
-    X[12] = X[11] / 6.0;
-    X[13] = -W[64] / W[5] / 6.0;
+    X[12] = -W[53] / (30.0 * W[5]);
+    X[13] = -W[64] / (6.0 * W[5]);
     if (K == 6)
         goto out;
     /* order 6 */
@@ -354,8 +354,8 @@ gear_link_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + 6.0 * X[12] * W[6])) / 6.0;
     W[74] = W[2] * W[72];
     W[75] = W[74];
-    X[14] = X[13] / 7.0;
-    X[15] = -W[75] / W[5] / 7.0;
+    X[14] = -W[64] / (42.0 * W[5]);
+    X[15] = -W[75] / (7.0 * W[5]);
     if (K == 7)
         goto out;
     /* order 7 */
@@ -365,8 +365,8 @@ gear_link_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + X[2] * W[72] + 6.0 * X[12] * W[17] + 7.0 * X[14] * W[6])) / 7.0;
     W[85] = W[2] * W[83];
     W[86] = W[85];
-    X[16] = X[15] / 8.0;
-    X[17] = -W[86] / W[5] / 8.0;
+    X[16] = -W[75] / (56.0 * W[5]);
+    X[17] = -W[86] / (8.0 * W[5]);
     if (K == 8)
         goto out;
     /* order 8 */
@@ -376,8 +376,8 @@ gear_link_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + 6.0 * X[12] * W[28] + X[2] * W[83] + 7.0 * X[14] * W[17] + 8.0 * X[16] * W[6])) / 8.0;
     W[96] = W[2] * W[94];
     W[97] = W[96];
-    X[18] = X[17] / 9.0;
-    X[19] = -W[97] / W[5] / 9.0;
+    X[18] = -W[86] / (72.0 * W[5]);
+    X[19] = -W[97] / (9.0 * W[5]);
     if (K == 9)
         goto out;
     /* order 9 */
@@ -387,8 +387,8 @@ gear_link_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + 2.0 * X[4] * W[83] + 7.0 * X[14] * W[28] + X[2] * W[94] + 8.0 * X[16] * W[17] + 9.0 * X[18] * W[6])) / 9.0;
     W[107] = W[2] * W[105];
     W[108] = W[107];
-    X[20] = X[19] / 10.0;
-    X[21] = -W[108] / W[5] / 10.0;
+    X[20] = -W[97] / (90.0 * W[5]);
+    X[21] = -W[108] / (10.0 * W[5]);
     if (K == 10)
         goto out;
     /* order 10 */
@@ -400,8 +400,8 @@ gear_link_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + 10.0 * X[20] * W[6])) / 10.0;
     W[118] = W[2] * W[116];
     W[119] = W[118];
-    X[22] = X[21] / 11.0;
-    X[23] = -W[119] / W[5] / 11.0;
+    X[22] = -W[108] / (110.0 * W[5]);
+    X[23] = -W[119] / (11.0 * W[5]);
     if (K == 11)
         goto out;
     /* order 11 */
@@ -413,8 +413,8 @@ gear_link_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + X[2] * W[116] + 10.0 * X[20] * W[17] + 11.0 * X[22] * W[6])) / 11.0;
     W[129] = W[2] * W[127];
     W[130] = W[129];
-    X[24] = X[23] / 12.0;
-    X[25] = -W[130] / W[5] / 12.0;
+    X[24] = -W[119] / (132.0 * W[5]);
+    X[25] = -W[130] / (12.0 * W[5]);
     if (K == 12)
         goto out;
     /* order 12 */
@@ -426,8 +426,8 @@ gear_link_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + 10.0 * X[20] * W[28] + X[2] * W[127] + 11.0 * X[22] * W[17] + 12.0 * X[24] * W[6])) / 12.0;
     W[140] = W[2] * W[138];
     W[141] = W[140];
-    X[26] = X[25] / 13.0;
-    X[27] = -W[141] / W[5] / 13.0;
+    X[26] = -W[130] / (156.0 * W[5]);
+    X[27] = -W[141] / (13.0 * W[5]);
     if (K == 13)
         goto out;
     /* order 13 */
@@ -441,8 +441,8 @@ gear_link_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + 13.0 * X[26] * W[6])) / 13.0;
     W[151] = W[2] * W[149];
     W[152] = W[151];
-    X[28] = X[27] / 14.0;
-    X[29] = -W[152] / W[5] / 14.0;
+    X[28] = -W[141] / (182.0 * W[5]);
+    X[29] = -W[152] / (14.0 * W[5]);
     if (K == 14)
         goto out;
     /* order 14 */
@@ -456,8 +456,8 @@ gear_link_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + 13.0 * X[26] * W[17] + 14.0 * X[28] * W[6])) / 14.0;
     W[162] = W[2] * W[160];
     W[163] = W[162];
-    X[30] = X[29] / 15.0;
-    X[31] = -W[163] / W[5] / 15.0;
+    X[30] = -W[152] / (210.0 * W[5]);
+    X[31] = -W[163] / (15.0 * W[5]);
     if (K == 15)
         goto out;
     /* order 15 */
@@ -471,8 +471,8 @@ gear_link_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + X[2] * W[160] + 14.0 * X[28] * W[17] + 15.0 * X[30] * W[6])) / 15.0;
     W[173] = W[2] * W[171];
     W[174] = W[173];
-    X[32] = X[31] / 16.0;
-    X[33] = -W[174] / W[5] / 16.0;
+    X[32] = -W[163] / (240.0 * W[5]);
+    X[33] = -W[174] / (16.0 * W[5]);
     if (K == 16)
         goto out;
     /* order 16 */
@@ -486,8 +486,8 @@ gear_link_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + 14.0 * X[28] * W[28] + X[2] * W[171] + 15.0 * X[30] * W[17] + 16.0 * X[32] * W[6])) / 16.0;
     W[184] = W[2] * W[182];
     W[185] = W[184];
-    X[34] = X[33] / 17.0;
-    X[35] = -W[185] / W[5] / 17.0;
+    X[34] = -W[174] / (272.0 * W[5]);
+    X[35] = -W[185] / (17.0 * W[5]);
     if (K == 17)
         goto out;
     /* order 17 */
@@ -503,8 +503,8 @@ gear_link_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + 17.0 * X[34] * W[6])) / 17.0;
     W[195] = W[2] * W[193];
     W[196] = W[195];
-    X[36] = X[35] / 18.0;
-    X[37] = -W[196] / W[5] / 18.0;
+    X[36] = -W[185] / (306.0 * W[5]);
+    X[37] = -W[196] / (18.0 * W[5]);
     if (K == 18)
         goto out;
     /* order 18 */
@@ -520,8 +520,8 @@ gear_link_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + 17.0 * X[34] * W[17] + 18.0 * X[36] * W[6])) / 18.0;
     W[206] = W[2] * W[204];
     W[207] = W[206];
-    X[38] = X[37] / 19.0;
-    X[39] = -W[207] / W[5] / 19.0;
+    X[38] = -W[196] / (342.0 * W[5]);
+    X[39] = -W[207] / (19.0 * W[5]);
     if (K == 19)
         goto out;
     /* order 19 */
@@ -537,8 +537,8 @@ gear_link_taylor_run(int K, eomc_real t0, const eomc_real *p,
             + X[2] * W[204] + 18.0 * X[36] * W[17] + 19.0 * X[38] * W[6])) / 19.0;
     W[217] = W[2] * W[215];
     W[218] = W[217];
-    X[40] = X[39] / 20.0;
-    X[41] = -W[218] / W[5] / 20.0;
+    X[40] = -W[207] / (380.0 * W[5]);
+    X[41] = -W[218] / (20.0 * W[5]);
 out:
     T[5 * S] = W[5]; /* M's diagonal, entry 0 */
     return 0;
@@ -581,8 +581,8 @@ gear_link_taylor_run4(int K, const double *t0s, const double *ps,
     W[18] = -X[2] * W[6];
     W[19] = W[2] * W[17];
     W[20] = W[19];
-    X[4] = X[3] / 2.0;
-    X[5] = -W[20] / W[5] / 2.0;
+    X[4] = -W[9] / (2.0 * W[5]);
+    X[5] = -W[20] / (2.0 * W[5]);
     if (K == 2)
         goto out;
     /* order 2 */
@@ -590,8 +590,8 @@ gear_link_taylor_run4(int K, const double *t0s, const double *ps,
     W[29] = -((X[2] * W[17] + 2.0 * X[4] * W[6])) / 2.0;
     W[30] = W[2] * W[28];
     W[31] = W[30];
-    X[6] = X[5] / 3.0;
-    X[7] = -W[31] / W[5] / 3.0;
+    X[6] = -W[20] / (6.0 * W[5]);
+    X[7] = -W[31] / (3.0 * W[5]);
     if (K == 3)
         goto out;
     /* order 3 */
@@ -599,8 +599,8 @@ gear_link_taylor_run4(int K, const double *t0s, const double *ps,
     W[40] = -((X[2] * W[28] + 2.0 * X[4] * W[17] + 3.0 * X[6] * W[6])) / 3.0;
     W[41] = W[2] * W[39];
     W[42] = W[41];
-    X[8] = X[7] / 4.0;
-    X[9] = -W[42] / W[5] / 4.0;
+    X[8] = -W[31] / (12.0 * W[5]);
+    X[9] = -W[42] / (4.0 * W[5]);
     if (K == 4)
         goto out;
     /* order 4 */
@@ -608,8 +608,8 @@ gear_link_taylor_run4(int K, const double *t0s, const double *ps,
     W[51] = -((2.0 * X[4] * W[28] + X[2] * W[39] + 3.0 * X[6] * W[17] + 4.0 * X[8] * W[6])) / 4.0;
     W[52] = W[2] * W[50];
     W[53] = W[52];
-    X[10] = X[9] / 5.0;
-    X[11] = -W[53] / W[5] / 5.0;
+    X[10] = -W[42] / (20.0 * W[5]);
+    X[11] = -W[53] / (5.0 * W[5]);
     if (K == 5)
         goto out;
     /* order 5 */
@@ -617,8 +617,8 @@ gear_link_taylor_run4(int K, const double *t0s, const double *ps,
     W[62] = -((2.0 * X[4] * W[39] + 3.0 * X[6] * W[28] + X[2] * W[50] + 4.0 * X[8] * W[17] + 5.0 * X[10] * W[6])) / 5.0;
     W[63] = W[2] * W[61];
     W[64] = W[63];
-    X[12] = X[11] / 6.0;
-    X[13] = -W[64] / W[5] / 6.0;
+    X[12] = -W[53] / (30.0 * W[5]);
+    X[13] = -W[64] / (6.0 * W[5]);
     if (K == 6)
         goto out;
     /* order 6 */
@@ -628,8 +628,8 @@ gear_link_taylor_run4(int K, const double *t0s, const double *ps,
             + 6.0 * X[12] * W[6])) / 6.0;
     W[74] = W[2] * W[72];
     W[75] = W[74];
-    X[14] = X[13] / 7.0;
-    X[15] = -W[75] / W[5] / 7.0;
+    X[14] = -W[64] / (42.0 * W[5]);
+    X[15] = -W[75] / (7.0 * W[5]);
     if (K == 7)
         goto out;
     /* order 7 */
@@ -639,8 +639,8 @@ gear_link_taylor_run4(int K, const double *t0s, const double *ps,
             + X[2] * W[72] + 6.0 * X[12] * W[17] + 7.0 * X[14] * W[6])) / 7.0;
     W[85] = W[2] * W[83];
     W[86] = W[85];
-    X[16] = X[15] / 8.0;
-    X[17] = -W[86] / W[5] / 8.0;
+    X[16] = -W[75] / (56.0 * W[5]);
+    X[17] = -W[86] / (8.0 * W[5]);
     if (K == 8)
         goto out;
     /* order 8 */
@@ -650,8 +650,8 @@ gear_link_taylor_run4(int K, const double *t0s, const double *ps,
             + 6.0 * X[12] * W[28] + X[2] * W[83] + 7.0 * X[14] * W[17] + 8.0 * X[16] * W[6])) / 8.0;
     W[96] = W[2] * W[94];
     W[97] = W[96];
-    X[18] = X[17] / 9.0;
-    X[19] = -W[97] / W[5] / 9.0;
+    X[18] = -W[86] / (72.0 * W[5]);
+    X[19] = -W[97] / (9.0 * W[5]);
     if (K == 9)
         goto out;
     /* order 9 */
@@ -661,8 +661,8 @@ gear_link_taylor_run4(int K, const double *t0s, const double *ps,
             + 2.0 * X[4] * W[83] + 7.0 * X[14] * W[28] + X[2] * W[94] + 8.0 * X[16] * W[17] + 9.0 * X[18] * W[6])) / 9.0;
     W[107] = W[2] * W[105];
     W[108] = W[107];
-    X[20] = X[19] / 10.0;
-    X[21] = -W[108] / W[5] / 10.0;
+    X[20] = -W[97] / (90.0 * W[5]);
+    X[21] = -W[108] / (10.0 * W[5]);
     if (K == 10)
         goto out;
     /* order 10 */
@@ -674,8 +674,8 @@ gear_link_taylor_run4(int K, const double *t0s, const double *ps,
             + 10.0 * X[20] * W[6])) / 10.0;
     W[118] = W[2] * W[116];
     W[119] = W[118];
-    X[22] = X[21] / 11.0;
-    X[23] = -W[119] / W[5] / 11.0;
+    X[22] = -W[108] / (110.0 * W[5]);
+    X[23] = -W[119] / (11.0 * W[5]);
     if (K == 11)
         goto out;
     /* order 11 */
@@ -687,8 +687,8 @@ gear_link_taylor_run4(int K, const double *t0s, const double *ps,
             + X[2] * W[116] + 10.0 * X[20] * W[17] + 11.0 * X[22] * W[6])) / 11.0;
     W[129] = W[2] * W[127];
     W[130] = W[129];
-    X[24] = X[23] / 12.0;
-    X[25] = -W[130] / W[5] / 12.0;
+    X[24] = -W[119] / (132.0 * W[5]);
+    X[25] = -W[130] / (12.0 * W[5]);
     if (K == 12)
         goto out;
     /* order 12 */
@@ -700,8 +700,8 @@ gear_link_taylor_run4(int K, const double *t0s, const double *ps,
             + 10.0 * X[20] * W[28] + X[2] * W[127] + 11.0 * X[22] * W[17] + 12.0 * X[24] * W[6])) / 12.0;
     W[140] = W[2] * W[138];
     W[141] = W[140];
-    X[26] = X[25] / 13.0;
-    X[27] = -W[141] / W[5] / 13.0;
+    X[26] = -W[130] / (156.0 * W[5]);
+    X[27] = -W[141] / (13.0 * W[5]);
     if (K == 13)
         goto out;
     /* order 13 */
@@ -715,8 +715,8 @@ gear_link_taylor_run4(int K, const double *t0s, const double *ps,
             + 13.0 * X[26] * W[6])) / 13.0;
     W[151] = W[2] * W[149];
     W[152] = W[151];
-    X[28] = X[27] / 14.0;
-    X[29] = -W[152] / W[5] / 14.0;
+    X[28] = -W[141] / (182.0 * W[5]);
+    X[29] = -W[152] / (14.0 * W[5]);
     if (K == 14)
         goto out;
     /* order 14 */
@@ -730,8 +730,8 @@ gear_link_taylor_run4(int K, const double *t0s, const double *ps,
             + 13.0 * X[26] * W[17] + 14.0 * X[28] * W[6])) / 14.0;
     W[162] = W[2] * W[160];
     W[163] = W[162];
-    X[30] = X[29] / 15.0;
-    X[31] = -W[163] / W[5] / 15.0;
+    X[30] = -W[152] / (210.0 * W[5]);
+    X[31] = -W[163] / (15.0 * W[5]);
     if (K == 15)
         goto out;
     /* order 15 */
@@ -745,8 +745,8 @@ gear_link_taylor_run4(int K, const double *t0s, const double *ps,
             + X[2] * W[160] + 14.0 * X[28] * W[17] + 15.0 * X[30] * W[6])) / 15.0;
     W[173] = W[2] * W[171];
     W[174] = W[173];
-    X[32] = X[31] / 16.0;
-    X[33] = -W[174] / W[5] / 16.0;
+    X[32] = -W[163] / (240.0 * W[5]);
+    X[33] = -W[174] / (16.0 * W[5]);
     if (K == 16)
         goto out;
     /* order 16 */
@@ -760,8 +760,8 @@ gear_link_taylor_run4(int K, const double *t0s, const double *ps,
             + 14.0 * X[28] * W[28] + X[2] * W[171] + 15.0 * X[30] * W[17] + 16.0 * X[32] * W[6])) / 16.0;
     W[184] = W[2] * W[182];
     W[185] = W[184];
-    X[34] = X[33] / 17.0;
-    X[35] = -W[185] / W[5] / 17.0;
+    X[34] = -W[174] / (272.0 * W[5]);
+    X[35] = -W[185] / (17.0 * W[5]);
     if (K == 17)
         goto out;
     /* order 17 */
@@ -777,8 +777,8 @@ gear_link_taylor_run4(int K, const double *t0s, const double *ps,
             + 17.0 * X[34] * W[6])) / 17.0;
     W[195] = W[2] * W[193];
     W[196] = W[195];
-    X[36] = X[35] / 18.0;
-    X[37] = -W[196] / W[5] / 18.0;
+    X[36] = -W[185] / (306.0 * W[5]);
+    X[37] = -W[196] / (18.0 * W[5]);
     if (K == 18)
         goto out;
     /* order 18 */
@@ -794,8 +794,8 @@ gear_link_taylor_run4(int K, const double *t0s, const double *ps,
             + 17.0 * X[34] * W[17] + 18.0 * X[36] * W[6])) / 18.0;
     W[206] = W[2] * W[204];
     W[207] = W[206];
-    X[38] = X[37] / 19.0;
-    X[39] = -W[207] / W[5] / 19.0;
+    X[38] = -W[196] / (342.0 * W[5]);
+    X[39] = -W[207] / (19.0 * W[5]);
     if (K == 19)
         goto out;
     /* order 19 */
@@ -811,8 +811,8 @@ gear_link_taylor_run4(int K, const double *t0s, const double *ps,
             + X[2] * W[204] + 18.0 * X[36] * W[17] + 19.0 * X[38] * W[6])) / 19.0;
     W[217] = W[2] * W[215];
     W[218] = W[217];
-    X[40] = X[39] / 20.0;
-    X[41] = -W[218] / W[5] / 20.0;
+    X[40] = -W[207] / (380.0 * W[5]);
+    X[41] = -W[218] / (20.0 * W[5]);
 out:
     T[5 * S] = W[5]; /* M's diagonal, entry 0 */
     return 0;

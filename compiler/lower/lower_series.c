@@ -267,13 +267,18 @@ expand(Out *o, const LowTayStep *st, int k)
             o->nline--;
         else
             o->nz[c] = 1;
-    } else if (!strcmp(f, "integ") || !strcmp(f, "accel")) {
-        /* q_{k+1} = r_k / (k + 1); v_{k+1} = -(h_k / m_0) / (k + 1) */
+    } else if (!strcmp(f, "integ") || (!strcmp(f, "integ2") && k == 0)) {
+        /* q_{k+1} = r_k / (k + 1) */
         l = new_line(o, at(o, s[0], k + 1), LOW_SER_SUM);
         add_term(o, 1, cell(o, s[1], k), -1, 0);
-        if (f[0] == 'a')
-            l->over = 1, l->over_cell = cell(o, s[2], 0), l->negate = 1;
         l->after = k + 1;
+        close_sum(o, l);
+    } else if (!strcmp(f, "accel") || !strcmp(f, "integ2")) {
+        /* v_{k+1} = -(h_k / ((k + 1) m_0)); q_{k+1} = -(h_{k-1} / (k (k + 1) m_0)) */
+        int two = f[0] == 'i', h = s[two ? 2 : 1], m = s[two ? 3 : 2];
+        l = new_line(o, at(o, s[0], k + 1), LOW_SER_SUM);
+        add_term(o, 1, cell(o, h, two ? k - 1 : k), -1, 0);
+        l->over = two ? k * (k + 1) : k + 1, l->over_cell = cell(o, m, 0), l->negate = 1;
         close_sum(o, l);
     } else if (!strcmp(f, "mrhs")) {
         /* b_k = h_k + sum_l sum_{i=1..k} M_i a_{k-i}, the runtime loop's

@@ -495,6 +495,12 @@ run_tail(LowTaylor *ty, int nq, int nv, Arena *A)
                                       .slot = {ty->q_slot[i]}}
                        : (LowTayStep){.call = "integ", .nslot = 2, .nres = 1,
                                       .slot = {ty->q_slot[i], rate}};
+        /* ... and where that speed's rate is -h / M_ii (accel, below), q's
+         * coefficients from h's directly (eomc_tay_integ2) */
+        if (diagonal && !ty->qd_slot && rate >= 0 && ty->h_slot[i] >= 0)
+            *st = (LowTayStep){.call = "integ2", .nslot = 4, .nres = 1,
+                               .slot = {ty->q_slot[i], rate, ty->h_slot[i],
+                                        ty->M_slot[i * nv + i]}};
     }
     if (!diagonal) {
         ty->acc_slot = arena_new_array(A, int, nv + 1);

@@ -12,7 +12,9 @@
  * a diagonal M, eomc_model's taylor_mass says, by its own entries) and
  * never inverted symbolically; a constant M's higher orders are 0 and
  * their sums are skipped; then q_{k+1} = q'_k / (k + 1) and
- * q'_{k+1} = a_k / (k + 1), which the next call reads.  Without
+ * q'_{k+1} = a_k / (k + 1), which the next call reads (with M constant
+ * and diagonal, q'_{k+1} = -(h_k / ((k + 1) M_jj)) and, for k > 0,
+ * q_{k+1} = -(h_{k-1} / (k (k + 1) M_jj)): one division each).  Without
  * constraints the model's taylor_run gives the whole series in one call,
  * into X (run_series), with the same arithmetic: where M is constant and
  * diagonal the generator did the solve itself, else it calls run_solve
@@ -697,6 +699,10 @@ taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
         *h = hs < hmax ? hs : hmax;
         return 0;
     }
+    /* a constant diagonal M, q' = v: v's and q's next coefficients from h's
+     * with one division each, as taylor_run's (eomc_tay_accel, _integ2) */
+    int fold = m->taylor_mass == (EOMC_TAYLOR_M_CONSTANT | EOMC_TAYLOR_M_DIAGONAL) &&
+               !m->taylor_qd && tp->nc == 0;
     for (int k = 0; k < p; k++) {
         put_state(tp, k);
         if (tp->dBda && k == 0 && newton_start(tp, t0, x) != 0)
@@ -718,10 +724,15 @@ taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
         const double *cur = tp->X + (size_t)k * (size_t)N;
         for (int j = 0; j < nv; j++) {
             tp->A[(size_t)j * (p + 1) + (size_t)k] = tp->b[j];
-            next[n + j] = tp->b[j] / (k + 1);
+            next[n + j] = fold ? -(coef(tp, m->taylor_h[j], k) / ((k + 1) * tp->M0[j * nv + j]))
+                               : tp->b[j] / (k + 1);
         }
-        for (int i = 0; i < n; i++) /* q' = v, or W(q) v's series */
-            next[i] = (m->taylor_qd ? coef(tp, m->taylor_qd[i], k) : cur[n + i]) / (k + 1);
+        for (int i = 0; i < n; i++) { /* q' = v, or W(q) v's series */
+            if (fold && k > 0)
+                next[i] = -(coef(tp, m->taylor_h[i], k - 1) / ((k * (k + 1)) * tp->M0[i * nv + i]));
+            else
+                next[i] = (m->taylor_qd ? coef(tp, m->taylor_qd[i], k) : cur[n + i]) / (k + 1);
+        }
     }
     /* once, not at each order: a non-finite coefficient only makes the
      * orders after it non-finite too */

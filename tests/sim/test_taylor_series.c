@@ -227,9 +227,10 @@ mass_diagonal(const eomc_model *m)
 /* taylor_run, where the model has one (no constraints), against two
  * things at a state near its start:
  *  - the loop over taylor with the runtime's arithmetic (taylor.c's
- *    mass_order: a_k = -(h_k / M_jj) where M is constant and diagonal,
- *    else a_k = -M_0^-1 (h_k + sum_{i=1..k} M_i a_{k-i}), the sum from 0
- *    entry by entry, by the same solve, test_solve), then / (k + 1): the
+ *    where M is constant and diagonal: v_{k+1} = -(h_k / ((k + 1) M_jj))
+ *    and q_{k+1} = -(h_{k-1} / (k (k + 1) M_jj)) for k > 0; else
+ *    a_k = -M_0^-1 (h_k + sum_{i=1..k} M_i a_{k-i}), the sum from 0
+ *    entry by entry, by the same solve, test_solve, then / (k + 1)): the
  *    same series to the bit, as eomc_model.h says (the rows the same
  *    either way);
  *  - the motion's equations, independently of any recurrence: the
@@ -285,9 +286,18 @@ check_run(const eomc_model *m, double t0, int order, int *differ)
         if (!diagonal && test_solve(&loop, k, M0, b) != 0)
             b[0] = NAN;
         for (int i = 0; i < n; i++) {
+            int h = m->taylor_h[i];
+            double *q = T2 + m->taylor_q[i] * S, *v = T2 + m->taylor_v[i] * S;
             A[i * S + k] = b[i];
-            T2[m->taylor_q[i] * S + k + 1] = T2[m->taylor_v[i] * S + k] / (k + 1);
-            T2[m->taylor_v[i] * S + k + 1] = b[i] / (k + 1);
+            if (diagonal) { /* one division each, from h's series */
+                double Mii = T2[m->taylor_M[i * n + i] * S];
+                double hk = h < 0 ? 0 : T2[h * S + k], hk1 = h < 0 || !k ? 0 : T2[h * S + k - 1];
+                q[k + 1] = k == 0 ? v[0] : -(hk1 / ((k * (k + 1)) * Mii));
+                v[k + 1] = -(hk / ((k + 1) * Mii));
+                continue;
+            }
+            q[k + 1] = v[k] / (k + 1);
+            v[k + 1] = b[i] / (k + 1);
         }
     }
     *differ = 0;

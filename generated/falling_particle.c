@@ -443,7 +443,7 @@ falling_particle_taylor_run(int K, eomc_real t0, const eomc_real *p,
     if (K == 1)
         goto out;
     /* order 1 */
-    X[4] = -W[1] / (2.0 * W[0]);
+    X[4] = W[1] / W[0] / -2.0;
     if (K == 2)
         goto out;
     /* order 2 */
@@ -603,7 +603,7 @@ falling_particle_taylor_run4(int K, const double *t0s, const double *ps,
     if (K == 1)
         goto out;
     /* order 1 */
-    X[4] = -W[1] / (2.0 * W[0]);
+    X[4] = W[1] / W[0] / -2.0;
     if (K == 2)
         goto out;
     /* order 2 */

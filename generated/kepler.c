@@ -523,17 +523,17 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
 #ifdef EOMC_PACKS
     EOMC_AT2(W + 17) = EOMC_AT2(X + 0) * W[27] + EOMC_AT2(X + 4) * W[12];
     EOMC_AT2(W + 19) = W[9] * EOMC_AT2(W + 17);
-    EOMC_AT2(X + 8) = -EOMC_AT2(W + 4) / (2.0 * W[6]);
-    EOMC_AT2(X + 10) = -EOMC_AT2(W + 19) / (2.0 * W[6]);
+    EOMC_AT2(X + 8) = EOMC_AT2(W + 4) / W[6] / -2.0;
+    EOMC_AT2(X + 10) = EOMC_AT2(W + 19) / W[6] / -2.0;
 #else
     W[17] = X[0] * W[27] + X[4] * W[12];
     W[18] = X[1] * W[27] + X[5] * W[12];
     W[19] = W[9] * W[17];
     W[20] = W[9] * W[18];
-    X[8] = -W[4] / (2.0 * W[6]);
-    X[9] = -W[5] / (2.0 * W[6]);
-    X[10] = -W[19] / (2.0 * W[6]);
-    X[11] = -W[20] / (2.0 * W[6]);
+    X[8] = W[4] / W[6] / -2.0;
+    X[9] = W[5] / W[6] / -2.0;
+    X[10] = W[19] / W[6] / -2.0;
+    X[11] = W[20] / W[6] / -2.0;
 #endif
     if (K == 2)
         goto out;
@@ -549,17 +549,17 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
 #ifdef EOMC_PACKS
     EOMC_AT2(W + 32) = EOMC_AT2(X + 4) * W[27] + EOMC_AT2(X + 0) * W[42] + EOMC_AT2(X + 8) * W[12];
     EOMC_AT2(W + 34) = W[9] * EOMC_AT2(W + 32);
-    EOMC_AT2(X + 12) = -EOMC_AT2(W + 19) / (6.0 * W[6]);
-    EOMC_AT2(X + 14) = -EOMC_AT2(W + 34) / (3.0 * W[6]);
+    EOMC_AT2(X + 12) = EOMC_AT2(W + 19) / W[6] / -6.0;
+    EOMC_AT2(X + 14) = EOMC_AT2(W + 34) / W[6] / -3.0;
 #else
     W[32] = X[4] * W[27] + X[0] * W[42] + X[8] * W[12];
     W[33] = X[5] * W[27] + X[1] * W[42] + X[9] * W[12];
     W[34] = W[9] * W[32];
     W[35] = W[9] * W[33];
-    X[12] = -W[19] / (6.0 * W[6]);
-    X[13] = -W[20] / (6.0 * W[6]);
-    X[14] = -W[34] / (3.0 * W[6]);
-    X[15] = -W[35] / (3.0 * W[6]);
+    X[12] = W[19] / W[6] / -6.0;
+    X[13] = W[20] / W[6] / -6.0;
+    X[14] = W[34] / W[6] / -3.0;
+    X[15] = W[35] / W[6] / -3.0;
 #endif
     if (K == 3)
         goto out;
@@ -576,17 +576,17 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     EOMC_AT2(W + 47) = EOMC_AT2(X + 4) * W[42] + EOMC_AT2(X + 8) * W[27] + EOMC_AT2(X + 0) * W[57]
             + EOMC_AT2(X + 12) * W[12];
     EOMC_AT2(W + 49) = W[9] * EOMC_AT2(W + 47);
-    EOMC_AT2(X + 16) = -EOMC_AT2(W + 34) / (12.0 * W[6]);
-    EOMC_AT2(X + 18) = -EOMC_AT2(W + 49) / (4.0 * W[6]);
+    EOMC_AT2(X + 16) = EOMC_AT2(W + 34) / W[6] / -12.0;
+    EOMC_AT2(X + 18) = EOMC_AT2(W + 49) / W[6] / -4.0;
 #else
     W[47] = X[4] * W[42] + X[8] * W[27] + X[0] * W[57] + X[12] * W[12];
     W[48] = X[5] * W[42] + X[9] * W[27] + X[1] * W[57] + X[13] * W[12];
     W[49] = W[9] * W[47];
     W[50] = W[9] * W[48];
-    X[16] = -W[34] / (12.0 * W[6]);
-    X[17] = -W[35] / (12.0 * W[6]);
-    X[18] = -W[49] / (4.0 * W[6]);
-    X[19] = -W[50] / (4.0 * W[6]);
+    X[16] = W[34] / W[6] / -12.0;
+    X[17] = W[35] / W[6] / -12.0;
+    X[18] = W[49] / W[6] / -4.0;
+    X[19] = W[50] / W[6] / -4.0;
 #endif
     if (K == 4)
         goto out;
@@ -604,17 +604,17 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     EOMC_AT2(W + 62) = EOMC_AT2(X + 8) * W[42] + EOMC_AT2(X + 4) * W[57] + EOMC_AT2(X + 12) * W[27]
             + EOMC_AT2(X + 0) * W[72] + EOMC_AT2(X + 16) * W[12];
     EOMC_AT2(W + 64) = W[9] * EOMC_AT2(W + 62);
-    EOMC_AT2(X + 20) = -EOMC_AT2(W + 49) / (20.0 * W[6]);
-    EOMC_AT2(X + 22) = -EOMC_AT2(W + 64) / (5.0 * W[6]);
+    EOMC_AT2(X + 20) = EOMC_AT2(W + 49) / W[6] / -20.0;
+    EOMC_AT2(X + 22) = EOMC_AT2(W + 64) / W[6] / -5.0;
 #else
     W[62] = X[8] * W[42] + X[4] * W[57] + X[12] * W[27] + X[0] * W[72] + X[16] * W[12];
     W[63] = X[9] * W[42] + X[5] * W[57] + X[13] * W[27] + X[1] * W[72] + X[17] * W[12];
     W[64] = W[9] * W[62];
     W[65] = W[9] * W[63];
-    X[20] = -W[49] / (20.0 * W[6]);
-    X[21] = -W[50] / (20.0 * W[6]);
-    X[22] = -W[64] / (5.0 * W[6]);
-    X[23] = -W[65] / (5.0 * W[6]);
+    X[20] = W[49] / W[6] / -20.0;
+    X[21] = W[50] / W[6] / -20.0;
+    X[22] = W[64] / W[6] / -5.0;
+    X[23] = W[65] / W[6] / -5.0;
 #endif
     if (K == 5)
         goto out;
@@ -633,17 +633,17 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     EOMC_AT2(W + 77) = EOMC_AT2(X + 8) * W[57] + EOMC_AT2(X + 12) * W[42] + EOMC_AT2(X + 4) * W[72]
             + EOMC_AT2(X + 16) * W[27] + EOMC_AT2(X + 0) * W[87] + EOMC_AT2(X + 20) * W[12];
     EOMC_AT2(W + 79) = W[9] * EOMC_AT2(W + 77);
-    EOMC_AT2(X + 24) = -EOMC_AT2(W + 64) / (30.0 * W[6]);
-    EOMC_AT2(X + 26) = -EOMC_AT2(W + 79) / (6.0 * W[6]);
+    EOMC_AT2(X + 24) = EOMC_AT2(W + 64) / W[6] / -30.0;
+    EOMC_AT2(X + 26) = EOMC_AT2(W + 79) / W[6] / -6.0;
 #else
     W[77] = X[8] * W[57] + X[12] * W[42] + X[4] * W[72] + X[16] * W[27] + X[0] * W[87] + X[20] * W[12];
     W[78] = X[9] * W[57] + X[13] * W[42] + X[5] * W[72] + X[17] * W[27] + X[1] * W[87] + X[21] * W[12];
     W[79] = W[9] * W[77];
     W[80] = W[9] * W[78];
-    X[24] = -W[64] / (30.0 * W[6]);
-    X[25] = -W[65] / (30.0 * W[6]);
-    X[26] = -W[79] / (6.0 * W[6]);
-    X[27] = -W[80] / (6.0 * W[6]);
+    X[24] = W[64] / W[6] / -30.0;
+    X[25] = W[65] / W[6] / -30.0;
+    X[26] = W[79] / W[6] / -6.0;
+    X[27] = W[80] / W[6] / -6.0;
 #endif
     if (K == 6)
         goto out;
@@ -662,8 +662,8 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     EOMC_AT2(W + 92) = EOMC_AT2(X + 12) * W[57] + EOMC_AT2(X + 8) * W[72] + EOMC_AT2(X + 16) * W[42]
             + EOMC_AT2(X + 4) * W[87] + EOMC_AT2(X + 20) * W[27] + EOMC_AT2(X + 0) * W[102] + EOMC_AT2(X + 24) * W[12];
     EOMC_AT2(W + 94) = W[9] * EOMC_AT2(W + 92);
-    EOMC_AT2(X + 28) = -EOMC_AT2(W + 79) / (42.0 * W[6]);
-    EOMC_AT2(X + 30) = -EOMC_AT2(W + 94) / (7.0 * W[6]);
+    EOMC_AT2(X + 28) = EOMC_AT2(W + 79) / W[6] / -42.0;
+    EOMC_AT2(X + 30) = EOMC_AT2(W + 94) / W[6] / -7.0;
 #else
     W[92] = X[12] * W[57] + X[8] * W[72] + X[16] * W[42] + X[4] * W[87] + X[20] * W[27] + X[0] * W[102]
             + X[24] * W[12];
@@ -671,10 +671,10 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + X[25] * W[12];
     W[94] = W[9] * W[92];
     W[95] = W[9] * W[93];
-    X[28] = -W[79] / (42.0 * W[6]);
-    X[29] = -W[80] / (42.0 * W[6]);
-    X[30] = -W[94] / (7.0 * W[6]);
-    X[31] = -W[95] / (7.0 * W[6]);
+    X[28] = W[79] / W[6] / -42.0;
+    X[29] = W[80] / W[6] / -42.0;
+    X[30] = W[94] / W[6] / -7.0;
+    X[31] = W[95] / W[6] / -7.0;
 #endif
     if (K == 7)
         goto out;
@@ -694,8 +694,8 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + EOMC_AT2(X + 20) * W[42] + EOMC_AT2(X + 4) * W[102] + EOMC_AT2(X + 24) * W[27] + EOMC_AT2(X + 0) * W[117]
             + EOMC_AT2(X + 28) * W[12];
     EOMC_AT2(W + 109) = W[9] * EOMC_AT2(W + 107);
-    EOMC_AT2(X + 32) = -EOMC_AT2(W + 94) / (56.0 * W[6]);
-    EOMC_AT2(X + 34) = -EOMC_AT2(W + 109) / (8.0 * W[6]);
+    EOMC_AT2(X + 32) = EOMC_AT2(W + 94) / W[6] / -56.0;
+    EOMC_AT2(X + 34) = EOMC_AT2(W + 109) / W[6] / -8.0;
 #else
     W[107] = X[12] * W[72] + X[16] * W[57] + X[8] * W[87] + X[20] * W[42] + X[4] * W[102] + X[24] * W[27]
             + X[0] * W[117] + X[28] * W[12];
@@ -703,10 +703,10 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + X[1] * W[117] + X[29] * W[12];
     W[109] = W[9] * W[107];
     W[110] = W[9] * W[108];
-    X[32] = -W[94] / (56.0 * W[6]);
-    X[33] = -W[95] / (56.0 * W[6]);
-    X[34] = -W[109] / (8.0 * W[6]);
-    X[35] = -W[110] / (8.0 * W[6]);
+    X[32] = W[94] / W[6] / -56.0;
+    X[33] = W[95] / W[6] / -56.0;
+    X[34] = W[109] / W[6] / -8.0;
+    X[35] = W[110] / W[6] / -8.0;
 #endif
     if (K == 8)
         goto out;
@@ -726,8 +726,8 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + EOMC_AT2(X + 8) * W[102] + EOMC_AT2(X + 24) * W[42] + EOMC_AT2(X + 4) * W[117] + EOMC_AT2(X + 28) * W[27]
             + EOMC_AT2(X + 0) * W[132] + EOMC_AT2(X + 32) * W[12];
     EOMC_AT2(W + 124) = W[9] * EOMC_AT2(W + 122);
-    EOMC_AT2(X + 36) = -EOMC_AT2(W + 109) / (72.0 * W[6]);
-    EOMC_AT2(X + 38) = -EOMC_AT2(W + 124) / (9.0 * W[6]);
+    EOMC_AT2(X + 36) = EOMC_AT2(W + 109) / W[6] / -72.0;
+    EOMC_AT2(X + 38) = EOMC_AT2(W + 124) / W[6] / -9.0;
 #else
     W[122] = X[16] * W[72] + X[12] * W[87] + X[20] * W[57] + X[8] * W[102] + X[24] * W[42] + X[4] * W[117]
             + X[28] * W[27] + X[0] * W[132] + X[32] * W[12];
@@ -735,10 +735,10 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + X[29] * W[27] + X[1] * W[132] + X[33] * W[12];
     W[124] = W[9] * W[122];
     W[125] = W[9] * W[123];
-    X[36] = -W[109] / (72.0 * W[6]);
-    X[37] = -W[110] / (72.0 * W[6]);
-    X[38] = -W[124] / (9.0 * W[6]);
-    X[39] = -W[125] / (9.0 * W[6]);
+    X[36] = W[109] / W[6] / -72.0;
+    X[37] = W[110] / W[6] / -72.0;
+    X[38] = W[124] / W[6] / -9.0;
+    X[39] = W[125] / W[6] / -9.0;
 #endif
     if (K == 9)
         goto out;
@@ -759,8 +759,8 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + EOMC_AT2(X + 24) * W[57] + EOMC_AT2(X + 8) * W[117] + EOMC_AT2(X + 28) * W[42] + EOMC_AT2(X + 4) * W[132]
             + EOMC_AT2(X + 32) * W[27] + EOMC_AT2(X + 0) * W[147] + EOMC_AT2(X + 36) * W[12];
     EOMC_AT2(W + 139) = W[9] * EOMC_AT2(W + 137);
-    EOMC_AT2(X + 40) = -EOMC_AT2(W + 124) / (90.0 * W[6]);
-    EOMC_AT2(X + 42) = -EOMC_AT2(W + 139) / (10.0 * W[6]);
+    EOMC_AT2(X + 40) = EOMC_AT2(W + 124) / W[6] / -90.0;
+    EOMC_AT2(X + 42) = EOMC_AT2(W + 139) / W[6] / -10.0;
 #else
     W[137] = X[16] * W[87] + X[20] * W[72] + X[12] * W[102] + X[24] * W[57] + X[8] * W[117] + X[28] * W[42]
             + X[4] * W[132] + X[32] * W[27] + X[0] * W[147] + X[36] * W[12];
@@ -768,10 +768,10 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + X[5] * W[132] + X[33] * W[27] + X[1] * W[147] + X[37] * W[12];
     W[139] = W[9] * W[137];
     W[140] = W[9] * W[138];
-    X[40] = -W[124] / (90.0 * W[6]);
-    X[41] = -W[125] / (90.0 * W[6]);
-    X[42] = -W[139] / (10.0 * W[6]);
-    X[43] = -W[140] / (10.0 * W[6]);
+    X[40] = W[124] / W[6] / -90.0;
+    X[41] = W[125] / W[6] / -90.0;
+    X[42] = W[139] / W[6] / -10.0;
+    X[43] = W[140] / W[6] / -10.0;
 #endif
     if (K == 10)
         goto out;
@@ -796,8 +796,8 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + EOMC_AT2(X + 32) * W[42] + EOMC_AT2(X + 4) * W[147] + EOMC_AT2(X + 36) * W[27] + EOMC_AT2(X + 0) * W[162]
             + EOMC_AT2(X + 40) * W[12];
     EOMC_AT2(W + 154) = W[9] * EOMC_AT2(W + 152);
-    EOMC_AT2(X + 44) = -EOMC_AT2(W + 139) / (110.0 * W[6]);
-    EOMC_AT2(X + 46) = -EOMC_AT2(W + 154) / (11.0 * W[6]);
+    EOMC_AT2(X + 44) = EOMC_AT2(W + 139) / W[6] / -110.0;
+    EOMC_AT2(X + 46) = EOMC_AT2(W + 154) / W[6] / -11.0;
 #else
     W[152] = X[20] * W[87] + X[16] * W[102] + X[24] * W[72] + X[12] * W[117] + X[28] * W[57] + X[8] * W[132]
             + X[32] * W[42] + X[4] * W[147] + X[36] * W[27] + X[0] * W[162] + X[40] * W[12];
@@ -805,10 +805,10 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + X[33] * W[42] + X[5] * W[147] + X[37] * W[27] + X[1] * W[162] + X[41] * W[12];
     W[154] = W[9] * W[152];
     W[155] = W[9] * W[153];
-    X[44] = -W[139] / (110.0 * W[6]);
-    X[45] = -W[140] / (110.0 * W[6]);
-    X[46] = -W[154] / (11.0 * W[6]);
-    X[47] = -W[155] / (11.0 * W[6]);
+    X[44] = W[139] / W[6] / -110.0;
+    X[45] = W[140] / W[6] / -110.0;
+    X[46] = W[154] / W[6] / -11.0;
+    X[47] = W[155] / W[6] / -11.0;
 #endif
     if (K == 11)
         goto out;
@@ -831,8 +831,8 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + EOMC_AT2(X + 8) * W[147] + EOMC_AT2(X + 36) * W[42] + EOMC_AT2(X + 4) * W[162] + EOMC_AT2(X + 40) * W[27]
             + EOMC_AT2(X + 0) * W[177] + EOMC_AT2(X + 44) * W[12];
     EOMC_AT2(W + 169) = W[9] * EOMC_AT2(W + 167);
-    EOMC_AT2(X + 48) = -EOMC_AT2(W + 154) / (132.0 * W[6]);
-    EOMC_AT2(X + 50) = -EOMC_AT2(W + 169) / (12.0 * W[6]);
+    EOMC_AT2(X + 48) = EOMC_AT2(W + 154) / W[6] / -132.0;
+    EOMC_AT2(X + 50) = EOMC_AT2(W + 169) / W[6] / -12.0;
 #else
     W[167] = X[20] * W[102] + X[24] * W[87] + X[16] * W[117] + X[28] * W[72] + X[12] * W[132]
             + X[32] * W[57] + X[8] * W[147] + X[36] * W[42] + X[4] * W[162] + X[40] * W[27] + X[0] * W[177]
@@ -842,10 +842,10 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + X[45] * W[12];
     W[169] = W[9] * W[167];
     W[170] = W[9] * W[168];
-    X[48] = -W[154] / (132.0 * W[6]);
-    X[49] = -W[155] / (132.0 * W[6]);
-    X[50] = -W[169] / (12.0 * W[6]);
-    X[51] = -W[170] / (12.0 * W[6]);
+    X[48] = W[154] / W[6] / -132.0;
+    X[49] = W[155] / W[6] / -132.0;
+    X[50] = W[169] / W[6] / -12.0;
+    X[51] = W[170] / W[6] / -12.0;
 #endif
     if (K == 12)
         goto out;
@@ -870,8 +870,8 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + EOMC_AT2(X + 36) * W[57] + EOMC_AT2(X + 8) * W[162] + EOMC_AT2(X + 40) * W[42] + EOMC_AT2(X + 4) * W[177]
             + EOMC_AT2(X + 44) * W[27] + EOMC_AT2(X + 0) * W[192] + EOMC_AT2(X + 48) * W[12];
     EOMC_AT2(W + 184) = W[9] * EOMC_AT2(W + 182);
-    EOMC_AT2(X + 52) = -EOMC_AT2(W + 169) / (156.0 * W[6]);
-    EOMC_AT2(X + 54) = -EOMC_AT2(W + 184) / (13.0 * W[6]);
+    EOMC_AT2(X + 52) = EOMC_AT2(W + 169) / W[6] / -156.0;
+    EOMC_AT2(X + 54) = EOMC_AT2(W + 184) / W[6] / -13.0;
 #else
     W[182] = X[24] * W[102] + X[20] * W[117] + X[28] * W[87] + X[16] * W[132] + X[32] * W[72]
             + X[12] * W[147] + X[36] * W[57] + X[8] * W[162] + X[40] * W[42] + X[4] * W[177] + X[44] * W[27]
@@ -881,10 +881,10 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + X[1] * W[192] + X[49] * W[12];
     W[184] = W[9] * W[182];
     W[185] = W[9] * W[183];
-    X[52] = -W[169] / (156.0 * W[6]);
-    X[53] = -W[170] / (156.0 * W[6]);
-    X[54] = -W[184] / (13.0 * W[6]);
-    X[55] = -W[185] / (13.0 * W[6]);
+    X[52] = W[169] / W[6] / -156.0;
+    X[53] = W[170] / W[6] / -156.0;
+    X[54] = W[184] / W[6] / -13.0;
+    X[55] = W[185] / W[6] / -13.0;
 #endif
     if (K == 13)
         goto out;
@@ -911,8 +911,8 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + EOMC_AT2(X + 44) * W[42] + EOMC_AT2(X + 4) * W[192] + EOMC_AT2(X + 48) * W[27] + EOMC_AT2(X + 0) * W[207]
             + EOMC_AT2(X + 52) * W[12];
     EOMC_AT2(W + 199) = W[9] * EOMC_AT2(W + 197);
-    EOMC_AT2(X + 56) = -EOMC_AT2(W + 184) / (182.0 * W[6]);
-    EOMC_AT2(X + 58) = -EOMC_AT2(W + 199) / (14.0 * W[6]);
+    EOMC_AT2(X + 56) = EOMC_AT2(W + 184) / W[6] / -182.0;
+    EOMC_AT2(X + 58) = EOMC_AT2(W + 199) / W[6] / -14.0;
 #else
     W[197] = X[24] * W[117] + X[28] * W[102] + X[20] * W[132] + X[32] * W[87] + X[16] * W[147]
             + X[36] * W[72] + X[12] * W[162] + X[40] * W[57] + X[8] * W[177] + X[44] * W[42] + X[4] * W[192]
@@ -922,10 +922,10 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + X[49] * W[27] + X[1] * W[207] + X[53] * W[12];
     W[199] = W[9] * W[197];
     W[200] = W[9] * W[198];
-    X[56] = -W[184] / (182.0 * W[6]);
-    X[57] = -W[185] / (182.0 * W[6]);
-    X[58] = -W[199] / (14.0 * W[6]);
-    X[59] = -W[200] / (14.0 * W[6]);
+    X[56] = W[184] / W[6] / -182.0;
+    X[57] = W[185] / W[6] / -182.0;
+    X[58] = W[199] / W[6] / -14.0;
+    X[59] = W[200] / W[6] / -14.0;
 #endif
     if (K == 14)
         goto out;
@@ -952,8 +952,8 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + EOMC_AT2(X + 8) * W[192] + EOMC_AT2(X + 48) * W[42] + EOMC_AT2(X + 4) * W[207] + EOMC_AT2(X + 52) * W[27]
             + EOMC_AT2(X + 0) * W[222] + EOMC_AT2(X + 56) * W[12];
     EOMC_AT2(W + 214) = W[9] * EOMC_AT2(W + 212);
-    EOMC_AT2(X + 60) = -EOMC_AT2(W + 199) / (210.0 * W[6]);
-    EOMC_AT2(X + 62) = -EOMC_AT2(W + 214) / (15.0 * W[6]);
+    EOMC_AT2(X + 60) = EOMC_AT2(W + 199) / W[6] / -210.0;
+    EOMC_AT2(X + 62) = EOMC_AT2(W + 214) / W[6] / -15.0;
 #else
     W[212] = X[28] * W[117] + X[24] * W[132] + X[32] * W[102] + X[20] * W[147] + X[36] * W[87]
             + X[16] * W[162] + X[40] * W[72] + X[12] * W[177] + X[44] * W[57] + X[8] * W[192]
@@ -963,10 +963,10 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + X[49] * W[42] + X[5] * W[207] + X[53] * W[27] + X[1] * W[222] + X[57] * W[12];
     W[214] = W[9] * W[212];
     W[215] = W[9] * W[213];
-    X[60] = -W[199] / (210.0 * W[6]);
-    X[61] = -W[200] / (210.0 * W[6]);
-    X[62] = -W[214] / (15.0 * W[6]);
-    X[63] = -W[215] / (15.0 * W[6]);
+    X[60] = W[199] / W[6] / -210.0;
+    X[61] = W[200] / W[6] / -210.0;
+    X[62] = W[214] / W[6] / -15.0;
+    X[63] = W[215] / W[6] / -15.0;
 #endif
     if (K == 15)
         goto out;
@@ -993,8 +993,8 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + EOMC_AT2(X + 48) * W[57] + EOMC_AT2(X + 8) * W[207] + EOMC_AT2(X + 52) * W[42] + EOMC_AT2(X + 4) * W[222]
             + EOMC_AT2(X + 56) * W[27] + EOMC_AT2(X + 0) * W[237] + EOMC_AT2(X + 60) * W[12];
     EOMC_AT2(W + 229) = W[9] * EOMC_AT2(W + 227);
-    EOMC_AT2(X + 64) = -EOMC_AT2(W + 214) / (240.0 * W[6]);
-    EOMC_AT2(X + 66) = -EOMC_AT2(W + 229) / (16.0 * W[6]);
+    EOMC_AT2(X + 64) = EOMC_AT2(W + 214) / W[6] / -240.0;
+    EOMC_AT2(X + 66) = EOMC_AT2(W + 229) / W[6] / -16.0;
 #else
     W[227] = X[28] * W[132] + X[32] * W[117] + X[24] * W[147] + X[36] * W[102] + X[20] * W[162]
             + X[40] * W[87] + X[16] * W[177] + X[44] * W[72] + X[12] * W[192] + X[48] * W[57]
@@ -1004,10 +1004,10 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + X[9] * W[207] + X[53] * W[42] + X[5] * W[222] + X[57] * W[27] + X[1] * W[237] + X[61] * W[12];
     W[229] = W[9] * W[227];
     W[230] = W[9] * W[228];
-    X[64] = -W[214] / (240.0 * W[6]);
-    X[65] = -W[215] / (240.0 * W[6]);
-    X[66] = -W[229] / (16.0 * W[6]);
-    X[67] = -W[230] / (16.0 * W[6]);
+    X[64] = W[214] / W[6] / -240.0;
+    X[65] = W[215] / W[6] / -240.0;
+    X[66] = W[229] / W[6] / -16.0;
+    X[67] = W[230] / W[6] / -16.0;
 #endif
     if (K == 16)
         goto out;
@@ -1036,8 +1036,8 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + EOMC_AT2(X + 56) * W[42] + EOMC_AT2(X + 4) * W[237] + EOMC_AT2(X + 60) * W[27] + EOMC_AT2(X + 0) * W[252]
             + EOMC_AT2(X + 64) * W[12];
     EOMC_AT2(W + 244) = W[9] * EOMC_AT2(W + 242);
-    EOMC_AT2(X + 68) = -EOMC_AT2(W + 229) / (272.0 * W[6]);
-    EOMC_AT2(X + 70) = -EOMC_AT2(W + 244) / (17.0 * W[6]);
+    EOMC_AT2(X + 68) = EOMC_AT2(W + 229) / W[6] / -272.0;
+    EOMC_AT2(X + 70) = EOMC_AT2(W + 244) / W[6] / -17.0;
 #else
     W[242] = X[32] * W[132] + X[28] * W[147] + X[36] * W[117] + X[24] * W[162] + X[40] * W[102]
             + X[20] * W[177] + X[44] * W[87] + X[16] * W[192] + X[48] * W[72] + X[12] * W[207]
@@ -1049,10 +1049,10 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + X[65] * W[12];
     W[244] = W[9] * W[242];
     W[245] = W[9] * W[243];
-    X[68] = -W[229] / (272.0 * W[6]);
-    X[69] = -W[230] / (272.0 * W[6]);
-    X[70] = -W[244] / (17.0 * W[6]);
-    X[71] = -W[245] / (17.0 * W[6]);
+    X[68] = W[229] / W[6] / -272.0;
+    X[69] = W[230] / W[6] / -272.0;
+    X[70] = W[244] / W[6] / -17.0;
+    X[71] = W[245] / W[6] / -17.0;
 #endif
     if (K == 17)
         goto out;
@@ -1082,8 +1082,8 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + EOMC_AT2(X + 8) * W[237] + EOMC_AT2(X + 60) * W[42] + EOMC_AT2(X + 4) * W[252] + EOMC_AT2(X + 64) * W[27]
             + EOMC_AT2(X + 0) * W[267] + EOMC_AT2(X + 68) * W[12];
     EOMC_AT2(W + 259) = W[9] * EOMC_AT2(W + 257);
-    EOMC_AT2(X + 72) = -EOMC_AT2(W + 244) / (306.0 * W[6]);
-    EOMC_AT2(X + 74) = -EOMC_AT2(W + 259) / (18.0 * W[6]);
+    EOMC_AT2(X + 72) = EOMC_AT2(W + 244) / W[6] / -306.0;
+    EOMC_AT2(X + 74) = EOMC_AT2(W + 259) / W[6] / -18.0;
 #else
     W[257] = X[32] * W[147] + X[36] * W[132] + X[28] * W[162] + X[40] * W[117] + X[24] * W[177]
             + X[44] * W[102] + X[20] * W[192] + X[48] * W[87] + X[16] * W[207] + X[52] * W[72]
@@ -1095,10 +1095,10 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + X[1] * W[267] + X[69] * W[12];
     W[259] = W[9] * W[257];
     W[260] = W[9] * W[258];
-    X[72] = -W[244] / (306.0 * W[6]);
-    X[73] = -W[245] / (306.0 * W[6]);
-    X[74] = -W[259] / (18.0 * W[6]);
-    X[75] = -W[260] / (18.0 * W[6]);
+    X[72] = W[244] / W[6] / -306.0;
+    X[73] = W[245] / W[6] / -306.0;
+    X[74] = W[259] / W[6] / -18.0;
+    X[75] = W[260] / W[6] / -18.0;
 #endif
     if (K == 18)
         goto out;
@@ -1128,8 +1128,8 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + EOMC_AT2(X + 60) * W[57] + EOMC_AT2(X + 8) * W[252] + EOMC_AT2(X + 64) * W[42] + EOMC_AT2(X + 4) * W[267]
             + EOMC_AT2(X + 68) * W[27] + EOMC_AT2(X + 0) * W[282] + EOMC_AT2(X + 72) * W[12];
     EOMC_AT2(W + 274) = W[9] * EOMC_AT2(W + 272);
-    EOMC_AT2(X + 76) = -EOMC_AT2(W + 259) / (342.0 * W[6]);
-    EOMC_AT2(X + 78) = -EOMC_AT2(W + 274) / (19.0 * W[6]);
+    EOMC_AT2(X + 76) = EOMC_AT2(W + 259) / W[6] / -342.0;
+    EOMC_AT2(X + 78) = EOMC_AT2(W + 274) / W[6] / -19.0;
 #else
     W[272] = X[36] * W[147] + X[32] * W[162] + X[40] * W[132] + X[28] * W[177] + X[44] * W[117]
             + X[24] * W[192] + X[48] * W[102] + X[20] * W[207] + X[52] * W[87] + X[16] * W[222]
@@ -1141,10 +1141,10 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + X[69] * W[27] + X[1] * W[282] + X[73] * W[12];
     W[274] = W[9] * W[272];
     W[275] = W[9] * W[273];
-    X[76] = -W[259] / (342.0 * W[6]);
-    X[77] = -W[260] / (342.0 * W[6]);
-    X[78] = -W[274] / (19.0 * W[6]);
-    X[79] = -W[275] / (19.0 * W[6]);
+    X[76] = W[259] / W[6] / -342.0;
+    X[77] = W[260] / W[6] / -342.0;
+    X[78] = W[274] / W[6] / -19.0;
+    X[79] = W[275] / W[6] / -19.0;
 #endif
     if (K == 19)
         goto out;
@@ -1175,8 +1175,8 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + EOMC_AT2(X + 68) * W[42] + EOMC_AT2(X + 4) * W[282] + EOMC_AT2(X + 72) * W[27] + EOMC_AT2(X + 0) * W[297]
             + EOMC_AT2(X + 76) * W[12];
     EOMC_AT2(W + 289) = W[9] * EOMC_AT2(W + 287);
-    EOMC_AT2(X + 80) = -EOMC_AT2(W + 274) / (380.0 * W[6]);
-    EOMC_AT2(X + 82) = -EOMC_AT2(W + 289) / (20.0 * W[6]);
+    EOMC_AT2(X + 80) = EOMC_AT2(W + 274) / W[6] / -380.0;
+    EOMC_AT2(X + 82) = EOMC_AT2(W + 289) / W[6] / -20.0;
 #else
     W[287] = X[36] * W[162] + X[40] * W[147] + X[32] * W[177] + X[44] * W[132] + X[28] * W[192]
             + X[48] * W[117] + X[24] * W[207] + X[52] * W[102] + X[20] * W[222] + X[56] * W[87]
@@ -1188,10 +1188,10 @@ kepler_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
             + X[69] * W[42] + X[5] * W[282] + X[73] * W[27] + X[1] * W[297] + X[77] * W[12];
     W[289] = W[9] * W[287];
     W[290] = W[9] * W[288];
-    X[80] = -W[274] / (380.0 * W[6]);
-    X[81] = -W[275] / (380.0 * W[6]);
-    X[82] = -W[289] / (20.0 * W[6]);
-    X[83] = -W[290] / (20.0 * W[6]);
+    X[80] = W[274] / W[6] / -380.0;
+    X[81] = W[275] / W[6] / -380.0;
+    X[82] = W[289] / W[6] / -20.0;
+    X[83] = W[290] / W[6] / -20.0;
 #endif
 out:
     T[0 * S] = W[6]; /* M's diagonal, entry 0 */
@@ -1243,10 +1243,10 @@ kepler_taylor_run4(int K, const double *t0s, const double *ps, const double *us,
     W[18] = X[1] * W[27] + X[5] * W[12];
     W[19] = W[9] * W[17];
     W[20] = W[9] * W[18];
-    X[8] = -W[4] / (2.0 * W[6]);
-    X[9] = -W[5] / (2.0 * W[6]);
-    X[10] = -W[19] / (2.0 * W[6]);
-    X[11] = -W[20] / (2.0 * W[6]);
+    X[8] = W[4] / W[6] / -2.0;
+    X[9] = W[5] / W[6] / -2.0;
+    X[10] = W[19] / W[6] / -2.0;
+    X[11] = W[20] / W[6] / -2.0;
     if (K == 2)
         goto out;
     /* order 2 */
@@ -1258,10 +1258,10 @@ kepler_taylor_run4(int K, const double *t0s, const double *ps, const double *us,
     W[33] = X[5] * W[27] + X[1] * W[42] + X[9] * W[12];
     W[34] = W[9] * W[32];
     W[35] = W[9] * W[33];
-    X[12] = -W[19] / (6.0 * W[6]);
-    X[13] = -W[20] / (6.0 * W[6]);
-    X[14] = -W[34] / (3.0 * W[6]);
-    X[15] = -W[35] / (3.0 * W[6]);
+    X[12] = W[19] / W[6] / -6.0;
+    X[13] = W[20] / W[6] / -6.0;
+    X[14] = W[34] / W[6] / -3.0;
+    X[15] = W[35] / W[6] / -3.0;
     if (K == 3)
         goto out;
     /* order 3 */
@@ -1273,10 +1273,10 @@ kepler_taylor_run4(int K, const double *t0s, const double *ps, const double *us,
     W[48] = X[5] * W[42] + X[9] * W[27] + X[1] * W[57] + X[13] * W[12];
     W[49] = W[9] * W[47];
     W[50] = W[9] * W[48];
-    X[16] = -W[34] / (12.0 * W[6]);
-    X[17] = -W[35] / (12.0 * W[6]);
-    X[18] = -W[49] / (4.0 * W[6]);
-    X[19] = -W[50] / (4.0 * W[6]);
+    X[16] = W[34] / W[6] / -12.0;
+    X[17] = W[35] / W[6] / -12.0;
+    X[18] = W[49] / W[6] / -4.0;
+    X[19] = W[50] / W[6] / -4.0;
     if (K == 4)
         goto out;
     /* order 4 */
@@ -1288,10 +1288,10 @@ kepler_taylor_run4(int K, const double *t0s, const double *ps, const double *us,
     W[63] = X[9] * W[42] + X[5] * W[57] + X[13] * W[27] + X[1] * W[72] + X[17] * W[12];
     W[64] = W[9] * W[62];
     W[65] = W[9] * W[63];
-    X[20] = -W[49] / (20.0 * W[6]);
-    X[21] = -W[50] / (20.0 * W[6]);
-    X[22] = -W[64] / (5.0 * W[6]);
-    X[23] = -W[65] / (5.0 * W[6]);
+    X[20] = W[49] / W[6] / -20.0;
+    X[21] = W[50] / W[6] / -20.0;
+    X[22] = W[64] / W[6] / -5.0;
+    X[23] = W[65] / W[6] / -5.0;
     if (K == 5)
         goto out;
     /* order 5 */
@@ -1304,10 +1304,10 @@ kepler_taylor_run4(int K, const double *t0s, const double *ps, const double *us,
     W[78] = X[9] * W[57] + X[13] * W[42] + X[5] * W[72] + X[17] * W[27] + X[1] * W[87] + X[21] * W[12];
     W[79] = W[9] * W[77];
     W[80] = W[9] * W[78];
-    X[24] = -W[64] / (30.0 * W[6]);
-    X[25] = -W[65] / (30.0 * W[6]);
-    X[26] = -W[79] / (6.0 * W[6]);
-    X[27] = -W[80] / (6.0 * W[6]);
+    X[24] = W[64] / W[6] / -30.0;
+    X[25] = W[65] / W[6] / -30.0;
+    X[26] = W[79] / W[6] / -6.0;
+    X[27] = W[80] / W[6] / -6.0;
     if (K == 6)
         goto out;
     /* order 6 */
@@ -1322,10 +1322,10 @@ kepler_taylor_run4(int K, const double *t0s, const double *ps, const double *us,
             + X[25] * W[12];
     W[94] = W[9] * W[92];
     W[95] = W[9] * W[93];
-    X[28] = -W[79] / (42.0 * W[6]);
-    X[29] = -W[80] / (42.0 * W[6]);
-    X[30] = -W[94] / (7.0 * W[6]);
-    X[31] = -W[95] / (7.0 * W[6]);
+    X[28] = W[79] / W[6] / -42.0;
+    X[29] = W[80] / W[6] / -42.0;
+    X[30] = W[94] / W[6] / -7.0;
+    X[31] = W[95] / W[6] / -7.0;
     if (K == 7)
         goto out;
     /* order 7 */
@@ -1340,10 +1340,10 @@ kepler_taylor_run4(int K, const double *t0s, const double *ps, const double *us,
             + X[1] * W[117] + X[29] * W[12];
     W[109] = W[9] * W[107];
     W[110] = W[9] * W[108];
-    X[32] = -W[94] / (56.0 * W[6]);
-    X[33] = -W[95] / (56.0 * W[6]);
-    X[34] = -W[109] / (8.0 * W[6]);
-    X[35] = -W[110] / (8.0 * W[6]);
+    X[32] = W[94] / W[6] / -56.0;
+    X[33] = W[95] / W[6] / -56.0;
+    X[34] = W[109] / W[6] / -8.0;
+    X[35] = W[110] / W[6] / -8.0;
     if (K == 8)
         goto out;
     /* order 8 */
@@ -1358,10 +1358,10 @@ kepler_taylor_run4(int K, const double *t0s, const double *ps, const double *us,
             + X[29] * W[27] + X[1] * W[132] + X[33] * W[12];
     W[124] = W[9] * W[122];
     W[125] = W[9] * W[123];
-    X[36] = -W[109] / (72.0 * W[6]);
-    X[37] = -W[110] / (72.0 * W[6]);
-    X[38] = -W[124] / (9.0 * W[6]);
-    X[39] = -W[125] / (9.0 * W[6]);
+    X[36] = W[109] / W[6] / -72.0;
+    X[37] = W[110] / W[6] / -72.0;
+    X[38] = W[124] / W[6] / -9.0;
+    X[39] = W[125] / W[6] / -9.0;
     if (K == 9)
         goto out;
     /* order 9 */
@@ -1377,10 +1377,10 @@ kepler_taylor_run4(int K, const double *t0s, const double *ps, const double *us,
             + X[5] * W[132] + X[33] * W[27] + X[1] * W[147] + X[37] * W[12];
     W[139] = W[9] * W[137];
     W[140] = W[9] * W[138];
-    X[40] = -W[124] / (90.0 * W[6]);
-    X[41] = -W[125] / (90.0 * W[6]);
-    X[42] = -W[139] / (10.0 * W[6]);
-    X[43] = -W[140] / (10.0 * W[6]);
+    X[40] = W[124] / W[6] / -90.0;
+    X[41] = W[125] / W[6] / -90.0;
+    X[42] = W[139] / W[6] / -10.0;
+    X[43] = W[140] / W[6] / -10.0;
     if (K == 10)
         goto out;
     /* order 10 */
@@ -1398,10 +1398,10 @@ kepler_taylor_run4(int K, const double *t0s, const double *ps, const double *us,
             + X[33] * W[42] + X[5] * W[147] + X[37] * W[27] + X[1] * W[162] + X[41] * W[12];
     W[154] = W[9] * W[152];
     W[155] = W[9] * W[153];
-    X[44] = -W[139] / (110.0 * W[6]);
-    X[45] = -W[140] / (110.0 * W[6]);
-    X[46] = -W[154] / (11.0 * W[6]);
-    X[47] = -W[155] / (11.0 * W[6]);
+    X[44] = W[139] / W[6] / -110.0;
+    X[45] = W[140] / W[6] / -110.0;
+    X[46] = W[154] / W[6] / -11.0;
+    X[47] = W[155] / W[6] / -11.0;
     if (K == 11)
         goto out;
     /* order 11 */
@@ -1419,10 +1419,10 @@ kepler_taylor_run4(int K, const double *t0s, const double *ps, const double *us,
             + X[45] * W[12];
     W[169] = W[9] * W[167];
     W[170] = W[9] * W[168];
-    X[48] = -W[154] / (132.0 * W[6]);
-    X[49] = -W[155] / (132.0 * W[6]);
-    X[50] = -W[169] / (12.0 * W[6]);
-    X[51] = -W[170] / (12.0 * W[6]);
+    X[48] = W[154] / W[6] / -132.0;
+    X[49] = W[155] / W[6] / -132.0;
+    X[50] = W[169] / W[6] / -12.0;
+    X[51] = W[170] / W[6] / -12.0;
     if (K == 12)
         goto out;
     /* order 12 */
@@ -1442,10 +1442,10 @@ kepler_taylor_run4(int K, const double *t0s, const double *ps, const double *us,
             + X[1] * W[192] + X[49] * W[12];
     W[184] = W[9] * W[182];
     W[185] = W[9] * W[183];
-    X[52] = -W[169] / (156.0 * W[6]);
-    X[53] = -W[170] / (156.0 * W[6]);
-    X[54] = -W[184] / (13.0 * W[6]);
-    X[55] = -W[185] / (13.0 * W[6]);
+    X[52] = W[169] / W[6] / -156.0;
+    X[53] = W[170] / W[6] / -156.0;
+    X[54] = W[184] / W[6] / -13.0;
+    X[55] = W[185] / W[6] / -13.0;
     if (K == 13)
         goto out;
     /* order 13 */
@@ -1466,10 +1466,10 @@ kepler_taylor_run4(int K, const double *t0s, const double *ps, const double *us,
             + X[49] * W[27] + X[1] * W[207] + X[53] * W[12];
     W[199] = W[9] * W[197];
     W[200] = W[9] * W[198];
-    X[56] = -W[184] / (182.0 * W[6]);
-    X[57] = -W[185] / (182.0 * W[6]);
-    X[58] = -W[199] / (14.0 * W[6]);
-    X[59] = -W[200] / (14.0 * W[6]);
+    X[56] = W[184] / W[6] / -182.0;
+    X[57] = W[185] / W[6] / -182.0;
+    X[58] = W[199] / W[6] / -14.0;
+    X[59] = W[200] / W[6] / -14.0;
     if (K == 14)
         goto out;
     /* order 14 */
@@ -1490,10 +1490,10 @@ kepler_taylor_run4(int K, const double *t0s, const double *ps, const double *us,
             + X[49] * W[42] + X[5] * W[207] + X[53] * W[27] + X[1] * W[222] + X[57] * W[12];
     W[214] = W[9] * W[212];
     W[215] = W[9] * W[213];
-    X[60] = -W[199] / (210.0 * W[6]);
-    X[61] = -W[200] / (210.0 * W[6]);
-    X[62] = -W[214] / (15.0 * W[6]);
-    X[63] = -W[215] / (15.0 * W[6]);
+    X[60] = W[199] / W[6] / -210.0;
+    X[61] = W[200] / W[6] / -210.0;
+    X[62] = W[214] / W[6] / -15.0;
+    X[63] = W[215] / W[6] / -15.0;
     if (K == 15)
         goto out;
     /* order 15 */
@@ -1514,10 +1514,10 @@ kepler_taylor_run4(int K, const double *t0s, const double *ps, const double *us,
             + X[9] * W[207] + X[53] * W[42] + X[5] * W[222] + X[57] * W[27] + X[1] * W[237] + X[61] * W[12];
     W[229] = W[9] * W[227];
     W[230] = W[9] * W[228];
-    X[64] = -W[214] / (240.0 * W[6]);
-    X[65] = -W[215] / (240.0 * W[6]);
-    X[66] = -W[229] / (16.0 * W[6]);
-    X[67] = -W[230] / (16.0 * W[6]);
+    X[64] = W[214] / W[6] / -240.0;
+    X[65] = W[215] / W[6] / -240.0;
+    X[66] = W[229] / W[6] / -16.0;
+    X[67] = W[230] / W[6] / -16.0;
     if (K == 16)
         goto out;
     /* order 16 */
@@ -1540,10 +1540,10 @@ kepler_taylor_run4(int K, const double *t0s, const double *ps, const double *us,
             + X[65] * W[12];
     W[244] = W[9] * W[242];
     W[245] = W[9] * W[243];
-    X[68] = -W[229] / (272.0 * W[6]);
-    X[69] = -W[230] / (272.0 * W[6]);
-    X[70] = -W[244] / (17.0 * W[6]);
-    X[71] = -W[245] / (17.0 * W[6]);
+    X[68] = W[229] / W[6] / -272.0;
+    X[69] = W[230] / W[6] / -272.0;
+    X[70] = W[244] / W[6] / -17.0;
+    X[71] = W[245] / W[6] / -17.0;
     if (K == 17)
         goto out;
     /* order 17 */
@@ -1567,10 +1567,10 @@ kepler_taylor_run4(int K, const double *t0s, const double *ps, const double *us,
             + X[1] * W[267] + X[69] * W[12];
     W[259] = W[9] * W[257];
     W[260] = W[9] * W[258];
-    X[72] = -W[244] / (306.0 * W[6]);
-    X[73] = -W[245] / (306.0 * W[6]);
-    X[74] = -W[259] / (18.0 * W[6]);
-    X[75] = -W[260] / (18.0 * W[6]);
+    X[72] = W[244] / W[6] / -306.0;
+    X[73] = W[245] / W[6] / -306.0;
+    X[74] = W[259] / W[6] / -18.0;
+    X[75] = W[260] / W[6] / -18.0;
     if (K == 18)
         goto out;
     /* order 18 */
@@ -1594,10 +1594,10 @@ kepler_taylor_run4(int K, const double *t0s, const double *ps, const double *us,
             + X[69] * W[27] + X[1] * W[282] + X[73] * W[12];
     W[274] = W[9] * W[272];
     W[275] = W[9] * W[273];
-    X[76] = -W[259] / (342.0 * W[6]);
-    X[77] = -W[260] / (342.0 * W[6]);
-    X[78] = -W[274] / (19.0 * W[6]);
-    X[79] = -W[275] / (19.0 * W[6]);
+    X[76] = W[259] / W[6] / -342.0;
+    X[77] = W[260] / W[6] / -342.0;
+    X[78] = W[274] / W[6] / -19.0;
+    X[79] = W[275] / W[6] / -19.0;
     if (K == 19)
         goto out;
     /* order 19 */
@@ -1621,10 +1621,10 @@ kepler_taylor_run4(int K, const double *t0s, const double *ps, const double *us,
             + X[69] * W[42] + X[5] * W[282] + X[73] * W[27] + X[1] * W[297] + X[77] * W[12];
     W[289] = W[9] * W[287];
     W[290] = W[9] * W[288];
-    X[80] = -W[274] / (380.0 * W[6]);
-    X[81] = -W[275] / (380.0 * W[6]);
-    X[82] = -W[289] / (20.0 * W[6]);
-    X[83] = -W[290] / (20.0 * W[6]);
+    X[80] = W[274] / W[6] / -380.0;
+    X[81] = W[275] / W[6] / -380.0;
+    X[82] = W[289] / W[6] / -20.0;
+    X[83] = W[290] / W[6] / -20.0;
 out:
     T[0 * S] = W[6]; /* M's diagonal, entry 0 */
     return 0;

@@ -722,8 +722,8 @@ spinning_hoop_taylor_run_4(eomc_real *restrict W, eomc_real *restrict X)
     W[62] = W[84] - W[70];
     W[65] = W[1] * W[62];
     W[85] = W[82] + W[65];
-    X[4] = -W[42] / (2.0 * W[1]);
-    X[5] = -W[85] / (2.0 * W[1]);
+    X[4] = W[42] / W[1] / -2.0;
+    X[5] = W[85] / W[1] / -2.0;
 }
 
 /* Lines 30 .. 37 of taylor_run's order 2. */
@@ -741,8 +741,8 @@ spinning_hoop_taylor_run_6(eomc_real *restrict W, eomc_real *restrict X)
     W[105] = W[127] - W[113];
     W[108] = W[1] * W[105];
     W[128] = W[125] + W[108];
-    X[6] = -W[85] / (6.0 * W[1]);
-    X[7] = -W[128] / (3.0 * W[1]);
+    X[6] = W[85] / W[1] / -6.0;
+    X[7] = W[128] / W[1] / -3.0;
 }
 
 /* Lines 0 .. 29 of taylor_run's order 3. */
@@ -815,8 +815,8 @@ spinning_hoop_taylor_run_10(eomc_real *restrict W, eomc_real *restrict X)
     W[191] = W[213] - W[199];
     W[194] = W[1] * W[191];
     W[214] = W[211] + W[194];
-    X[10] = -W[171] / (20.0 * W[1]);
-    X[11] = -W[214] / (5.0 * W[1]);
+    X[10] = W[171] / W[1] / -20.0;
+    X[11] = W[214] / W[1] / -5.0;
 }
 
 /* Lines 0 .. 29 of taylor_run's order 5. */
@@ -899,8 +899,8 @@ spinning_hoop_taylor_run_14(eomc_real *restrict W, eomc_real *restrict X)
     W[277] = W[299] - W[285];
     W[280] = W[1] * W[277];
     W[300] = W[297] + W[280];
-    X[14] = -W[257] / (42.0 * W[1]);
-    X[15] = -W[300] / (7.0 * W[1]);
+    X[14] = W[257] / W[1] / -42.0;
+    X[15] = W[300] / W[1] / -7.0;
 }
 
 /* Lines 0 .. 29 of taylor_run's order 7. */
@@ -995,8 +995,8 @@ spinning_hoop_taylor_run_18(eomc_real *restrict W, eomc_real *restrict X)
     W[363] = W[385] - W[371];
     W[366] = W[1] * W[363];
     W[386] = W[383] + W[366];
-    X[18] = -W[343] / (72.0 * W[1]);
-    X[19] = -W[386] / (9.0 * W[1]);
+    X[18] = W[343] / W[1] / -72.0;
+    X[19] = W[386] / W[1] / -9.0;
 }
 
 /* Lines 0 .. 29 of taylor_run's order 9. */
@@ -1097,8 +1097,8 @@ spinning_hoop_taylor_run_22(eomc_real *restrict W, eomc_real *restrict X)
     W[449] = W[471] - W[457];
     W[452] = W[1] * W[449];
     W[472] = W[469] + W[452];
-    X[22] = -W[429] / (110.0 * W[1]);
-    X[23] = -W[472] / (11.0 * W[1]);
+    X[22] = W[429] / W[1] / -110.0;
+    X[23] = W[472] / W[1] / -11.0;
 }
 
 /* Lines 0 .. 29 of taylor_run's order 11. */
@@ -1214,8 +1214,8 @@ spinning_hoop_taylor_run_26(eomc_real *restrict W, eomc_real *restrict X)
     W[535] = W[557] - W[543];
     W[538] = W[1] * W[535];
     W[558] = W[555] + W[538];
-    X[26] = -W[515] / (156.0 * W[1]);
-    X[27] = -W[558] / (13.0 * W[1]);
+    X[26] = W[515] / W[1] / -156.0;
+    X[27] = W[558] / W[1] / -13.0;
 }
 
 /* Lines 0 .. 29 of taylor_run's order 13. */
@@ -1339,8 +1339,8 @@ spinning_hoop_taylor_run_30(eomc_real *restrict W, eomc_real *restrict X)
     W[621] = W[643] - W[629];
     W[624] = W[1] * W[621];
     W[644] = W[641] + W[624];
-    X[30] = -W[601] / (210.0 * W[1]);
-    X[31] = -W[644] / (15.0 * W[1]);
+    X[30] = W[601] / W[1] / -210.0;
+    X[31] = W[644] / W[1] / -15.0;
 }
 
 /* Lines 0 .. 29 of taylor_run's order 15. */
@@ -1474,8 +1474,8 @@ spinning_hoop_taylor_run_34(eomc_real *restrict W, eomc_real *restrict X)
     W[707] = W[729] - W[715];
     W[710] = W[1] * W[707];
     W[730] = W[727] + W[710];
-    X[34] = -W[687] / (272.0 * W[1]);
-    X[35] = -W[730] / (17.0 * W[1]);
+    X[34] = W[687] / W[1] / -272.0;
+    X[35] = W[730] / W[1] / -17.0;
 }
 
 /* Lines 0 .. 29 of taylor_run's order 17. */
@@ -1620,8 +1620,8 @@ spinning_hoop_taylor_run_38(eomc_real *restrict W, eomc_real *restrict X)
     W[793] = W[815] - W[801];
     W[796] = W[1] * W[793];
     W[816] = W[813] + W[796];
-    X[38] = -W[773] / (342.0 * W[1]);
-    X[39] = -W[816] / (19.0 * W[1]);
+    X[38] = W[773] / W[1] / -342.0;
+    X[39] = W[816] / W[1] / -19.0;
 }
 
 /* Lines 0 .. 29 of taylor_run's order 19. */
@@ -2229,8 +2229,8 @@ spinning_hoop_taylor_run_8(eomc_real *restrict W, eomc_real *restrict X)
     W[148] = W[170] - W[156];
     W[151] = W[1] * W[148];
     W[171] = W[168] + W[151];
-    X[8] = -W[128] / (12.0 * W[1]);
-    X[9] = -W[171] / (4.0 * W[1]);
+    X[8] = W[128] / W[1] / -12.0;
+    X[9] = W[171] / W[1] / -4.0;
 }
 
 /* Lines 0 .. 29 of taylor_run's order 4, in the fourth unit. */
@@ -2306,8 +2306,8 @@ spinning_hoop_taylor_run_12(eomc_real *restrict W, eomc_real *restrict X)
     W[234] = W[256] - W[242];
     W[237] = W[1] * W[234];
     W[257] = W[254] + W[237];
-    X[12] = -W[214] / (30.0 * W[1]);
-    X[13] = -W[257] / (6.0 * W[1]);
+    X[12] = W[214] / W[1] / -30.0;
+    X[13] = W[257] / W[1] / -6.0;
 }
 
 /* Lines 0 .. 29 of taylor_run's order 6, in the fourth unit. */
@@ -2399,8 +2399,8 @@ spinning_hoop_taylor_run_16(eomc_real *restrict W, eomc_real *restrict X)
     W[320] = W[342] - W[328];
     W[323] = W[1] * W[320];
     W[343] = W[340] + W[323];
-    X[16] = -W[300] / (56.0 * W[1]);
-    X[17] = -W[343] / (8.0 * W[1]);
+    X[16] = W[300] / W[1] / -56.0;
+    X[17] = W[343] / W[1] / -8.0;
 }
 
 /* Lines 0 .. 29 of taylor_run's order 8, in the fourth unit. */
@@ -2495,8 +2495,8 @@ spinning_hoop_taylor_run_20(eomc_real *restrict W, eomc_real *restrict X)
     W[406] = W[428] - W[414];
     W[409] = W[1] * W[406];
     W[429] = W[426] + W[409];
-    X[20] = -W[386] / (90.0 * W[1]);
-    X[21] = -W[429] / (10.0 * W[1]);
+    X[20] = W[386] / W[1] / -90.0;
+    X[21] = W[429] / W[1] / -10.0;
 }
 
 /* Lines 0 .. 29 of taylor_run's order 10, in the fourth unit. */
@@ -2607,8 +2607,8 @@ spinning_hoop_taylor_run_24(eomc_real *restrict W, eomc_real *restrict X)
     W[492] = W[514] - W[500];
     W[495] = W[1] * W[492];
     W[515] = W[512] + W[495];
-    X[24] = -W[472] / (132.0 * W[1]);
-    X[25] = -W[515] / (12.0 * W[1]);
+    X[24] = W[472] / W[1] / -132.0;
+    X[25] = W[515] / W[1] / -12.0;
 }
 
 /* Lines 0 .. 29 of taylor_run's order 12, in the fourth unit. */
@@ -2727,8 +2727,8 @@ spinning_hoop_taylor_run_28(eomc_real *restrict W, eomc_real *restrict X)
     W[578] = W[600] - W[586];
     W[581] = W[1] * W[578];
     W[601] = W[598] + W[581];
-    X[28] = -W[558] / (182.0 * W[1]);
-    X[29] = -W[601] / (14.0 * W[1]);
+    X[28] = W[558] / W[1] / -182.0;
+    X[29] = W[601] / W[1] / -14.0;
 }
 
 /* Lines 0 .. 29 of taylor_run's order 14, in the fourth unit. */
@@ -2854,8 +2854,8 @@ spinning_hoop_taylor_run_32(eomc_real *restrict W, eomc_real *restrict X)
     W[664] = W[686] - W[672];
     W[667] = W[1] * W[664];
     W[687] = W[684] + W[667];
-    X[32] = -W[644] / (240.0 * W[1]);
-    X[33] = -W[687] / (16.0 * W[1]);
+    X[32] = W[644] / W[1] / -240.0;
+    X[33] = W[687] / W[1] / -16.0;
 }
 
 /* Lines 0 .. 29 of taylor_run's order 16, in the fourth unit. */
@@ -2998,8 +2998,8 @@ spinning_hoop_taylor_run_36(eomc_real *restrict W, eomc_real *restrict X)
     W[750] = W[772] - W[758];
     W[753] = W[1] * W[750];
     W[773] = W[770] + W[753];
-    X[36] = -W[730] / (306.0 * W[1]);
-    X[37] = -W[773] / (18.0 * W[1]);
+    X[36] = W[730] / W[1] / -306.0;
+    X[37] = W[773] / W[1] / -18.0;
 }
 
 /* Lines 0 .. 29 of taylor_run's order 18, in the fourth unit. */
@@ -3146,8 +3146,8 @@ spinning_hoop_taylor_run_40(eomc_real *restrict W, eomc_real *restrict X)
     W[836] = W[858] - W[844];
     W[839] = W[1] * W[836];
     W[859] = W[856] + W[839];
-    X[40] = -W[816] / (380.0 * W[1]);
-    X[41] = -W[859] / (20.0 * W[1]);
+    X[40] = W[816] / W[1] / -380.0;
+    X[41] = W[859] / W[1] / -20.0;
 }
 
 #endif /* EOMC_EXTENDED */

@@ -274,11 +274,17 @@ expand(Out *o, const LowTayStep *st, int k)
         l->after = k + 1;
         close_sum(o, l);
     } else if (!strcmp(f, "accel") || !strcmp(f, "integ2")) {
-        /* v_{k+1} = -(h_k / ((k + 1) m_0)); q_{k+1} = -(h_{k-1} / (k (k + 1) m_0)) */
+        /* v_{k+1} = h_k / m_0 / -(k + 1), q_{k+1} = h_{k-1} / m_0 / -(k (k + 1)):
+         * h / m_0 the same quotient in both, which the C compiler computes
+         * once; / -c is -(x / c) to the bit, without the negation's
+         * instruction, but at k = 0: -h_0 / m_0 */
         int two = f[0] == 'i', h = s[two ? 2 : 1], m = s[two ? 3 : 2];
         l = new_line(o, at(o, s[0], k + 1), LOW_SER_SUM);
         add_term(o, 1, cell(o, h, two ? k - 1 : k), -1, 0);
-        l->over = two ? k * (k + 1) : k + 1, l->over_cell = cell(o, m, 0), l->negate = 1;
+        l->over = 1, l->over_cell = cell(o, m, 0);
+        l->after = -(two ? k * (k + 1) : k + 1);
+        if (l->after == -1)
+            l->after = 0, l->negate = 1;
         close_sum(o, l);
     } else if (!strcmp(f, "mrhs")) {
         /* b_k = h_k + sum_l sum_{i=1..k} M_i a_{k-i}, the runtime loop's

@@ -120,25 +120,26 @@ eomc_tay_integ(eomc_real *q, const eomc_real *r, int k)
 }
 
 /* The next coefficient of a speed under a constant diagonal mass m and
- * the force -h: v' = -h / m, so v[k + 1] = -(h[k] / ((k + 1) m[0])), one
- * division (taylor.c's loop rounds so too). */
+ * the force -h: v' = -h / m, so v[k + 1] = h[k] / m[0] / -(k + 1), which
+ * is -((h[k] / m[0]) / (k + 1)) to the bit (rounding is symmetric in the
+ * sign), as taylor.c's loop rounds it. */
 static inline void
 eomc_tay_accel(eomc_real *v, const eomc_real *h, const eomc_real *m, int k)
 {
-    v[k + 1] = -(h[k] / ((k + 1) * m[0]));
+    v[k + 1] = h[k] / m[0] / -(k + 1);
 }
 
 /* The next coefficient of a coordinate q whose rate is the speed v of
  * eomc_tay_accel: q[k + 1] = v[k] / (k + 1), which for k > 0 is
- * -(h[k - 1] / (k (k + 1) m[0])), from h at once.  Through v it would be
- * two divisions after h[k - 1], and the next orders' products wait on
- * q: Kepler's series to order 19 took 393 ns so, 347 thus
- * (docs/internals.md). */
+ * h[k - 1] / m[0] / -(k (k + 1)), from v's quotient h[k - 1] / m[0].
+ * Through v it would be one division more after it, and the next
+ * orders' products wait on q: Kepler's series to order 19 took 393 ns
+ * so, 373 thus (docs/internals.md). */
 static inline void
 eomc_tay_integ2(eomc_real *q, const eomc_real *v, const eomc_real *h, const eomc_real *m,
                 int k)
 {
-    q[k + 1] = k == 0 ? v[0] : -(h[k - 1] / ((k * (k + 1)) * m[0]));
+    q[k + 1] = k == 0 ? v[0] : h[k - 1] / m[0] / -(k * (k + 1));
 }
 
 /* The next coefficient of a value whose rate is 0 at every order. */

@@ -13,8 +13,9 @@
  * never inverted symbolically; a constant M's higher orders are 0 and
  * their sums are skipped; then q_{k+1} = q'_k / (k + 1) and
  * q'_{k+1} = a_k / (k + 1), which the next call reads (with M constant
- * and diagonal, q'_{k+1} = -(h_k / ((k + 1) M_jj)) and, for k > 0,
- * q_{k+1} = -(h_{k-1} / (k (k + 1) M_jj)): one division each).  Without
+ * and diagonal, q'_{k+1} = (h_k / M_jj) / -(k + 1) and, for k > 0,
+ * q_{k+1} = (h_{k-1} / M_jj) / -(k (k + 1)), from h_{k-1} / M_jj rather
+ * than through q'_k).  Without
  * constraints the model's taylor_run gives the whole series in one call,
  * into X (run_series), with the same arithmetic: where M is constant and
  * diagonal the generator did the solve itself, else it calls run_solve
@@ -81,6 +82,7 @@ abs2(const double *p)
     return _mm_andnot_pd(_mm_set1_pd(-0.0), _mm_loadu_pd(p));
 }
 #endif
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -110,6 +112,8 @@ struct Taylor {
     double *xlast;      /* [N] the state taylor_advance left: the compensation
                          * holds while the next series starts there */
     double t0;          /* the last series' start */
+    const double *u0;   /* without inputs, the modes' values (sim_inputs_at's
+                         * array, which stays where it is), else NULL */
     /* a batch's series (taylor_lanes_fill), taken where the next series
      * starts at (tb, xb): X's and T's next, swapped in (NULL till then) */
     double *Xb, *Tb, *xb, tb;
@@ -176,7 +180,8 @@ taylor_alloc(eomc_sim *s, const eomc_run_opts *o)
         return NULL;
     int n = m->nq, nv = eomc_nv(m), K = TAYLOR_MAX_ORDER;
     *tp = (Taylor){.s = s, .m = m, .n = n, .nv = nv, .N = n + nv, .rtol = o->rtol,
-                   .atol = o->atol, .p = taylor_order_for(o->rtol)};
+                   .atol = o->atol, .p = taylor_order_for(o->rtol),
+                   .u0 = m->nu == 0 ? sim_inputs_at(s, 0, NULL, NULL) : NULL};
     tp->factor = exp(-2.0 - TAYLOR_SAFETY / (tp->p - 1));
     tp->T = sim_zeros((size_t)m->taylor_nslot * (size_t)(K + 1) + 1);
     tp->X = sim_zeros((size_t)(K + 1) * (size_t)tp->N);
@@ -253,6 +258,21 @@ taylor_free(Taylor *tp)
     la_lu_free(tp->lu);
     free(tp->J);
     free(tp);
+}
+
+/* Whether a and b hold the same n doubles, bit for bit (memcmp's test,
+ * inlined: a call of it was 25 of Kepler's 4 000 instructions a step). */
+static int
+same_bits(const double *a, const double *b, int n)
+{
+    for (int i = 0; i < n; i++) {
+        uint64_t x, y;
+        memcpy(&x, a + i, sizeof x);
+        memcpy(&y, b + i, sizeof y);
+        if (x != y)
+            return 0;
+    }
+    return 1;
 }
 
 /* Slot s's coefficient k. */
@@ -672,11 +692,12 @@ taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
 {
     const eomc_model *m = tp->m;
     int n = tp->n, nv = tp->nv, N = tp->N, p = tp->p;
-    const double *par = sim_p(tp->s), *u = sim_inputs_at(tp->s, t0, x, x + n);
+    const double *par = sim_p(tp->s);
+    const double *u = tp->u0 ? tp->u0 : sim_inputs_at(tp->s, t0, x, x + n);
     /* a start the last advance did not leave (an event's reset, a side
      * step's own start) owes nothing; where the unit quaternions were
      * renormalized since, they owe nothing, and the rest what they did */
-    if (memcmp(x, tp->xlast, (size_t)N * sizeof *x) != 0) {
+    if (!same_bits(x, tp->xlast, N)) {
         tp->hlast = 0;
         for (int i = 0; i < N; i++)
             if (m->nquat == 0 || x[i] != tp->xlast[i])
@@ -684,7 +705,7 @@ taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
     }
     memcpy(tp->comp0, tp->comp, (size_t)N * sizeof *tp->comp);
     /* a batch's series is taken for its own start alone, to the bit */
-    tp->filled = tp->filled && t0 == tp->tb && !memcmp(x, tp->xb, (size_t)N * sizeof *x);
+    tp->filled = tp->filled && t0 == tp->tb && same_bits(x, tp->xb, N);
     memcpy(tp->filled ? tp->Xb : tp->X, x, (size_t)N * sizeof *x);
     tp->t0 = t0;
     if (tp->nc > 0 && sim_choose_rows(tp->s, t0, x, x + n) != EOMC_OK)
@@ -699,8 +720,8 @@ taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
         *h = hs < hmax ? hs : hmax;
         return 0;
     }
-    /* a constant diagonal M, q' = v: v's and q's next coefficients from h's
-     * with one division each, as taylor_run's (eomc_tay_accel, _integ2) */
+    /* a constant diagonal M, q' = v: v's and q's next coefficients from
+     * h's quotient by M, as taylor_run's (eomc_tay_accel, _integ2) */
     int fold = m->taylor_mass == (EOMC_TAYLOR_M_CONSTANT | EOMC_TAYLOR_M_DIAGONAL) &&
                !m->taylor_qd && tp->nc == 0;
     for (int k = 0; k < p; k++) {
@@ -724,12 +745,12 @@ taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
         const double *cur = tp->X + (size_t)k * (size_t)N;
         for (int j = 0; j < nv; j++) {
             tp->A[(size_t)j * (p + 1) + (size_t)k] = tp->b[j];
-            next[n + j] = fold ? -(coef(tp, m->taylor_h[j], k) / ((k + 1) * tp->M0[j * nv + j]))
+            next[n + j] = fold ? coef(tp, m->taylor_h[j], k) / tp->M0[j * nv + j] / -(k + 1)
                                : tp->b[j] / (k + 1);
         }
         for (int i = 0; i < n; i++) { /* q' = v, or W(q) v's series */
             if (fold && k > 0)
-                next[i] = -(coef(tp, m->taylor_h[i], k - 1) / ((k * (k + 1)) * tp->M0[i * nv + i]));
+                next[i] = coef(tp, m->taylor_h[i], k - 1) / tp->M0[i * nv + i] / -(k * (k + 1));
             else
                 next[i] = (m->taylor_qd ? coef(tp, m->taylor_qd[i], k) : cur[n + i]) / (k + 1);
         }
@@ -835,8 +856,10 @@ double
 taylor_event_cut(const Taylor *tp, double h)
 {
     const eomc_model *m = tp->m;
+    if (!m->taylor_g || m->nevent + m->nmode == 0)
+        return h; /* (before the frame below is set up: 19 instructions a step to 4) */
     double c[TAYLOR_MAX_ORDER + 1], hcut = h;
-    for (int e = 0; e < m->nevent + m->nmode && m->taylor_g; e++) {
+    for (int e = 0; e < m->nevent + m->nmode; e++) {
         if (m->taylor_g[e] < 0)
             continue;
         /* g's series has the orders the program reached, 0 .. p - 1 */
@@ -945,7 +968,7 @@ lanes_step(const TaylorLanes *b, Taylor *const *tp, int first, const double *con
     for (int l = 0; l < EOMC_LANES; l++) {
         const Taylor *t = tp[l];
         int w = t && t->hlast > 0 && t->hlast < INFINITY &&
-                !memcmp(x[l], t->xlast, (size_t)N * sizeof *x[l]);
+                same_bits(x[l], t->xlast, N);
         hw[l] = w ? t->hlast : 0;
         warm += w;
         hj[l] = 1;
@@ -1007,7 +1030,8 @@ taylor_lanes_fill(TaylorLanes *b, Taylor *const *tp, const double *t0,
             return -1;
         b->t0[l] = t0[k];
         to_lane(b->par, l, sim_p(tp[k]->s), m->np + m->nd); /* (and the derived) */
-        to_lane(b->u, l, sim_inputs_at(tp[k]->s, t0[k], x[k], x[k] + n), nu);
+        to_lane(b->u, l, tp[k]->u0 ? tp[k]->u0 : sim_inputs_at(tp[k]->s, t0[k], x[k], x[k] + n),
+                nu);
         to_lane(b->X, l, x[k], N);
     }
     if (m->taylor_run4(p, b->t0, b->par, b->u, b->T, b->X) != 0)

@@ -227,8 +227,8 @@ mass_diagonal(const eomc_model *m)
 /* taylor_run, where the model has one (no constraints), against two
  * things at a state near its start:
  *  - the loop over taylor with the runtime's arithmetic (taylor.c's
- *    where M is constant and diagonal: v_{k+1} = -(h_k / ((k + 1) M_jj))
- *    and q_{k+1} = -(h_{k-1} / (k (k + 1) M_jj)) for k > 0; else
+ *    where M is constant and diagonal: v_{k+1} = -((h_k / M_jj) / (k + 1))
+ *    and q_{k+1} = -((h_{k-1} / M_jj) / (k (k + 1))) for k > 0; else
  *    a_k = -M_0^-1 (h_k + sum_{i=1..k} M_i a_{k-i}), the sum from 0
  *    entry by entry, by the same solve, test_solve, then / (k + 1)): the
  *    same series to the bit, as eomc_model.h says (the rows the same
@@ -289,11 +289,11 @@ check_run(const eomc_model *m, double t0, int order, int *differ)
             int h = m->taylor_h[i];
             double *q = T2 + m->taylor_q[i] * S, *v = T2 + m->taylor_v[i] * S;
             A[i * S + k] = b[i];
-            if (diagonal) { /* one division each, from h's series */
+            if (diagonal) { /* both from h's series over M_jj */
                 double Mii = T2[m->taylor_M[i * n + i] * S];
                 double hk = h < 0 ? 0 : T2[h * S + k], hk1 = h < 0 || !k ? 0 : T2[h * S + k - 1];
-                q[k + 1] = k == 0 ? v[0] : -(hk1 / ((k * (k + 1)) * Mii));
-                v[k + 1] = -(hk / ((k + 1) * Mii));
+                q[k + 1] = k == 0 ? v[0] : -(hk1 / Mii / (k * (k + 1)));
+                v[k + 1] = -(hk / Mii / (k + 1));
                 continue;
             }
             q[k + 1] = v[k] / (k + 1);

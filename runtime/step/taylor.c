@@ -856,10 +856,8 @@ double
 taylor_event_cut(const Taylor *tp, double h)
 {
     const eomc_model *m = tp->m;
-    if (!m->taylor_g || m->nevent + m->nmode == 0)
-        return h; /* (before the frame below is set up: 19 instructions a step to 4) */
     double c[TAYLOR_MAX_ORDER + 1], hcut = h;
-    for (int e = 0; e < m->nevent + m->nmode; e++) {
+    for (int e = 0; e < m->nevent + m->nmode && m->taylor_g; e++) {
         if (m->taylor_g[e] < 0)
             continue;
         /* g's series has the orders the program reached, 0 .. p - 1 */

@@ -483,7 +483,7 @@ arenstorf_taylor(int k, int K, eomc_real t0, const eomc_real *p,
 #ifndef EOMC_EXTENDED
 /* The whole series to order K in one call (taylor_run): each order k of
  * the program above, then q's coefficient k + 1 from its rate's k, and
- * q''s, M being constant and diagonal, from -(h_j / M_jj) / (k + 1).
+ * q''s, M being constant and diagonal, from (h_j / M_jj) / -(k + 1).
  * Written out to order 20, each recurrence's sum with its indices fixed
  * (the same arithmetic in the same order); above that, the loop. */
 static int
@@ -1677,6 +1677,7 @@ arenstorf_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[83] = W[779] / W[19] / -20.0;
 out:
     T[0 * S] = W[19]; /* M's diagonal, entry 0 */
+    EOMC_ZEROUPPER(); /* (eomc_taylor.h) */
     return 0;
 }
 #endif
@@ -2555,6 +2556,7 @@ arenstorf_taylor_run4(int K, const double *t0s, const double *ps,
     X[83] = W[779] / W[19] / -20.0;
 out:
     T[0 * S] = W[19]; /* M's diagonal, entry 0 */
+    EOMC_ZEROUPPER(); /* (eomc_taylor.h) */
     return 0;
 }
 #endif

@@ -393,7 +393,7 @@ bouncing_ball_taylor(int k, int K, eomc_real t0, const eomc_real *p,
 #ifndef EOMC_EXTENDED
 /* The whole series to order K in one call (taylor_run): each order k of
  * the program above, then q's coefficient k + 1 from its rate's k, and
- * q''s, M being constant and diagonal, from -(h_j / M_jj) / (k + 1).
+ * q''s, M being constant and diagonal, from (h_j / M_jj) / -(k + 1).
  * Written out to order 20, each recurrence's sum with its indices fixed
  * (the same arithmetic in the same order); above that, the loop. */
 static int
@@ -560,6 +560,7 @@ out:
     for (int j = 0; j < K; j++) /* event function 0 */
         T[1 * S + j] = X[j * 2 + 0];
     T[0 * S] = W[0]; /* M's diagonal, entry 0 */
+    EOMC_ZEROUPPER(); /* (eomc_taylor.h) */
     return 0;
 }
 #endif
@@ -722,6 +723,7 @@ out:
     for (int j = 0; j < K; j++) /* event function 0 */
         T[1 * S + j] = X[j * 2 + 0];
     T[0 * S] = W[0]; /* M's diagonal, entry 0 */
+    EOMC_ZEROUPPER(); /* (eomc_taylor.h) */
     return 0;
 }
 #endif

@@ -6576,8 +6576,10 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     chain5_taylor_run_8(W);
     chain5_taylor_run_9(W);
     chain5_taylor_run_10(W);
-    if (chain5_taylor_run_11(W, X, solve, ctx))
+    if (chain5_taylor_run_11(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 1)
         goto out;
     /* order 1 */
@@ -6591,8 +6593,10 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     chain5_taylor_run_19(W);
     chain5_taylor_run_20(W);
     chain5_taylor_run_21(W, X);
-    if (chain5_taylor_run_22(W, X, solve, ctx))
+    if (chain5_taylor_run_22(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 2)
         goto out;
     /* order 2 */
@@ -6606,8 +6610,10 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     chain5_taylor_run_30(W);
     chain5_taylor_run_31(W);
     chain5_taylor_run_32(W, X);
-    if (chain5_taylor_run_33(W, X, solve, ctx))
+    if (chain5_taylor_run_33(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 3)
         goto out;
     /* order 3 */
@@ -6621,8 +6627,10 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     chain5_taylor_run_41(W);
     chain5_taylor_run_42(W);
     chain5_taylor_run_43(W, X);
-    if (chain5_taylor_run_44(W, X, solve, ctx))
+    if (chain5_taylor_run_44(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 4)
         goto out;
     /* order 4 */
@@ -6636,8 +6644,10 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     chain5_taylor_run_52(W);
     chain5_taylor_run_53(W);
     chain5_taylor_run_54(W, X);
-    if (chain5_taylor_run_55(W, X, solve, ctx))
+    if (chain5_taylor_run_55(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 5)
         goto out;
     /* order 5 */
@@ -6651,8 +6661,10 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     chain5_taylor_run_63(W);
     chain5_taylor_run_64(W);
     chain5_taylor_run_65(W, X);
-    if (chain5_taylor_run_66(W, X, solve, ctx))
+    if (chain5_taylor_run_66(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 6)
         goto out;
     /* order 6 */
@@ -6666,8 +6678,10 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     chain5_taylor_run_74(W);
     chain5_taylor_run_75(W);
     chain5_taylor_run_76(W, X);
-    if (chain5_taylor_run_77(W, X, solve, ctx))
+    if (chain5_taylor_run_77(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 7)
         goto out;
     /* order 7 */
@@ -6681,8 +6695,10 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     chain5_taylor_run_85(W);
     chain5_taylor_run_86(W);
     chain5_taylor_run_87(W, X);
-    if (chain5_taylor_run_88(W, X, solve, ctx))
+    if (chain5_taylor_run_88(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 8)
         goto out;
     /* order 8 */
@@ -6696,8 +6712,10 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     chain5_taylor_run_96(W);
     chain5_taylor_run_97(W);
     chain5_taylor_run_98(W, X);
-    if (chain5_taylor_run_99(W, X, solve, ctx))
+    if (chain5_taylor_run_99(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 9)
         goto out;
     /* order 9 */
@@ -6711,8 +6729,10 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     chain5_taylor_run_107(W);
     chain5_taylor_run_108(W);
     chain5_taylor_run_109(W, X);
-    if (chain5_taylor_run_110(W, X, solve, ctx))
+    if (chain5_taylor_run_110(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 10)
         goto out;
     /* order 10 */
@@ -6726,8 +6746,10 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     chain5_taylor_run_118(W);
     chain5_taylor_run_119(W);
     chain5_taylor_run_120(W, X);
-    if (chain5_taylor_run_121(W, X, solve, ctx))
+    if (chain5_taylor_run_121(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 11)
         goto out;
     /* order 11 */
@@ -6741,8 +6763,10 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     chain5_taylor_run_129(W);
     chain5_taylor_run_130(W);
     chain5_taylor_run_131(W, X);
-    if (chain5_taylor_run_132(W, X, solve, ctx))
+    if (chain5_taylor_run_132(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 12)
         goto out;
     /* order 12 */
@@ -6756,8 +6780,10 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     chain5_taylor_run_140(W);
     chain5_taylor_run_141(W);
     chain5_taylor_run_142(W, X);
-    if (chain5_taylor_run_143(W, X, solve, ctx))
+    if (chain5_taylor_run_143(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 13)
         goto out;
     /* order 13 */
@@ -6771,8 +6797,10 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     chain5_taylor_run_151(W);
     chain5_taylor_run_152(W);
     chain5_taylor_run_153(W, X);
-    if (chain5_taylor_run_154(W, X, solve, ctx))
+    if (chain5_taylor_run_154(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 14)
         goto out;
     /* order 14 */
@@ -6786,8 +6814,10 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     chain5_taylor_run_162(W);
     chain5_taylor_run_163(W);
     chain5_taylor_run_164(W, X);
-    if (chain5_taylor_run_165(W, X, solve, ctx))
+    if (chain5_taylor_run_165(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 15)
         goto out;
     /* order 15 */
@@ -6801,8 +6831,10 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     chain5_taylor_run_173(W);
     chain5_taylor_run_174(W);
     chain5_taylor_run_175(W, X);
-    if (chain5_taylor_run_176(W, X, solve, ctx))
+    if (chain5_taylor_run_176(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 16)
         goto out;
     /* order 16 */
@@ -6816,8 +6848,10 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     chain5_taylor_run_184(W);
     chain5_taylor_run_185(W);
     chain5_taylor_run_186(W, X);
-    if (chain5_taylor_run_187(W, X, solve, ctx))
+    if (chain5_taylor_run_187(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 17)
         goto out;
     /* order 17 */
@@ -6831,8 +6865,10 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     chain5_taylor_run_195(W);
     chain5_taylor_run_196(W);
     chain5_taylor_run_197(W, X);
-    if (chain5_taylor_run_198(W, X, solve, ctx))
+    if (chain5_taylor_run_198(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 18)
         goto out;
     /* order 18 */
@@ -6846,8 +6882,10 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     chain5_taylor_run_206(W);
     chain5_taylor_run_207(W);
     chain5_taylor_run_208(W, X);
-    if (chain5_taylor_run_209(W, X, solve, ctx))
+    if (chain5_taylor_run_209(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 19)
         goto out;
     /* order 19 */
@@ -6861,9 +6899,12 @@ chain5_taylor_run(int K, eomc_real t0, const eomc_real *p, const eomc_real *u,
     chain5_taylor_run_217(W);
     chain5_taylor_run_218(W);
     chain5_taylor_run_219(W, X);
-    if (chain5_taylor_run_220(W, X, solve, ctx))
+    if (chain5_taylor_run_220(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
 out:
+    EOMC_ZEROUPPER(); /* (eomc_taylor.h) */
     return 0;
 }
 #endif

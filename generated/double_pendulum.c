@@ -1621,123 +1621,164 @@ double_pendulum_taylor_run(int K, eomc_real t0, const eomc_real *p,
     /* order 0 */
     double_pendulum_taylor_run_1(p, W, X);
     double_pendulum_taylor_run_2(W);
-    if (double_pendulum_taylor_run_3(W, X, solve, ctx))
+    if (double_pendulum_taylor_run_3(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 1)
         goto out;
     /* order 1 */
     double_pendulum_taylor_run_4(W, X);
-    if (double_pendulum_taylor_run_5(W, X, solve, ctx))
+    if (double_pendulum_taylor_run_5(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 2)
         goto out;
     /* order 2 */
     double_pendulum_taylor_run_6(W, X);
-    if (double_pendulum_taylor_run_7(W, X, solve, ctx))
+    if (double_pendulum_taylor_run_7(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 3)
         goto out;
     /* order 3 */
     double_pendulum_taylor_run_8(W, X);
-    if (double_pendulum_taylor_run_9(W, X, solve, ctx))
+    if (double_pendulum_taylor_run_9(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 4)
         goto out;
     /* order 4 */
     double_pendulum_taylor_run_10(W, X);
-    if (double_pendulum_taylor_run_11(W, X, solve, ctx))
+    if (double_pendulum_taylor_run_11(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 5)
         goto out;
     /* order 5 */
     double_pendulum_taylor_run_12(W, X);
-    if (double_pendulum_taylor_run_13(W, X, solve, ctx))
+    if (double_pendulum_taylor_run_13(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 6)
         goto out;
     /* order 6 */
     double_pendulum_taylor_run_14(W, X);
-    if (double_pendulum_taylor_run_15(W, X, solve, ctx))
+    if (double_pendulum_taylor_run_15(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 7)
         goto out;
     /* order 7 */
     double_pendulum_taylor_run_16(W, X);
-    if (double_pendulum_taylor_run_17(W, X, solve, ctx))
+    if (double_pendulum_taylor_run_17(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 8)
         goto out;
     /* order 8 */
     double_pendulum_taylor_run_18(W, X);
-    if (double_pendulum_taylor_run_19(W, X, solve, ctx))
+    if (double_pendulum_taylor_run_19(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 9)
         goto out;
     /* order 9 */
     double_pendulum_taylor_run_20(W, X);
-    if (double_pendulum_taylor_run_21(W, X, solve, ctx))
+    if (double_pendulum_taylor_run_21(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 10)
         goto out;
     /* order 10 */
     double_pendulum_taylor_run_22(W, X);
-    if (double_pendulum_taylor_run_23(W, X, solve, ctx))
+    if (double_pendulum_taylor_run_23(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 11)
         goto out;
     /* order 11 */
     double_pendulum_taylor_run_24(W, X);
-    if (double_pendulum_taylor_run_25(W, X, solve, ctx))
+    if (double_pendulum_taylor_run_25(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 12)
         goto out;
     /* order 12 */
     double_pendulum_taylor_run_26(W, X);
-    if (double_pendulum_taylor_run_27(W, X, solve, ctx))
+    if (double_pendulum_taylor_run_27(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 13)
         goto out;
     /* order 13 */
     double_pendulum_taylor_run_28(W, X);
-    if (double_pendulum_taylor_run_29(W, X, solve, ctx))
+    if (double_pendulum_taylor_run_29(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 14)
         goto out;
     /* order 14 */
     double_pendulum_taylor_run_30(W, X);
-    if (double_pendulum_taylor_run_31(W, X, solve, ctx))
+    if (double_pendulum_taylor_run_31(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 15)
         goto out;
     /* order 15 */
     double_pendulum_taylor_run_32(W, X);
-    if (double_pendulum_taylor_run_33(W, X, solve, ctx))
+    if (double_pendulum_taylor_run_33(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 16)
         goto out;
     /* order 16 */
     double_pendulum_taylor_run_34(W, X);
-    if (double_pendulum_taylor_run_35(W, X, solve, ctx))
+    if (double_pendulum_taylor_run_35(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 17)
         goto out;
     /* order 17 */
     double_pendulum_taylor_run_36(W, X);
-    if (double_pendulum_taylor_run_37(W, X, solve, ctx))
+    if (double_pendulum_taylor_run_37(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 18)
         goto out;
     /* order 18 */
     double_pendulum_taylor_run_38(W, X);
-    if (double_pendulum_taylor_run_39(W, X, solve, ctx))
+    if (double_pendulum_taylor_run_39(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
     if (K == 19)
         goto out;
     /* order 19 */
     double_pendulum_taylor_run_40(W, X);
-    if (double_pendulum_taylor_run_41(W, X, solve, ctx))
+    if (double_pendulum_taylor_run_41(W, X, solve, ctx)) {
+        EOMC_ZEROUPPER();
         return -1;
+    }
 out:
+    EOMC_ZEROUPPER(); /* (eomc_taylor.h) */
     return 0;
 }
 #endif

@@ -335,7 +335,7 @@ falling_particle_taylor(int k, int K, eomc_real t0, const eomc_real *p,
 #ifndef EOMC_EXTENDED
 /* The whole series to order K in one call (taylor_run): each order k of
  * the program above, then q's coefficient k + 1 from its rate's k, and
- * q''s, M being constant and diagonal, from -(h_j / M_jj) / (k + 1).
+ * q''s, M being constant and diagonal, from (h_j / M_jj) / -(k + 1).
  * Written out to order 20, each recurrence's sum with its indices fixed
  * (the same arithmetic in the same order); above that, the loop. */
 static int
@@ -500,6 +500,7 @@ falling_particle_taylor_run(int K, eomc_real t0, const eomc_real *p,
     /* order 19 */
 out:
     T[0 * S] = W[0]; /* M's diagonal, entry 0 */
+    EOMC_ZEROUPPER(); /* (eomc_taylor.h) */
     return 0;
 }
 #endif
@@ -660,6 +661,7 @@ falling_particle_taylor_run4(int K, const double *t0s, const double *ps,
     /* order 19 */
 out:
     T[0 * S] = W[0]; /* M's diagonal, entry 0 */
+    EOMC_ZEROUPPER(); /* (eomc_taylor.h) */
     return 0;
 }
 #endif

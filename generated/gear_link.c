@@ -262,7 +262,7 @@ gear_link_taylor(int k, int K, eomc_real t0, const eomc_real *p,
 #ifndef EOMC_EXTENDED
 /* The whole series to order K in one call (taylor_run): each order k of
  * the program above, then q's coefficient k + 1 from its rate's k, and
- * q''s, M being constant and diagonal, from -(h_j / M_jj) / (k + 1).
+ * q''s, M being constant and diagonal, from (h_j / M_jj) / -(k + 1).
  * Written out to order 20, each recurrence's sum with its indices fixed
  * (the same arithmetic in the same order); above that, the loop. */
 static int
@@ -541,6 +541,7 @@ gear_link_taylor_run(int K, eomc_real t0, const eomc_real *p,
     X[41] = W[218] / W[5] / -20.0;
 out:
     T[5 * S] = W[5]; /* M's diagonal, entry 0 */
+    EOMC_ZEROUPPER(); /* (eomc_taylor.h) */
     return 0;
 }
 #endif
@@ -815,6 +816,7 @@ gear_link_taylor_run4(int K, const double *t0s, const double *ps,
     X[41] = W[218] / W[5] / -20.0;
 out:
     T[5 * S] = W[5]; /* M's diagonal, entry 0 */
+    EOMC_ZEROUPPER(); /* (eomc_taylor.h) */
     return 0;
 }
 #endif

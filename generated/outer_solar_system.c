@@ -4004,7 +4004,7 @@ outer_solar_system_taylor(int k, int K, eomc_real t0, const eomc_real *p,
 #ifndef EOMC_EXTENDED
 /* The whole series to order K in one call (taylor_run): each order k of
  * the program above, then q's coefficient k + 1 from its rate's k, and
- * q''s, M being constant and diagonal, from -(h_j / M_jj) / (k + 1).
+ * q''s, M being constant and diagonal, from (h_j / M_jj) / -(k + 1).
  * Written out to order 20, each recurrence's sum with its indices fixed
  * (the same arithmetic in the same order); above that, the loop. */
 /* Lines 0 .. 19 of taylor_run's order 2. */
@@ -11439,6 +11439,7 @@ out:
     T[142 * S] = W[369]; /* M's diagonal, entry 9 */
     T[143 * S] = W[370]; /* M's diagonal, entry 12 */
     T[144 * S] = W[371]; /* M's diagonal, entry 15 */
+    EOMC_ZEROUPPER(); /* (eomc_taylor.h) */
     return 0;
 }
 #endif

@@ -3634,7 +3634,7 @@ pleiades_taylor(int k, int K, eomc_real t0, const eomc_real *p,
 #ifndef EOMC_EXTENDED
 /* The whole series to order K in one call (taylor_run): each order k of
  * the program above, then q's coefficient k + 1 from its rate's k, and
- * q''s, M being constant and diagonal, from -(h_j / M_jj) / (k + 1).
+ * q''s, M being constant and diagonal, from (h_j / M_jj) / -(k + 1).
  * Written out to order 20, each recurrence's sum with its indices fixed
  * (the same arithmetic in the same order); above that, the loop. */
 /* Lines 277 .. 296 of taylor_run's order 1. */
@@ -10788,6 +10788,7 @@ out:
     T[124 * S] = W[386]; /* M's diagonal, entry 8 */
     T[125 * S] = W[387]; /* M's diagonal, entry 10 */
     T[126 * S] = W[388]; /* M's diagonal, entry 12 */
+    EOMC_ZEROUPPER(); /* (eomc_taylor.h) */
     return 0;
 }
 #endif

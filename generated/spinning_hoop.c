@@ -699,7 +699,7 @@ spinning_hoop_taylor(int k, int K, eomc_real t0, const eomc_real *p,
 #ifndef EOMC_EXTENDED
 /* The whole series to order K in one call (taylor_run): each order k of
  * the program above, then q's coefficient k + 1 from its rate's k, and
- * q''s, M being constant and diagonal, from -(h_j / M_jj) / (k + 1).
+ * q''s, M being constant and diagonal, from (h_j / M_jj) / -(k + 1).
  * Written out to order 20, each recurrence's sum with its indices fixed
  * (the same arithmetic in the same order); above that, the loop. */
 /* Lines 28 .. 39 of taylor_run's order 1. */
@@ -1910,6 +1910,7 @@ spinning_hoop_taylor_run(int K, eomc_real t0, const eomc_real *p,
     spinning_hoop_taylor_run_40(W, X);
 out:
     T[19 * S] = W[1]; /* M's diagonal, entry 0 */
+    EOMC_ZEROUPPER(); /* (eomc_taylor.h) */
     return 0;
 }
 #endif

@@ -591,8 +591,8 @@ print_series(Printer *pr, const LowTaylor *ty, int lanes, const int *first)
             int reads = series_reads(se, first[part], first[part + 1], &cells);
             part_values(args, sizeof args, reads, 0);
             if (reads & READS_SOLVE) /* (a solve can fail) */
-                emit_line(pr, "    if (%s_taylor_run_%d(%s))\n        return -1;",
-                          pr->md->name, part + 1, args);
+                emit_line(pr, "    if (%s_taylor_run_%d(%s)) {\n        EOMC_ZEROUPPER();\n"
+                              "        return -1;\n    }", pr->md->name, part + 1, args);
             else
                 emit_line(pr, "    %s_taylor_run_%d(%s);", pr->md->name, part + 1, args);
         }
@@ -619,6 +619,7 @@ print_series(Printer *pr, const LowTaylor *ty, int lanes, const int *first)
         if (!seen)
             emit_line(pr, "    T[%d * S] = W[%d]; /* M's diagonal, entry %d */", m, se->col[m], j);
     }
+    emit_line(pr, "    EOMC_ZEROUPPER(); /* (eomc_taylor.h) */");
     emit_line(pr, "    return 0;");
 }
 
@@ -640,7 +641,7 @@ print_run(Printer *pr, const LowTaylor *ty)
         emit_line(pr, " * order %d, each recurrence's sum with its indices fixed (the same", LOW_SERIES_ORDERS);
         emit_line(pr, " * arithmetic in the same order); above that 1, for the caller's loop. */");
     } else {
-        emit_line(pr, " * q''s, M being constant and diagonal, from -(h_j / M_jj) / (k + 1).");
+        emit_line(pr, " * q''s, M being constant and diagonal, from (h_j / M_jj) / -(k + 1).");
         if (ty->series) {
             emit_line(pr, " * Written out to order %d, each recurrence's sum with its indices fixed",
                       LOW_SERIES_ORDERS);

@@ -16,8 +16,8 @@
  * (a sum's terms by the later of their two orders, the earlier first:
  * term_at), so the bits are those of the loop: a sum starts from its
  * first term rather than from 0 (the same value but for the sign of a
- * zero), and a difference s - b c is s + (-1) b c (negation is exact).  What is left
- * out: a term with a factor that is 0 at every step, such as a constant's
+ * zero), and a difference s - b c is s + (-1) b c (negation is exact).
+ * What is left out: a term with a factor that is 0 at every step, such as a constant's
  * coefficients past the first or a product of polynomials past its
  * degree (t's series is t0, 1: its square has three coefficients).  A
  * cell is known to be 0 where no term reaches it; its readers see -1.
@@ -201,8 +201,9 @@ expand(Out *o, const LowTayStep *st, int k)
         /* c_k = (a_k - sum_{j=1..k} b_j c_{k-j}) / b_0; inv's a is 1, 0, ... */
         int inv = f[0] == 'i', b = s[inv ? 1 : 2];
         l = new_line(o, c, LOW_SER_SUM);
-        for (int i = 0, j; i <= k; i++) {
-            if ((j = term_at(i, k)) > 0)
+        for (int i = 0; i <= k; i++) {
+            int j = term_at(i, k);
+            if (j > 0)
                 add_term(o, -1, cell(o, b, j), cell(o, s[0], k - j), 1);
             else if (inv && k == 0) /* a_k in c_k b_0's place */
                 add_number(o, 1);
@@ -221,23 +222,28 @@ expand(Out *o, const LowTayStep *st, int k)
         }
         l = new_line(o, c, LOW_SER_SUM);
         if (f[1] == 'q') { /* (a_k - sum_{j=1..k-1} c_j c_{k-j}) / (2 c_0) */
-            for (int i = 0, j; i <= k; i++) {
-                if ((j = term_at(i, k)) > 0 && j < k)
+            for (int i = 0; i <= k; i++) {
+                int j = term_at(i, k);
+                if (j > 0 && j < k)
                     add_term(o, -1, cell(o, s[0], j), cell(o, s[0], k - j), 1);
                 else if (j == 0) /* a_k in 2 c_0 c_k's place */
                     add_term(o, 1, cell(o, s[1], k), -1, 0);
             }
             l->over = 2, l->over_cell = cell(o, s[0], 0);
         } else if (f[0] == 'e') { /* sum_{j=1..k} j a_j c_{k-j} / k */
-            for (int i = 0, j; i <= k; i++)
-                if ((j = term_at(i, k)) > 0)
+            for (int i = 0; i <= k; i++) {
+                int j = term_at(i, k);
+                if (j > 0)
                     add_term(o, j, cell(o, s[1], j), cell(o, s[0], k - j), 1);
+            }
             l->after = k;
         } else { /* sum_{j<k} (e (k - j) - j) a_{k-j} c_j / (k a_0) */
             double e = o->literal[s[2]];
-            for (int i = 0, j; i <= k; i++)
-                if ((j = term_at(i, k)) < k)
+            for (int i = 0; i <= k; i++) {
+                int j = term_at(i, k);
+                if (j < k)
                     add_term(o, e * (k - j) - j, cell(o, s[1], k - j), cell(o, s[0], j), 1);
+            }
             l->over = k, l->over_cell = cell(o, s[1], 0);
         }
         close_sum(o, l);
@@ -252,9 +258,11 @@ expand(Out *o, const LowTayStep *st, int k)
          * both from orders below k */
         for (int w = 0; w < 2; w++) {
             l = new_line(o, at(o, s[w], k), LOW_SER_SUM);
-            for (int i = 0, j; i <= k; i++)
-                if ((j = term_at(i, k)) > 0)
+            for (int i = 0; i <= k; i++) {
+                int j = term_at(i, k);
+                if (j > 0)
                     add_term(o, j, cell(o, s[2], j), cell(o, s[1 - w], k - j), 1);
+            }
             l->negate = w == 1 && !strcmp(f, "sincos");
             l->after = k;
             close_sum(o, l);

@@ -491,16 +491,17 @@ run_tail(LowTaylor *ty, int nq, int nv, Arena *A)
         /* without speeds of their own q_i's rate is v_i, whose slot the
          * tail has just given where nothing read it */
         int rate = ty->qd_slot ? ty->qd_slot[i] : ty->v_slot[i];
-        *st = rate < 0 ? (LowTayStep){.call = "hold", .nslot = 1, .nres = 1,
-                                      .slot = {ty->q_slot[i]}}
-                       : (LowTayStep){.call = "integ", .nslot = 2, .nres = 1,
-                                      .slot = {ty->q_slot[i], rate}};
-        /* ... and where that speed's rate is -h / M_ii (accel, below), q's
-         * coefficients from h's directly (eomc_tay_integ2) */
-        if (diagonal && !ty->qd_slot && rate >= 0 && ty->h_slot[i] >= 0)
+        if (rate < 0)
+            *st = (LowTayStep){.call = "hold", .nslot = 1, .nres = 1, .slot = {ty->q_slot[i]}};
+        else if (diagonal && !ty->qd_slot && ty->h_slot[i] >= 0)
+            /* that speed's rate is -h / M_ii (accel, below): q's coefficients
+             * from h's quotient by M_ii (eomc_tay_integ2) */
             *st = (LowTayStep){.call = "integ2", .nslot = 4, .nres = 1,
                                .slot = {ty->q_slot[i], rate, ty->h_slot[i],
                                         ty->M_slot[i * nv + i]}};
+        else
+            *st = (LowTayStep){.call = "integ", .nslot = 2, .nres = 1,
+                               .slot = {ty->q_slot[i], rate}};
     }
     if (!diagonal) {
         ty->acc_slot = arena_new_array(A, int, nv + 1);

@@ -260,6 +260,14 @@ taylor_free(Taylor *tp)
     free(tp);
 }
 
+/* The model's inputs and modes at (t, x) (sim_inputs_at), without the
+ * call where there are no inputs (Taylor.u0). */
+static const double *
+inputs_at(const Taylor *tp, double t, const double *x)
+{
+    return tp->u0 ? tp->u0 : sim_inputs_at(tp->s, t, x, x + tp->n);
+}
+
 /* Whether a and b hold the same n doubles, bit for bit (memcmp's test,
  * inlined: a call of it was 25 of Kepler's 4 000 instructions a step). */
 static int
@@ -693,7 +701,7 @@ taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
     const eomc_model *m = tp->m;
     int n = tp->n, nv = tp->nv, N = tp->N, p = tp->p;
     const double *par = sim_p(tp->s);
-    const double *u = tp->u0 ? tp->u0 : sim_inputs_at(tp->s, t0, x, x + n);
+    const double *u = inputs_at(tp, t0, x);
     /* a start the last advance did not leave (an event's reset, a side
      * step's own start) owes nothing; where the unit quaternions were
      * renormalized since, they owe nothing, and the rest what they did */
@@ -720,8 +728,10 @@ taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
         *h = hs < hmax ? hs : hmax;
         return 0;
     }
-    /* a constant diagonal M, q' = v: v's and q's next coefficients from
-     * h's quotient by M, as taylor_run's (eomc_tay_accel, _integ2) */
+    /* a constant diagonal M, q' = v: q's next coefficient from a_{k-1} =
+     * -(h_{k-1} / M_ii) rather than through q'_k, as taylor_run's
+     * (eomc_tay_integ2; its v's, (h / M) / -(k + 1), is -(h / M) / (k + 1)
+     * here to the bit, rounding being symmetric in the sign) */
     int fold = m->taylor_mass == (EOMC_TAYLOR_M_CONSTANT | EOMC_TAYLOR_M_DIAGONAL) &&
                !m->taylor_qd && tp->nc == 0;
     for (int k = 0; k < p; k++) {
@@ -745,12 +755,11 @@ taylor_series(Taylor *tp, double t0, const double *x, double hmax, double *h)
         const double *cur = tp->X + (size_t)k * (size_t)N;
         for (int j = 0; j < nv; j++) {
             tp->A[(size_t)j * (p + 1) + (size_t)k] = tp->b[j];
-            next[n + j] = fold ? coef(tp, m->taylor_h[j], k) / tp->M0[j * nv + j] / -(k + 1)
-                               : tp->b[j] / (k + 1);
+            next[n + j] = tp->b[j] / (k + 1);
         }
         for (int i = 0; i < n; i++) { /* q' = v, or W(q) v's series */
-            if (fold && k > 0)
-                next[i] = coef(tp, m->taylor_h[i], k - 1) / tp->M0[i * nv + i] / -(k * (k + 1));
+            if (fold && k > 0) /* a_{k-1} = -(h_{k-1} / M_ii), the quotient kept in A */
+                next[i] = tp->A[(size_t)i * (p + 1) + (size_t)(k - 1)] / (k * (k + 1));
             else
                 next[i] = (m->taylor_qd ? coef(tp, m->taylor_qd[i], k) : cur[n + i]) / (k + 1);
         }
@@ -1019,7 +1028,7 @@ taylor_lanes_fill(TaylorLanes *b, Taylor *const *tp, const double *t0,
         first = tp[l] ? l : first;
     if (first < 0)
         return 0;
-    int N = tp[first]->N, n = tp[first]->n, p = b->p, S = p + 1;
+    int N = tp[first]->N, p = b->p, S = p + 1;
     int nu = m->nu + m->nmode, ng = m->nevent + m->nmode;
     /* an idle lane repeats the first's, whose values are sound */
     for (int l = 0; l < EOMC_LANES; l++) {
@@ -1028,8 +1037,7 @@ taylor_lanes_fill(TaylorLanes *b, Taylor *const *tp, const double *t0,
             return -1;
         b->t0[l] = t0[k];
         to_lane(b->par, l, sim_p(tp[k]->s), m->np + m->nd); /* (and the derived) */
-        to_lane(b->u, l, tp[k]->u0 ? tp[k]->u0 : sim_inputs_at(tp[k]->s, t0[k], x[k], x[k] + n),
-                nu);
+        to_lane(b->u, l, inputs_at(tp[k], t0[k], x[k]), nu);
         to_lane(b->X, l, x[k], N);
     }
     if (m->taylor_run4(p, b->t0, b->par, b->u, b->T, b->X) != 0)
